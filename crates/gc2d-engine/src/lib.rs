@@ -1,0 +1,4 @@
+//! The gc2d-rs simulation engine: the World and its step pipeline (see ARCHITECTURE.md, "One step, as data flows").
+//!
+//! The engine knows nothing about scene files, recordings or the command line; those crates build and observe a
+//! World through the types exported here.
