@@ -66,11 +66,10 @@ impl TimeStep {
         self.dt
     }
 
-    /// The factor Δt^n/n! that turns the n-th physical derivative into the n-th scaled derivative (F.10).
-    /// `n` is taken modulo [`GEAR_ORDER`]; only 0..=5 are meaningful.
+    /// The factors Δt^n/n! (n = 0..5) that turn the n-th physical derivative into the n-th scaled derivative (F.10).
     #[inline]
-    pub fn scale(&self, n: usize) -> f64 {
-        self.scale[n % GEAR_ORDER]
+    pub fn scale_factors(&self) -> &[f64; GEAR_ORDER] {
+        &self.scale
     }
 }
 

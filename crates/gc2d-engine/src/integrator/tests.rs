@@ -99,7 +99,7 @@ fn time_step_rejects_unusable_values() {
     }
     let ts = TimeStep::new(2e-6).unwrap();
     assert_eq!(ts.dt(), 2e-6);
-    assert!(relative_error(ts.scale(5), 2e-6_f64.powi(5) / 120.0) < 1e-15);
+    assert!(relative_error(ts.scale_factors()[5], 2e-6_f64.powi(5) / 120.0) < 1e-15);
 }
 
 /// Derivatives 0..5 at `t` of the polynomial Σ coefficients[k]·t^k.
