@@ -4,3 +4,6 @@
 //! World through the types exported here.
 
 pub mod integrator;
+pub mod motion;
+pub mod schedules;
+pub mod time_window;
