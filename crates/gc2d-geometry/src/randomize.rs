@@ -72,9 +72,9 @@ impl Randomization {
             Randomization::Const => nominal,
             _ => {
                 let lowest = nominal.saturating_sub(variation);
-                let choices = nominal.saturating_add(variation) - lowest + 1;
-                let bin = (self.fraction(rng) * choices as f64) as usize;
-                lowest + bin.min(choices - 1)
+                let span = nominal.saturating_add(variation) - lowest;
+                let bin = (self.fraction(rng) * (span as f64 + 1.0)) as usize;
+                lowest + bin.min(span)
             }
         }
     }

@@ -37,8 +37,8 @@ pub enum ShapeError {
         /// What the value must satisfy.
         reason: &'static str,
     },
-    /// The parameters are in range but so extreme that the outline fails validation (for example an ellipse with an
-    /// axis ratio near 10⁻⁹, or a cut fraction within 10⁻⁹ of ½).
+    /// The parameters are in range but so extreme that the outline fails validation (for example a nearly flat
+    /// ellipse, or a cut fraction within 10⁻⁹ of ½).
     #[error("the generated outline is not an admissible polygon: {0}")]
     Degenerate(#[from] PolygonError),
 }

@@ -11,12 +11,12 @@ use std::str::FromStr;
 ///
 /// Two corners drawn almost on top of each other give a near-zero edge and a near-collinear corner, which polygon
 /// validation rejects. One hundredth of the regular spacing keeps the sine of every corner's turn above about
-/// 5·10⁻⁴ times the ellipse's axis ratio (far from the 10⁻⁹ collinearity tolerance) while conditioning away only a
-/// small part of each mode's distribution (see `docs/model.md`, "Shape generators").
+/// 10⁻³ times the ellipse's axis ratio at N = 64 (more for fewer corners; the collinearity tolerance is 10⁻⁹) while
+/// conditioning away only a small part of each mode's distribution (see `docs/model.md`, "Shape generators").
 pub const MIN_GAP_FRACTION: f64 = 0.01;
 
 /// Draws RAND1 and RAND2 make before the last draw is spread out deterministically to satisfy the minimum gap.
-/// RAND2 at N = 64 passes the gap rule with probability ≈ 0.73 per draw, so a fallback is about 10⁻⁵⁷ unlikely.
+/// RAND2 at N = 64 passes the gap rule with probability ≈ 0.72 per draw, so a fallback is about 10⁻⁵⁵ unlikely.
 pub const MAX_REDRAWS: usize = 100;
 
 /// How the corner angles φ_i of a polygon inscribed in an ellipse are chosen (gsi `PART_RANDOM_POS_CORNERS`,
