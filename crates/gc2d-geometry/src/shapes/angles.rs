@@ -73,7 +73,7 @@ pub(crate) fn corner_angles<R: Rng + ?Sized>(mode: AngleMode, rng: &mut R, angle
 }
 
 /// The minimum gap for `n` corners.
-pub(crate) fn min_gap(n: usize) -> f64 {
+fn min_gap(n: usize) -> f64 {
     MIN_GAP_FRACTION * TAU / n as f64
 }
 
@@ -99,7 +99,7 @@ fn redraw_until_spaced<R: Rng + ?Sized>(half_width: f64, min_gap: f64, rng: &mut
 }
 
 /// φ_i = (i + u_i)·2π/N with u_i uniform in [−`half_width`, `half_width`[, in index order (not sorted).
-pub(crate) fn draw_in_windows<R: Rng + ?Sized>(half_width: f64, rng: &mut R, angles: &mut [f64]) {
+fn draw_in_windows<R: Rng + ?Sized>(half_width: f64, rng: &mut R, angles: &mut [f64]) {
     let step = TAU / angles.len() as f64;
     for (i, angle) in angles.iter_mut().enumerate() {
         let offset = half_width * (2.0 * rng.random::<f64>() - 1.0);
@@ -119,14 +119,14 @@ fn sort_on_circle(angles: &mut [f64]) {
 }
 
 /// The smallest gap between circularly consecutive angles (ascending, spanning less than a turn), wrap-around included.
-pub(crate) fn min_circular_gap(angles: &[f64]) -> f64 {
+fn min_circular_gap(angles: &[f64]) -> f64 {
     let wrap = TAU - (angles[angles.len() - 1] - angles[0]);
     angles.windows(2).map(|pair| pair[1] - pair[0]).fold(wrap, f64::min)
 }
 
 /// The deterministic fallback: maps every gap g (wrap-around included, Σg = 2π) to `min_gap` + g·(1 − N·`min_gap`/2π),
 /// keeping the first angle. The gaps again sum to 2π and each is at least `min_gap`; the order is kept.
-pub(crate) fn spread_to_min_gap(min_gap: f64, angles: &mut [f64]) {
+fn spread_to_min_gap(min_gap: f64, angles: &mut [f64]) {
     let shrink = 1.0 - angles.len() as f64 * min_gap / TAU;
     let mut previous_old = angles[0];
     let mut previous_new = angles[0];
