@@ -4,13 +4,26 @@
 //! body frame (centroid at the origin); a [`Pose`] places it in the world. The engine transforms body vertices into
 //! world vertices once per step and hands the world slices to the contact routines of this crate, which neither
 //! allocate nor panic.
+//!
+//! Particles and walls are made by the generators in [`shapes`] (regular and ellipse-inscribed polygons, plain, cut
+//! and rounded rectangles) or drawn at random from a [`ShapeRecipe`], with the CONST / EQUAL / GAUSS rules of
+//! [`randomize`] (reference §1.2, §1.8).
 
 pub mod polygon;
 pub mod pose;
+pub mod randomize;
+pub mod recipe;
+pub mod shapes;
 
 pub use glam::DVec2;
-pub use polygon::{ConvexPolygon, MassProperties, PolygonError, MAX_VERTICES};
+pub use polygon::{ConvexPolygon, MAX_VERTICES, MassProperties, PolygonError};
 pub use pose::{Aabb, Pose};
+pub use randomize::{Randomization, UnknownOptionValue, truncated_gaussian};
+pub use recipe::ShapeRecipe;
+pub use shapes::{
+    AngleMode, ShapeError, cut_rectangle, ellipse_polygon, rectangle, regular_polygon, rounded_rectangle, square,
+    square_cut, square_round,
+};
 
 /// The z component of the 2D cross product `a × b` (positive when `b` is counter-clockwise of `a`).
 #[inline]
