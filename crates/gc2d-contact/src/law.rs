@@ -133,17 +133,21 @@ impl ContactLaw {
         let cohesion = self.cohesion.map_or(0.0, |c| c.force(geometry.chord_length));
 
         let tangent = geometry.tangent();
-        let sliding_velocity = (body_i.contact_point_velocity(geometry.arm_i)
-            - body_j.contact_point_velocity(geometry.arm_j))
-        .dot(tangent);
-        let tangential = self.friction.map_or(TangentialStep::default(), |f| {
-            f.step(e, constants.tangential_mass, previous.spring, sliding_velocity, dt, elastic)
-        });
+        let (tangential, surface_work) = match self.friction {
+            Some(friction) => {
+                let sliding_velocity = (body_i.contact_point_velocity(geometry.arm_i)
+                    - body_j.contact_point_velocity(geometry.arm_j))
+                .dot(tangent);
+                let step = friction.step(e, constants.tangential_mass, previous.spring, sliding_velocity, dt, elastic);
+                let surface_slip = (body_j.surface_velocity - body_i.surface_velocity).dot(tangent);
+                (step, step.force * surface_slip * dt)
+            }
+            None => (TangentialStep::default(), 0.0),
+        };
 
         let normal_force = elastic + damping - cohesion;
         let force = normal_force * geometry.normal + tangential.force * tangent;
         let normal_elastic_change = 0.5 * (previous_elastic + elastic) * approach;
-        let surface_slip = (body_j.surface_velocity - body_i.surface_velocity).dot(tangent);
         ContactResponse {
             force_on_i: force,
             torque_on_i: cross(geometry.arm_i, force),
@@ -158,7 +162,7 @@ impl ContactLaw {
                 tangential_damping: tangential.damping_dissipation,
                 sliding: tangential.sliding_dissipation,
                 opening_residual: 0.0,
-                surface_work: tangential.force * surface_slip * dt,
+                surface_work,
             },
             state: ContactState {
                 constants: Some(constants),

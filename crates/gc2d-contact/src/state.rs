@@ -28,3 +28,16 @@ impl ContactState {
         self.constants.is_some()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn state_is_small_and_starts_not_touching() {
+        assert!(std::mem::size_of::<ContactState>() <= 64, "the state lives in every broadphase pair");
+        let state = ContactState::default();
+        assert!(!state.is_touching());
+        assert_eq!((state.previous_area, state.spring, state.normal_energy), (0.0, 0.0, 0.0));
+    }
+}
