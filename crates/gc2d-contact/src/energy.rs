@@ -21,7 +21,7 @@ pub struct EnergyTerms {
     pub tangential_damping: f64,
     /// Dissipated by sliding (Coulomb cap times slip), ≥ 0.
     pub sliding: f64,
-    /// Stored energy dropped when the contact opens (both energies reset to zero); either sign.
+    /// Stored energy dropped when the contact opens, i.e. the bodies separate (both energies reset to zero); either sign.
     pub opening_residual: f64,
     /// Work done on the bodies by the virtual surface velocities of walls (reference §2.11).
     pub surface_work: f64,

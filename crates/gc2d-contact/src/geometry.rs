@@ -22,7 +22,7 @@ pub struct ContactGeometry {
 }
 
 impl ContactGeometry {
-    /// A pair that does not overlap. Evaluating it ends a contact that was open.
+    /// A pair that does not overlap. Evaluating it ends a contact that was active.
     pub const SEPARATED: Self =
         Self { area: 0.0, normal: DVec2::Y, chord_length: 0.0, arm_i: DVec2::ZERO, arm_j: DVec2::ZERO };
 

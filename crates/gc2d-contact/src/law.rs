@@ -96,7 +96,7 @@ impl ContactLaw {
     /// Evaluates one contact for one time step `dt` (reference §2.15).
     ///
     /// `previous` is the state returned by the last evaluation of this pair (the default state for a new pair).
-    /// A non-overlapping `geometry` ends an open contact, reporting its left-over stored energy, and resets the state.
+    /// A non-overlapping `geometry` ends an active contact (it opens), reporting its left-over stored energy, and resets the state.
     /// Degenerate input (NaN, zero characteristic length, non-positive `dt`) yields finite output: no force for
     /// unusable geometry, and no rate-dependent terms for a non-positive `dt`.
     pub fn evaluate(
@@ -108,13 +108,13 @@ impl ContactLaw {
         dt: f64,
     ) -> ContactResponse {
         if !geometry.is_overlapping() {
-            return self.open(previous);
+            return self.separate(previous);
         }
         let constants = match previous.constants {
             Some(constants) => constants,
             None => match ContactConstants::at_first_contact(geometry, body_i, body_j) {
                 Some(constants) => constants,
-                None => return self.open(previous),
+                None => return self.separate(previous),
             },
         };
         let dt = if dt > 0.0 && dt.is_finite() { dt } else { 0.0 };
@@ -175,9 +175,9 @@ impl ContactLaw {
     }
 
     /// The response of a pair that does not (or no longer) overlap: no force, a reset state and, if a contact was
-    /// open, the energy terms of its last step (the elastic force falls to zero by the trapezoid rule over the
+    /// active, the energy terms of its last step (the elastic force falls to zero by the trapezoid rule over the
     /// previous chord; whatever the contact still stores is the opening residual).
-    fn open(&self, previous: &ContactState) -> ContactResponse {
+    fn separate(&self, previous: &ContactState) -> ContactResponse {
         let Some(constants) = previous.constants else {
             return ContactResponse::default();
         };

@@ -5,7 +5,7 @@ use crate::ContactConstants;
 /// What a contact remembers between steps. Small and `Copy`: it lives in the broadphase pair list, and the default
 /// value is "not touching".
 ///
-/// The contact is open (touching) exactly when `constants` is `Some`; all other fields are zero when it is not.
+/// The contact is active (touching) exactly when `constants` is `Some`; all other fields are zero when it is not.
 /// When the overlap area returns to zero the whole state resets, including the spring (decision D11).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ContactState {
@@ -22,7 +22,7 @@ pub struct ContactState {
 }
 
 impl ContactState {
-    /// True while the bodies overlap (the contact is open).
+    /// True while the bodies overlap (the contact is active).
     #[inline]
     pub fn is_touching(&self) -> bool {
         self.constants.is_some()

@@ -206,11 +206,11 @@ fn slip_caps_at_mu_times_elastic_force_and_the_spring_resets_when_the_contact_en
     }
     assert!(slipping > 100, "a 0.05 m/s slide must saturate the spring within 60 steps");
     // Contact ends: the state resets, including the spring (D11) ...
-    let open = law.evaluate(&ContactGeometry::SEPARATED, &body_i, &wall(), &state, DT);
-    assert_eq!(open.state, ContactState::default());
-    assert_eq!(open.force_on_i, DVec2::ZERO);
+    let separated = law.evaluate(&ContactGeometry::SEPARATED, &body_i, &wall(), &state, DT);
+    assert_eq!(separated.state, ContactState::default());
+    assert_eq!(separated.force_on_i, DVec2::ZERO);
     // ... so a new contact starts from a spring of one step's stretch.
-    let again = law.evaluate(&plate_on_wall(h), &plate(DVec2::new(1e-4, 0.0), 0.0), &wall(), &open.state, DT);
+    let again = law.evaluate(&plate_on_wall(h), &plate(DVec2::new(1e-4, 0.0), 0.0), &wall(), &separated.state, DT);
     assert!((again.state.spring - CundallStrack::stiffness(E) * 1e-4 * DT).abs() < 1e-15);
 }
 
@@ -303,8 +303,8 @@ fn degenerate_input_gives_finite_output() {
     for (k, g) in bad.iter().enumerate() {
         for dt in [DT, 0.0, -1.0, f64::NAN] {
             let fresh = law.evaluate(g, &still, &wall(), &ContactState::default(), dt);
-            let open = law.evaluate(&plate_on_wall(1e-6), &still, &wall(), &ContactState::default(), DT).state;
-            let continued = law.evaluate(g, &still, &wall(), &open, dt);
+            let active = law.evaluate(&plate_on_wall(1e-6), &still, &wall(), &ContactState::default(), DT).state;
+            let continued = law.evaluate(g, &still, &wall(), &active, dt);
             for out in [fresh, continued] {
                 let e = out.energy;
                 let numbers = [out.force_on_i.x, out.force_on_i.y, out.torque_on_i, out.torque_on_j, e.absorbed()];
