@@ -2,3 +2,5 @@
 //!
 //! The engine knows nothing about scene files, recordings or the command line; those crates build and observe a
 //! World through the types exported here.
+
+pub mod broadphase;
