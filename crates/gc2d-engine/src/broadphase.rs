@@ -24,25 +24,19 @@
 //! the next [`SortAndSweep::update`]: their endpoints are sorted (O(k log k)), merged into the axes in one pass, and
 //! their pairs found with one sweep, so building the first state of N bodies costs O(N log N), never N² swaps.
 
+mod bodies;
 mod pair_set;
 
+pub use bodies::BodyKind;
 pub use pair_set::PairEntry;
 
-use gc2d_geometry::{Aabb, DVec2};
+use bodies::{Bodies, SlotState};
+use gc2d_geometry::Aabb;
 use pair_set::PairSet;
 use std::cmp::Ordering;
 
 /// The largest body id plus one: one bit of an endpoint's key says whether it is a begin or an end.
 pub const MAX_BODIES: u32 = 1 << 31;
-
-/// Whether a body moves. Two static bodies (walls) are never paired: their contact would exert no force.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BodyKind {
-    /// A free particle.
-    Dynamic,
-    /// A wall: immovable or moved by a prescribed motion.
-    Static,
-}
 
 /// Why a body could not be inserted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
@@ -70,56 +64,6 @@ pub struct BroadphaseStats {
     pub bodies_inserted: usize,
     /// Bodies removed.
     pub bodies_removed: usize,
-}
-
-/// Where a body slot stands.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum SlotState {
-    /// Not in the broadphase.
-    Absent,
-    /// Inserted; merged into the axes at the next update.
-    Pending,
-    /// In the axes.
-    Active,
-}
-
-/// The broadphase's record of one body: its (sanitised) box and flags.
-#[derive(Debug, Clone, Copy)]
-struct BodySlot {
-    state: SlotState,
-    kind: BodyKind,
-    /// Set while a newly merged body looks for its first pairs.
-    fresh: bool,
-    min: DVec2,
-    max: DVec2,
-}
-
-impl BodySlot {
-    const ABSENT: Self =
-        Self { state: SlotState::Absent, kind: BodyKind::Dynamic, fresh: false, min: DVec2::ZERO, max: DVec2::ZERO };
-
-    /// Stores `aabb`, made safe to sort: per axis a NaN lower bound becomes +∞ and an upper bound that is NaN or
-    /// below the lower bound becomes the lower bound, so every interval has begin ≤ end.
-    fn set_box(&mut self, aabb: &Aabb) {
-        for axis in 0..2 {
-            let min = if aabb.min[axis].is_nan() { f64::INFINITY } else { aabb.min[axis] };
-            let max = aabb.max[axis];
-            self.min[axis] = min;
-            self.max[axis] = if max >= min { max } else { min };
-        }
-    }
-
-    /// True when the boxes overlap or touch on both axes (same rule as [`Aabb::overlaps`]).
-    #[inline]
-    fn touches(&self, other: &BodySlot) -> bool {
-        self.min.x <= other.max.x && other.min.x <= self.max.x && self.min.y <= other.max.y && other.min.y <= self.max.y
-    }
-
-    /// True when the pair may exist at all: not two static bodies.
-    #[inline]
-    fn may_pair_with(&self, other: &BodySlot) -> bool {
-        self.kind == BodyKind::Dynamic || other.kind == BodyKind::Dynamic
-    }
 }
 
 /// Bit of [`Endpoint::key`] that marks an end value.
@@ -171,7 +115,7 @@ impl Endpoint {
 /// scene's size, `update` does not allocate.
 #[derive(Debug, Clone)]
 pub struct SortAndSweep<T> {
-    bodies: Vec<BodySlot>,
+    bodies: Bodies,
     /// Sorted endpoints of the x axis (index 0) and the y axis (index 1).
     axes: [Vec<Endpoint>; 2],
     /// Bodies inserted since the last update, in insertion order.
@@ -194,7 +138,7 @@ pub struct SortAndSweep<T> {
 impl<T: Default> Default for SortAndSweep<T> {
     fn default() -> Self {
         Self {
-            bodies: Vec::new(),
+            bodies: Bodies::default(),
             axes: [Vec::new(), Vec::new()],
             pending: Vec::new(),
             has_removed_endpoints: false,
@@ -221,16 +165,10 @@ impl<T: Default> SortAndSweep<T> {
         if body >= MAX_BODIES {
             return Err(BroadphaseError::IdTooLarge(body));
         }
-        let index = body as usize;
-        if index >= self.bodies.len() {
-            self.bodies.resize(index + 1, BodySlot::ABSENT);
-        }
-        let slot = &mut self.bodies[index];
-        if slot.state != SlotState::Absent {
+        if self.bodies.state(body) != SlotState::Absent {
             return Err(BroadphaseError::AlreadyInserted(body));
         }
-        *slot = BodySlot { state: SlotState::Pending, kind, ..BodySlot::ABSENT };
-        slot.set_box(&aabb);
+        self.bodies.make_pending(body, kind, &aabb);
         self.pending.push(body);
         Ok(())
     }
@@ -239,8 +177,7 @@ impl<T: Default> SortAndSweep<T> {
     /// [`ended_pairs`](Self::ended_pairs). Returns false if the body was not in the broadphase. The id may be
     /// inserted again right away.
     pub fn remove(&mut self, body: u32) -> bool {
-        let Some(slot) = self.bodies.get_mut(body as usize) else { return false };
-        match slot.state {
+        match self.bodies.state(body) {
             SlotState::Absent => return false,
             SlotState::Pending => self.pending.retain(|&p| p != body),
             SlotState::Active => {
@@ -248,7 +185,7 @@ impl<T: Default> SortAndSweep<T> {
                 self.has_removed_endpoints = true;
             }
         }
-        self.bodies[body as usize].state = SlotState::Absent;
+        self.bodies.set_state(body, SlotState::Absent);
         self.carried.bodies_removed += 1;
         true
     }
@@ -261,22 +198,13 @@ impl<T: Default> SortAndSweep<T> {
         if self.has_removed_endpoints {
             let bodies = &self.bodies;
             for axis in &mut self.axes {
-                axis.retain(|e| bodies[e.body() as usize].state == SlotState::Active);
+                axis.retain(|e| bodies.state(e.body()) == SlotState::Active);
             }
             self.has_removed_endpoints = false;
         }
-        for (slot, aabb) in self.bodies.iter_mut().zip(aabbs) {
-            if slot.state != SlotState::Absent {
-                slot.set_box(aabb);
-            }
-        }
+        self.bodies.advance(aabbs);
         for axis in 0..2 {
-            let endpoints = &mut self.axes[axis];
-            for e in endpoints.iter_mut() {
-                let slot = &self.bodies[e.body() as usize];
-                e.value = if e.is_end() { slot.max[axis] } else { slot.min[axis] };
-            }
-            insertion_sort(endpoints, &self.bodies, &mut self.pairs, &mut self.ended, &mut self.stats);
+            insertion_sort(&mut self.axes[axis], axis, &self.bodies, &mut self.pairs, &mut self.ended, &mut self.stats);
         }
         if !self.pending.is_empty() {
             self.merge_pending();
@@ -319,22 +247,21 @@ impl<T: Default> SortAndSweep<T> {
 
     /// True if `body` is in the broadphase (active or waiting for the next update).
     pub fn contains(&self, body: u32) -> bool {
-        self.bodies.get(body as usize).is_some_and(|s| s.state != SlotState::Absent)
+        self.bodies.state(body) != SlotState::Absent
     }
 
     /// Merges the pending bodies into both axes, then finds their pairs with one sweep along x.
     fn merge_pending(&mut self) {
         for &body in &self.pending {
-            let slot = &mut self.bodies[body as usize];
-            slot.state = SlotState::Active;
-            slot.fresh = true;
+            self.bodies.set_state(body, SlotState::Active);
+            self.bodies.set_fresh(body, true);
         }
         for axis in 0..2 {
             self.merge_buffer.clear();
             for &body in &self.pending {
-                let slot = &self.bodies[body as usize];
-                self.merge_buffer.push(Endpoint::begin(body, slot.min[axis]));
-                self.merge_buffer.push(Endpoint::end(body, slot.max[axis]));
+                let interval = self.bodies.interval(axis, body);
+                self.merge_buffer.push(Endpoint::begin(body, interval.lower));
+                self.merge_buffer.push(Endpoint::end(body, interval.upper));
             }
             self.merge_buffer.sort_unstable_by(Endpoint::order);
             merge_sorted(&mut self.axes[axis], &self.merge_buffer);
@@ -342,52 +269,78 @@ impl<T: Default> SortAndSweep<T> {
         self.stats.pairs_added +=
             self.sweep.pair_fresh_bodies(&self.axes[0], &self.bodies, self.pending.len(), &mut self.pairs);
         for &body in &self.pending {
-            self.bodies[body as usize].fresh = false;
+            self.bodies.set_fresh(body, false);
         }
         self.stats.bodies_inserted += self.pending.len();
         self.pending.clear();
     }
 }
 
-/// Re-sorts one axis by insertion sort and applies Table 2.3 at every adjacent swap.
-///
-/// Adding checks that the boxes touch with their *new* values on both axes, so a pair is added only if it exists at
-/// the end of the update; removing is unconditional. This keeps the list exact whichever axis is sorted first.
+/// Refreshes the values of one axis from the bodies' new boxes and re-sorts it by insertion sort, applying Table 2.3
+/// at every adjacent swap. Refreshing element i just before inserting it keeps this to one pass over the array, and
+/// the common case (element already in place) stays a tight loop; moving an element is done out of line.
 fn insertion_sort<T: Default>(
     endpoints: &mut [Endpoint],
-    bodies: &[BodySlot],
+    axis: usize,
+    bodies: &Bodies,
     pairs: &mut PairSet<T>,
     ended: &mut Vec<PairEntry<T>>,
     stats: &mut BroadphaseStats,
 ) {
-    for i in 1..endpoints.len() {
-        let moving = endpoints[i];
-        let mut j = i;
-        while j > 0 && moving.precedes(endpoints[j - 1]) {
-            let passed = endpoints[j - 1];
-            stats.swaps += 1;
-            match (passed.is_end(), moving.is_end()) {
-                (true, false) => {
-                    let (m, n) = (&bodies[passed.body() as usize], &bodies[moving.body() as usize]);
-                    if m.may_pair_with(n) && m.touches(n) && pairs.insert(passed.body(), moving.body()) {
-                        stats.pairs_added += 1;
-                    }
-                }
-                (false, true) => {
-                    if let Some(entry) = pairs.remove(passed.body(), moving.body()) {
-                        ended.push(entry);
-                        stats.pairs_removed += 1;
-                    }
-                }
-                _ => {}
+    let intervals = bodies.intervals(axis);
+    let mut previous: Option<Endpoint> = None;
+    for i in 0..endpoints.len() {
+        let mut moving = endpoints[i];
+        let interval = intervals[moving.body() as usize];
+        moving.value = if moving.is_end() { interval.upper } else { interval.lower };
+        match previous {
+            Some(left) if moving.precedes(left) => {
+                sink(&mut endpoints[..=i], moving, bodies, pairs, ended, stats);
+                previous = Some(endpoints[i]);
             }
-            endpoints[j] = passed;
-            j -= 1;
-        }
-        if j != i {
-            endpoints[j] = moving;
+            _ => {
+                endpoints[i] = moving;
+                previous = Some(moving);
+            }
         }
     }
+}
+
+/// Moves `moving` left from the end of `endpoints` to its place, applying Table 2.3 to every element it passes.
+///
+/// Adding checks that the boxes touch with their *new* values on both axes, so a pair is added only if it exists at
+/// the end of the update; this keeps the list exact whichever axis is sorted first. Removing needs no test, but a
+/// pair whose boxes did not touch at the previous update cannot be in the list, so its lookup is skipped.
+#[inline(never)]
+fn sink<T: Default>(
+    endpoints: &mut [Endpoint],
+    moving: Endpoint,
+    bodies: &Bodies,
+    pairs: &mut PairSet<T>,
+    ended: &mut Vec<PairEntry<T>>,
+    stats: &mut BroadphaseStats,
+) {
+    let mut j = endpoints.len() - 1;
+    while j > 0 && moving.precedes(endpoints[j - 1]) {
+        let passed = endpoints[j - 1];
+        stats.swaps += 1;
+        let (m, n) = (passed.body(), moving.body());
+        if passed.is_end() && !moving.is_end() {
+            // e_m b_n ⇒ b_n e_m: the intervals start to overlap on this axis.
+            if bodies.may_pair(m, n) && pairs.insert(m, n) {
+                stats.pairs_added += 1;
+            }
+        } else if !passed.is_end() && moving.is_end() && bodies.met_before(m, n) {
+            // b_m e_n ⇒ e_n b_m: the intervals stop overlapping on this axis.
+            if let Some(entry) = pairs.remove(m, n) {
+                ended.push(entry);
+                stats.pairs_removed += 1;
+            }
+        }
+        endpoints[j] = passed;
+        j -= 1;
+    }
+    endpoints[j] = moving;
 }
 
 /// Merges the sorted `extra` into the sorted `axis` in place, from the back, in one pass.
@@ -425,7 +378,7 @@ impl SweepScratch {
     fn pair_fresh_bodies<T: Default>(
         &mut self,
         x_axis: &[Endpoint],
-        bodies: &[BodySlot],
+        bodies: &Bodies,
         fresh_count: usize,
         pairs: &mut PairSet<T>,
     ) -> usize {
@@ -436,10 +389,10 @@ impl SweepScratch {
         let mut fresh_seen = 0;
         for e in x_axis {
             let body = e.body();
-            let slot = &bodies[body as usize];
+            let fresh = bodies.is_fresh(body);
             if e.is_end() {
                 remove_open(&mut self.open, &mut self.position, body, 0);
-                if slot.fresh {
+                if fresh {
                     remove_open(&mut self.open_fresh, &mut self.position, body, 1);
                     if fresh_seen == fresh_count && self.open_fresh.is_empty() {
                         break;
@@ -447,16 +400,15 @@ impl SweepScratch {
                 }
                 continue;
             }
-            let partners = if slot.fresh { &self.open } else { &self.open_fresh };
+            let partners = if fresh { &self.open } else { &self.open_fresh };
             for &other in partners {
-                let other_slot = &bodies[other as usize];
-                if slot.may_pair_with(other_slot) && slot.touches(other_slot) && pairs.insert(other, body) {
+                if bodies.may_pair(other, body) && pairs.insert(other, body) {
                     added += 1;
                 }
             }
             self.position[body as usize][0] = self.open.len() as u32;
             self.open.push(body);
-            if slot.fresh {
+            if fresh {
                 self.position[body as usize][1] = self.open_fresh.len() as u32;
                 self.open_fresh.push(body);
                 fresh_seen += 1;
@@ -481,6 +433,7 @@ fn remove_open(open: &mut Vec<u32>, position: &mut [[u32; 2]], body: u32, list: 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use gc2d_geometry::DVec2;
 
     fn interval_box(begin: f64, end: f64) -> Aabb {
         Aabb { min: DVec2::new(begin, 0.0), max: DVec2::new(end, 1.0) }
