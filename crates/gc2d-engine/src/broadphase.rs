@@ -102,8 +102,15 @@ impl Endpoint {
         self.value < other.value || (self.value == other.value && self.key < other.key)
     }
 
+    /// [`precedes`](Self::precedes) as an `Ordering`, for `sort_unstable_by` (so −0.0 and +0.0 tie, as they do there).
     fn order(a: &Endpoint, b: &Endpoint) -> Ordering {
-        a.value.total_cmp(&b.value).then(a.key.cmp(&b.key))
+        if a.precedes(*b) {
+            Ordering::Less
+        } else if b.precedes(*a) {
+            Ordering::Greater
+        } else {
+            Ordering::Equal
+        }
     }
 }
 
@@ -486,6 +493,16 @@ mod tests {
         sweep.update(&touching);
         assert_eq!(sweep.pairs().len(), 1);
         assert!(sweep.ended_pairs().is_empty());
+    }
+
+    #[test]
+    fn negative_zero_touches_positive_zero_when_inserted_together() {
+        let mut sweep = SortAndSweep::<u32>::new();
+        let boxes = [interval_box(-1.0, -0.0), interval_box(0.0, 1.0)];
+        sweep.insert(0, boxes[0], BodyKind::Dynamic).unwrap();
+        sweep.insert(1, boxes[1], BodyKind::Dynamic).unwrap();
+        sweep.update(&boxes);
+        assert_eq!(sweep.pairs().len(), 1);
     }
 
     #[test]
