@@ -7,3 +7,4 @@ pub mod integrator;
 pub mod motion;
 pub mod schedules;
 pub mod time_window;
+pub mod broadphase;

@@ -1,0 +1,538 @@
+//! Incremental sort-and-sweep on both axes with a persistent pair list (reference §4.2, Tables 2.1–2.3; §10.1 item 12).
+//!
+//! Each axis keeps the begin and end values of every bounding box in one array, sorted by a strict total order
+//! (value, then begins before ends, then body id). Every step the arrays are re-sorted by insertion sort, which is
+//! O(N + swaps) and O(N) for the nearly sorted input of a time-stepped simulation. Every adjacent swap is one of the
+//! four cases of Table 2.3; only two change the pair list:
+//!
+//! | swap | meaning | action |
+//! |---|---|---|
+//! | e_m b_n ⇒ b_n e_m | the intervals start to overlap on this axis | add (m, n) if the boxes now touch |
+//! | b_m e_n ⇒ e_n b_m | the intervals stop overlapping on this axis | remove (m, n) if present |
+//!
+//! Because begins sort before ends at equal values, touching boxes count as overlapping, exactly as in
+//! [`Aabb::overlaps`]. The pair list is therefore always exactly the set of touching-or-overlapping box pairs (minus
+//! static–static pairs). The proof and the tie rules are in `docs/model.md`, "Broadphase (§4.2)".
+//!
+//! **Why the two axes are swept one after the other, not in parallel** (the thesis ran them on two threads, §4.5):
+//! both sweeps write the one pair list. In parallel they would need a lock (as gc2d had), and the order in which the
+//! two threads reach the lock would decide the order of the list, so the pair order, and with it the narrowphase's
+//! summation order, would change from run to run. Sequentially the list order is a pure function of the input. The
+//! sort is O(N) and small next to the narrowphase, which is where the threads are used.
+//!
+//! Bodies are inserted and removed at any time (drop sources, particles leaving the domain). Insertions are merged at
+//! the next [`SortAndSweep::update`]: their endpoints are sorted (O(k log k)), merged into the axes in one pass, and
+//! their pairs found with one sweep, so building the first state of N bodies costs O(N log N), never N² swaps.
+
+mod bodies;
+mod pair_set;
+
+pub use bodies::BodyKind;
+pub use pair_set::PairEntry;
+
+use bodies::{Bodies, SlotState};
+use gc2d_geometry::Aabb;
+use pair_set::PairSet;
+use std::cmp::Ordering;
+
+/// The largest body id plus one: one bit of an endpoint's key says whether it is a begin or an end.
+pub const MAX_BODIES: u32 = 1 << 31;
+
+/// Why a body could not be inserted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum BroadphaseError {
+    /// The id is already in the broadphase (inserted and not removed since).
+    #[error("body {0} is already in the broadphase")]
+    AlreadyInserted(u32),
+    /// The id does not fit the endpoint key.
+    #[error("body id {0} exceeds the broadphase limit of 2^31 - 1")]
+    IdTooLarge(u32),
+}
+
+/// Counters of one [`SortAndSweep::update`], for the statistics the engine logs.
+///
+/// Removals made with [`SortAndSweep::remove`] are counted in the next update's counters.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BroadphaseStats {
+    /// Adjacent swaps performed by the insertion sorts of both axes.
+    pub swaps: u64,
+    /// Pairs created.
+    pub pairs_added: usize,
+    /// Pairs ended, by separation or by removal of a body.
+    pub pairs_removed: usize,
+    /// Bodies merged into the axes.
+    pub bodies_inserted: usize,
+    /// Bodies removed.
+    pub bodies_removed: usize,
+}
+
+/// Bit of [`Endpoint::key`] that marks an end value.
+const END_BIT: u32 = 1 << 31;
+
+/// One bound of one body's interval on one axis.
+#[derive(Debug, Clone, Copy)]
+struct Endpoint {
+    value: f64,
+    /// Body id, with [`END_BIT`] set for an end. Comparing keys puts begins before ends, then orders by body.
+    key: u32,
+}
+
+impl Endpoint {
+    fn begin(body: u32, value: f64) -> Self {
+        Self { value, key: body }
+    }
+
+    fn end(body: u32, value: f64) -> Self {
+        Self { value, key: body | END_BIT }
+    }
+
+    #[inline]
+    fn body(self) -> u32 {
+        self.key & !END_BIT
+    }
+
+    #[inline]
+    fn is_end(self) -> bool {
+        self.key & END_BIT != 0
+    }
+
+    /// The strict total order of the axis: value, then begin before end, then body id. Values are never NaN.
+    #[inline]
+    fn precedes(self, other: Endpoint) -> bool {
+        self.value < other.value || (self.value == other.value && self.key < other.key)
+    }
+
+    /// [`precedes`](Self::precedes) as an `Ordering`, for `sort_unstable_by` (so −0.0 and +0.0 tie, as they do there).
+    fn order(a: &Endpoint, b: &Endpoint) -> Ordering {
+        if a.precedes(*b) {
+            Ordering::Less
+        } else if b.precedes(*a) {
+            Ordering::Greater
+        } else {
+            Ordering::Equal
+        }
+    }
+}
+
+/// The incremental sort-and-sweep broadphase with a pair list carrying one `T` per pair.
+///
+/// Body ids are the engine's dense slots. Usage per step: [`update`](Self::update) with every body's box, then run
+/// the narrowphase over [`pairs_mut`](Self::pairs_mut) (each pair writes only its own payload, so `par_iter_mut` is
+/// safe), and read [`ended_pairs`](Self::ended_pairs) for the contacts that ended. Once the buffers have grown to the
+/// scene's size, `update` does not allocate.
+#[derive(Debug, Clone)]
+pub struct SortAndSweep<T> {
+    bodies: Bodies,
+    /// Sorted endpoints of the x axis (index 0) and the y axis (index 1).
+    axes: [Vec<Endpoint>; 2],
+    /// Bodies inserted since the last update, in insertion order.
+    pending: Vec<u32>,
+    /// Whether removed bodies still have endpoints in the axes.
+    has_removed_endpoints: bool,
+    pairs: PairSet<T>,
+    /// Pairs reported by the last update (the first `reported`), then pairs ended by `remove` since.
+    ended: Vec<PairEntry<T>>,
+    reported: usize,
+    stats: BroadphaseStats,
+    /// Counters of `remove` calls since the last update.
+    carried: BroadphaseStats,
+    /// Scratch: the sorted endpoints of the bodies being merged.
+    merge_buffer: Vec<Endpoint>,
+    /// Scratch for the sweep that finds new bodies' pairs.
+    sweep: SweepScratch,
+}
+
+impl<T: Default> Default for SortAndSweep<T> {
+    fn default() -> Self {
+        Self {
+            bodies: Bodies::default(),
+            axes: [Vec::new(), Vec::new()],
+            pending: Vec::new(),
+            has_removed_endpoints: false,
+            pairs: PairSet::default(),
+            ended: Vec::new(),
+            reported: 0,
+            stats: BroadphaseStats::default(),
+            carried: BroadphaseStats::default(),
+            merge_buffer: Vec::new(),
+            sweep: SweepScratch::default(),
+        }
+    }
+}
+
+impl<T: Default> SortAndSweep<T> {
+    /// An empty broadphase.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds `body` with its box. It joins the axes, and gets its pairs, at the next [`update`](Self::update), which
+    /// also replaces the box given here if its slice covers `body`.
+    pub fn insert(&mut self, body: u32, aabb: Aabb, kind: BodyKind) -> Result<(), BroadphaseError> {
+        if body >= MAX_BODIES {
+            return Err(BroadphaseError::IdTooLarge(body));
+        }
+        if self.bodies.state(body) != SlotState::Absent {
+            return Err(BroadphaseError::AlreadyInserted(body));
+        }
+        self.bodies.make_pending(body, kind, &aabb);
+        self.pending.push(body);
+        Ok(())
+    }
+
+    /// Removes `body` and ends all its pairs at once; they appear in the next update's
+    /// [`ended_pairs`](Self::ended_pairs). Returns false if the body was not in the broadphase. The id may be
+    /// inserted again right away.
+    pub fn remove(&mut self, body: u32) -> bool {
+        match self.bodies.state(body) {
+            SlotState::Absent => return false,
+            SlotState::Pending => self.pending.retain(|&p| p != body),
+            SlotState::Active => {
+                self.carried.pairs_removed += self.pairs.remove_body(body, &mut self.ended);
+                self.has_removed_endpoints = true;
+            }
+        }
+        self.bodies.set_state(body, SlotState::Absent);
+        self.carried.bodies_removed += 1;
+        true
+    }
+
+    /// Moves every body to its new box (`aabbs[body]`; ids not in the broadphase are ignored, bodies beyond the slice
+    /// keep their last box), re-sorts both axes, merges inserted bodies, and corrects the pair list.
+    pub fn update(&mut self, aabbs: &[Aabb]) {
+        self.ended.drain(..self.reported);
+        self.stats = std::mem::take(&mut self.carried);
+        if self.has_removed_endpoints {
+            let bodies = &self.bodies;
+            for axis in &mut self.axes {
+                axis.retain(|e| bodies.state(e.body()) == SlotState::Active);
+            }
+            self.has_removed_endpoints = false;
+        }
+        self.bodies.advance(aabbs);
+        for axis in 0..2 {
+            insertion_sort(&mut self.axes[axis], axis, &self.bodies, &mut self.pairs, &mut self.ended, &mut self.stats);
+        }
+        if !self.pending.is_empty() {
+            self.merge_pending();
+        }
+        self.reported = self.ended.len();
+    }
+
+    /// The current pairs: exactly the touching-or-overlapping box pairs that are not both static.
+    #[inline]
+    pub fn pairs(&self) -> &[PairEntry<T>] {
+        self.pairs.entries()
+    }
+
+    /// The current pairs with mutable payloads, for the narrowphase.
+    #[inline]
+    pub fn pairs_mut(&mut self) -> &mut [PairEntry<T>] {
+        self.pairs.entries_mut()
+    }
+
+    /// The record of the pair {a, b}, if their boxes touch.
+    pub fn payload(&self, a: u32, b: u32) -> Option<&T> {
+        self.pairs.get(a, b).map(|e| &e.payload)
+    }
+
+    /// The record of the pair {a, b}, mutable (e.g. to restore contact history at a restart).
+    pub fn payload_mut(&mut self, a: u32, b: u32) -> Option<&mut T> {
+        self.pairs.get_mut(a, b).map(|e| &mut e.payload)
+    }
+
+    /// The pairs that ended since the previous update, with their last payloads: those of bodies removed before
+    /// this update, then those that separated in it. Each ended pair is reported by exactly one update.
+    pub fn ended_pairs(&self) -> &[PairEntry<T>] {
+        &self.ended[..self.reported]
+    }
+
+    /// Counters of the last update.
+    pub fn stats(&self) -> &BroadphaseStats {
+        &self.stats
+    }
+
+    /// True if `body` is in the broadphase (active or waiting for the next update).
+    pub fn contains(&self, body: u32) -> bool {
+        self.bodies.state(body) != SlotState::Absent
+    }
+
+    /// Merges the pending bodies into both axes, then finds their pairs with one sweep along x.
+    fn merge_pending(&mut self) {
+        for &body in &self.pending {
+            self.bodies.set_state(body, SlotState::Active);
+            self.bodies.set_fresh(body, true);
+        }
+        for axis in 0..2 {
+            self.merge_buffer.clear();
+            for &body in &self.pending {
+                let interval = self.bodies.interval(axis, body);
+                self.merge_buffer.push(Endpoint::begin(body, interval.lower));
+                self.merge_buffer.push(Endpoint::end(body, interval.upper));
+            }
+            self.merge_buffer.sort_unstable_by(Endpoint::order);
+            merge_sorted(&mut self.axes[axis], &self.merge_buffer);
+        }
+        self.stats.pairs_added +=
+            self.sweep.pair_fresh_bodies(&self.axes[0], &self.bodies, self.pending.len(), &mut self.pairs);
+        for &body in &self.pending {
+            self.bodies.set_fresh(body, false);
+        }
+        self.stats.bodies_inserted += self.pending.len();
+        self.pending.clear();
+    }
+}
+
+/// Refreshes the values of one axis from the bodies' new boxes and re-sorts it by insertion sort, applying Table 2.3
+/// at every adjacent swap. Refreshing element i just before inserting it keeps this to one pass over the array, and
+/// the common case (element already in place) stays a tight loop; moving an element is done out of line.
+fn insertion_sort<T: Default>(
+    endpoints: &mut [Endpoint],
+    axis: usize,
+    bodies: &Bodies,
+    pairs: &mut PairSet<T>,
+    ended: &mut Vec<PairEntry<T>>,
+    stats: &mut BroadphaseStats,
+) {
+    let intervals = bodies.intervals(axis);
+    let mut previous: Option<Endpoint> = None;
+    for i in 0..endpoints.len() {
+        let mut moving = endpoints[i];
+        let interval = intervals[moving.body() as usize];
+        moving.value = if moving.is_end() { interval.upper } else { interval.lower };
+        match previous {
+            Some(left) if moving.precedes(left) => {
+                sink(&mut endpoints[..=i], moving, bodies, pairs, ended, stats);
+                previous = Some(endpoints[i]);
+            }
+            _ => {
+                endpoints[i] = moving;
+                previous = Some(moving);
+            }
+        }
+    }
+}
+
+/// Moves `moving` left from the end of `endpoints` to its place, applying Table 2.3 to every element it passes.
+///
+/// Adding checks that the boxes touch with their *new* values on both axes, so a pair is added only if it exists at
+/// the end of the update; this keeps the list exact whichever axis is sorted first. Removing needs no test, but a
+/// pair whose boxes did not touch at the previous update cannot be in the list, so its lookup is skipped.
+#[inline(never)]
+fn sink<T: Default>(
+    endpoints: &mut [Endpoint],
+    moving: Endpoint,
+    bodies: &Bodies,
+    pairs: &mut PairSet<T>,
+    ended: &mut Vec<PairEntry<T>>,
+    stats: &mut BroadphaseStats,
+) {
+    let mut j = endpoints.len() - 1;
+    while j > 0 && moving.precedes(endpoints[j - 1]) {
+        let passed = endpoints[j - 1];
+        stats.swaps += 1;
+        let (m, n) = (passed.body(), moving.body());
+        if passed.is_end() && !moving.is_end() {
+            // e_m b_n ⇒ b_n e_m: the intervals start to overlap on this axis.
+            if bodies.may_pair(m, n) && pairs.insert(m, n) {
+                stats.pairs_added += 1;
+            }
+        } else if !passed.is_end() && moving.is_end() && bodies.met_before(m, n) {
+            // b_m e_n ⇒ e_n b_m: the intervals stop overlapping on this axis.
+            if let Some(entry) = pairs.remove(m, n) {
+                ended.push(entry);
+                stats.pairs_removed += 1;
+            }
+        }
+        endpoints[j] = passed;
+        j -= 1;
+    }
+    endpoints[j] = moving;
+}
+
+/// Merges the sorted `extra` into the sorted `axis` in place, from the back, in one pass.
+fn merge_sorted(axis: &mut Vec<Endpoint>, extra: &[Endpoint]) {
+    let old_len = axis.len();
+    axis.resize(old_len + extra.len(), Endpoint::begin(0, 0.0));
+    let (mut i, mut j, mut k) = (old_len, extra.len(), old_len + extra.len());
+    while j > 0 {
+        if i > 0 && extra[j - 1].precedes(axis[i - 1]) {
+            axis[k - 1] = axis[i - 1];
+            i -= 1;
+        } else {
+            axis[k - 1] = extra[j - 1];
+            j -= 1;
+        }
+        k -= 1;
+    }
+}
+
+/// The active lists of the sweep that pairs newly merged ("fresh") bodies.
+#[derive(Debug, Clone, Default)]
+struct SweepScratch {
+    /// Bodies whose x interval is open at the sweep position.
+    open: Vec<u32>,
+    /// The fresh bodies among them.
+    open_fresh: Vec<u32>,
+    /// Per body, its index in `open` and in `open_fresh`.
+    position: Vec<[u32; 2]>,
+}
+
+impl SweepScratch {
+    /// Sweeps the sorted x axis once and adds every touching pair that has at least one fresh body. A fresh body is
+    /// tested against all open intervals when it begins, an old body only against the open fresh ones. Returns the
+    /// number of pairs added.
+    fn pair_fresh_bodies<T: Default>(
+        &mut self,
+        x_axis: &[Endpoint],
+        bodies: &Bodies,
+        fresh_count: usize,
+        pairs: &mut PairSet<T>,
+    ) -> usize {
+        self.open.clear();
+        self.open_fresh.clear();
+        self.position.resize(bodies.len(), [0; 2]);
+        let mut added = 0;
+        let mut fresh_seen = 0;
+        for e in x_axis {
+            let body = e.body();
+            let fresh = bodies.is_fresh(body);
+            if e.is_end() {
+                remove_open(&mut self.open, &mut self.position, body, 0);
+                if fresh {
+                    remove_open(&mut self.open_fresh, &mut self.position, body, 1);
+                    if fresh_seen == fresh_count && self.open_fresh.is_empty() {
+                        break;
+                    }
+                }
+                continue;
+            }
+            let partners = if fresh { &self.open } else { &self.open_fresh };
+            for &other in partners {
+                if bodies.may_pair(other, body) && pairs.insert(other, body) {
+                    added += 1;
+                }
+            }
+            self.position[body as usize][0] = self.open.len() as u32;
+            self.open.push(body);
+            if fresh {
+                self.position[body as usize][1] = self.open_fresh.len() as u32;
+                self.open_fresh.push(body);
+                fresh_seen += 1;
+            }
+        }
+        added
+    }
+}
+
+/// Removes `body` from an open list in O(1) by moving the last element into its place.
+fn remove_open(open: &mut Vec<u32>, position: &mut [[u32; 2]], body: u32, list: usize) {
+    let at = position[body as usize][list] as usize;
+    if open.get(at) != Some(&body) {
+        return;
+    }
+    open.swap_remove(at);
+    if let Some(&moved) = open.get(at) {
+        position[moved as usize][list] = at as u32;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gc2d_geometry::DVec2;
+
+    fn interval_box(begin: f64, end: f64) -> Aabb {
+        Aabb { min: DVec2::new(begin, 0.0), max: DVec2::new(end, 1.0) }
+    }
+
+    fn x_order(sweep: &SortAndSweep<u32>) -> Vec<(bool, u32)> {
+        sweep.axes[0].iter().map(|e| (e.is_end(), e.body())).collect()
+    }
+
+    /// Table 2.2 (Abb. 2.13) in 2D form: three boxes with equal y intervals, so only the x axis decides.
+    #[test]
+    fn table_2_2_worked_example() {
+        let mut sweep = SortAndSweep::<u32>::new();
+        // Old order b1 b2 e1 e2 b3 e3; K = {(1, 2)}.
+        let old = [interval_box(0.0, 0.0), interval_box(0.0, 2.0), interval_box(1.0, 3.0), interval_box(4.0, 5.0)];
+        for body in 1..4 {
+            sweep.insert(body, old[body as usize], BodyKind::Dynamic).unwrap();
+        }
+        sweep.update(&old);
+        let (b, e) = (false, true);
+        assert_eq!(x_order(&sweep), [(b, 1), (b, 2), (e, 1), (e, 2), (b, 3), (e, 3)]);
+        assert_eq!(sweep.pairs().iter().map(|p| (p.a(), p.b())).collect::<Vec<_>>(), [(1, 2)]);
+        *sweep.payload_mut(1, 2).unwrap() = 42;
+
+        // New order b2 b1 e1 b3 e2 e3: the swaps b1↔b2 (no change) and e2↔b3 (add (2;3)), nothing on y.
+        let new = [interval_box(0.0, 0.0), interval_box(1.0, 2.0), interval_box(0.0, 4.0), interval_box(3.0, 5.0)];
+        sweep.update(&new);
+        assert_eq!(x_order(&sweep), [(b, 2), (b, 1), (e, 1), (b, 3), (e, 2), (e, 3)]);
+        let pairs: Vec<_> = sweep.pairs().iter().map(|p| (p.a(), p.b(), p.payload)).collect();
+        assert_eq!(pairs, [(1, 2, 42), (2, 3, 0)]);
+        assert_eq!(
+            *sweep.stats(),
+            BroadphaseStats { swaps: 2, pairs_added: 1, pairs_removed: 0, bodies_inserted: 0, bodies_removed: 0 }
+        );
+        assert!(sweep.ended_pairs().is_empty());
+    }
+
+    #[test]
+    fn touching_boxes_pair_and_a_gap_of_one_ulp_separates_them() {
+        let mut sweep = SortAndSweep::<u32>::new();
+        let touching = [interval_box(0.0, 1.0), interval_box(1.0, 2.0)];
+        sweep.insert(0, touching[0], BodyKind::Dynamic).unwrap();
+        sweep.insert(1, touching[1], BodyKind::Dynamic).unwrap();
+        sweep.update(&touching);
+        assert_eq!(sweep.pairs().len(), 1);
+        let apart = [interval_box(0.0, 1.0), interval_box(1.0 + f64::EPSILON, 2.0)];
+        sweep.update(&apart);
+        assert!(sweep.pairs().is_empty());
+        assert_eq!(sweep.ended_pairs().len(), 1);
+        sweep.update(&touching);
+        assert_eq!(sweep.pairs().len(), 1);
+        assert!(sweep.ended_pairs().is_empty());
+    }
+
+    #[test]
+    fn negative_zero_touches_positive_zero_when_inserted_together() {
+        let mut sweep = SortAndSweep::<u32>::new();
+        let boxes = [interval_box(-1.0, -0.0), interval_box(0.0, 1.0)];
+        sweep.insert(0, boxes[0], BodyKind::Dynamic).unwrap();
+        sweep.insert(1, boxes[1], BodyKind::Dynamic).unwrap();
+        sweep.update(&boxes);
+        assert_eq!(sweep.pairs().len(), 1);
+    }
+
+    #[test]
+    fn nan_and_inverted_boxes_are_parked_without_panicking() {
+        let mut sweep = SortAndSweep::<u32>::new();
+        let nan = Aabb { min: DVec2::NAN, max: DVec2::NAN };
+        let boxes = [interval_box(0.0, 1.0), nan, Aabb::of_points(&[]), interval_box(3.0, 2.0)];
+        for body in 0..4 {
+            sweep.insert(body, boxes[body as usize], BodyKind::Dynamic).unwrap();
+        }
+        sweep.update(&boxes);
+        // Bodies 1 and 2 both sit at (+∞, +∞); the inverted box 3 is the point interval x = 3.
+        let pairs: Vec<_> = sweep.pairs().iter().map(|p| (p.a(), p.b())).collect();
+        assert_eq!(pairs, [(1, 2)]);
+        sweep.update(&[interval_box(0.0, 1.0), interval_box(0.5, 3.0), interval_box(9.0, 9.0), interval_box(3.0, 2.0)]);
+        let mut pairs: Vec<_> = sweep.pairs().iter().map(|p| (p.a(), p.b())).collect();
+        pairs.sort_unstable();
+        assert_eq!(pairs, [(0, 1), (1, 3)]);
+    }
+
+    #[test]
+    fn insert_rejects_duplicates_and_oversized_ids() {
+        let mut sweep = SortAndSweep::<u32>::new();
+        let unit = interval_box(0.0, 1.0);
+        assert_eq!(sweep.insert(MAX_BODIES, unit, BodyKind::Dynamic), Err(BroadphaseError::IdTooLarge(MAX_BODIES)));
+        sweep.insert(2, unit, BodyKind::Dynamic).unwrap();
+        assert_eq!(sweep.insert(2, unit, BodyKind::Static), Err(BroadphaseError::AlreadyInserted(2)));
+        assert!(sweep.remove(2));
+        assert!(!sweep.remove(2));
+        assert!(!sweep.remove(7));
+        assert!(sweep.insert(2, unit, BodyKind::Static).is_ok());
+    }
+}

@@ -1,0 +1,268 @@
+//! The persistent list of candidate pairs K^B (reference §4.2, footnote 9: a list, never an N×N matrix).
+//!
+//! Entries live in one dense `Vec`, so the narrowphase can run over them with `par_iter_mut`. A small open-addressing
+//! table (linear probing, a fixed multiplicative hash, backward-shift deletion) finds an entry by its two body ids in
+//! O(1). Nothing here depends on a random seed or on memory addresses, so the same sequence of insertions and removals
+//! gives the same entry order on every run.
+
+/// One candidate pair: two bodies whose bounding boxes overlap or touch, and the engine's per-pair record.
+///
+/// The record (`payload`) is created with `T::default()` when the boxes start to touch and lives until they separate,
+/// which is the lifetime of gc2d's collision struct (reference §4.6, §10.2 D11): the contact history (old overlap area,
+/// tangential spring, warm-start features) is kept here.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairEntry<T> {
+    a: u32,
+    b: u32,
+    /// The engine's per-pair record.
+    pub payload: T,
+}
+
+impl<T> PairEntry<T> {
+    /// The smaller body id of the pair.
+    #[inline]
+    pub fn a(&self) -> u32 {
+        self.a
+    }
+
+    /// The larger body id of the pair.
+    #[inline]
+    pub fn b(&self) -> u32 {
+        self.b
+    }
+}
+
+/// Marks an unused slot of the index table.
+const EMPTY: u32 = u32::MAX;
+
+/// The smallest index table; it doubles whenever it would become more than half full.
+const MIN_SLOTS: usize = 64;
+
+/// Dense pair entries plus an index from (a, b) to the entry's position.
+#[derive(Debug, Clone)]
+pub(crate) struct PairSet<T> {
+    entries: Vec<PairEntry<T>>,
+    /// Open-addressing table of entry positions; its length is zero or a power of two.
+    slots: Vec<u32>,
+}
+
+impl<T> Default for PairSet<T> {
+    fn default() -> Self {
+        Self { entries: Vec::new(), slots: Vec::new() }
+    }
+}
+
+/// The pair key with the smaller id first, or `None` for a body paired with itself.
+#[inline]
+fn ordered(a: u32, b: u32) -> Option<(u32, u32)> {
+    match a.cmp(&b) {
+        std::cmp::Ordering::Less => Some((a, b)),
+        std::cmp::Ordering::Greater => Some((b, a)),
+        std::cmp::Ordering::Equal => None,
+    }
+}
+
+/// Fixed hash of an ordered pair (Fibonacci hashing of the packed 64-bit key, high bits folded down).
+#[inline]
+fn hash(a: u32, b: u32) -> usize {
+    let key = (u64::from(a) << 32) | u64::from(b);
+    let mixed = key.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    (mixed ^ (mixed >> 29)) as usize
+}
+
+impl<T: Default> PairSet<T> {
+    /// All entries, in insertion order as modified by swap-removal.
+    #[inline]
+    pub(crate) fn entries(&self) -> &[PairEntry<T>] {
+        &self.entries
+    }
+
+    /// All entries, mutable (only the payloads can be changed).
+    #[inline]
+    pub(crate) fn entries_mut(&mut self) -> &mut [PairEntry<T>] {
+        &mut self.entries
+    }
+
+    /// The entry of the pair {a, b}, if present.
+    pub(crate) fn get(&self, a: u32, b: u32) -> Option<&PairEntry<T>> {
+        let (a, b) = ordered(a, b)?;
+        let slot = self.find(a, b).ok()?;
+        Some(&self.entries[self.slots[slot] as usize])
+    }
+
+    /// The entry of the pair {a, b}, mutable, if present.
+    pub(crate) fn get_mut(&mut self, a: u32, b: u32) -> Option<&mut PairEntry<T>> {
+        let (a, b) = ordered(a, b)?;
+        let slot = self.find(a, b).ok()?;
+        Some(&mut self.entries[self.slots[slot] as usize])
+    }
+
+    /// Adds the pair {a, b} with a default payload at the end of the list. Returns false when it was already there
+    /// (its payload is kept) or when `a == b`.
+    pub(crate) fn insert(&mut self, a: u32, b: u32) -> bool {
+        let Some((a, b)) = ordered(a, b) else { return false };
+        if (self.entries.len() + 1) * 2 > self.slots.len() {
+            self.grow();
+        }
+        match self.find(a, b) {
+            Ok(_) => false,
+            Err(empty) => {
+                self.slots[empty] = self.entries.len() as u32;
+                self.entries.push(PairEntry { a, b, payload: T::default() });
+                true
+            }
+        }
+    }
+
+    /// Removes the pair {a, b} and hands back its entry. The last entry moves into the freed position.
+    pub(crate) fn remove(&mut self, a: u32, b: u32) -> Option<PairEntry<T>> {
+        let (a, b) = ordered(a, b)?;
+        let slot = self.find(a, b).ok()?;
+        Some(self.remove_slot(slot))
+    }
+
+    /// Removes every pair that contains `body`, appending the removed entries to `ended` (last entry first).
+    pub(crate) fn remove_body(&mut self, body: u32, ended: &mut Vec<PairEntry<T>>) -> usize {
+        let mut removed = 0;
+        for index in (0..self.entries.len()).rev() {
+            let entry = &self.entries[index];
+            if entry.a == body || entry.b == body {
+                if let Ok(slot) = self.find(entry.a, entry.b) {
+                    ended.push(self.remove_slot(slot));
+                    removed += 1;
+                }
+            }
+        }
+        removed
+    }
+
+    /// The slot holding the ordered pair (a, b), or the empty slot where it would go.
+    fn find(&self, a: u32, b: u32) -> Result<usize, usize> {
+        if self.slots.is_empty() {
+            return Err(0);
+        }
+        let mask = self.slots.len() - 1;
+        let mut slot = hash(a, b) & mask;
+        loop {
+            let index = self.slots[slot];
+            if index == EMPTY {
+                return Err(slot);
+            }
+            let entry = &self.entries[index as usize];
+            if entry.a == a && entry.b == b {
+                return Ok(slot);
+            }
+            slot = (slot + 1) & mask;
+        }
+    }
+
+    /// Empties `slot` by shifting later members of its probe run back (no tombstones), then swap-removes the entry
+    /// (the last entry takes its position).
+    fn remove_slot(&mut self, slot: usize) -> PairEntry<T> {
+        let index = self.slots[slot] as usize;
+        let mask = self.slots.len() - 1;
+        let mut hole = slot;
+        let mut probe = (slot + 1) & mask;
+        loop {
+            let occupant = self.slots[probe];
+            if occupant == EMPTY {
+                break;
+            }
+            let entry = &self.entries[occupant as usize];
+            let home = hash(entry.a, entry.b) & mask;
+            // The occupant may move into the hole if the hole lies on its probe path, i.e. in [home, probe).
+            if (probe.wrapping_sub(home) & mask) >= (probe.wrapping_sub(hole) & mask) {
+                self.slots[hole] = occupant;
+                hole = probe;
+            }
+            probe = (probe + 1) & mask;
+        }
+        self.slots[hole] = EMPTY;
+        let last = self.entries.len() - 1;
+        if index != last {
+            let moved = &self.entries[last];
+            if let Ok(moved_slot) = self.find(moved.a, moved.b) {
+                self.slots[moved_slot] = index as u32;
+            }
+        }
+        self.entries.swap_remove(index)
+    }
+
+    /// Doubles the index table and re-inserts every entry in list order.
+    fn grow(&mut self) {
+        let size = (self.slots.len() * 2).max(MIN_SLOTS);
+        self.slots.clear();
+        self.slots.resize(size, EMPTY);
+        let mask = size - 1;
+        for (index, entry) in self.entries.iter().enumerate() {
+            let mut slot = hash(entry.a, entry.b) & mask;
+            while self.slots[slot] != EMPTY {
+                slot = (slot + 1) & mask;
+            }
+            self.slots[slot] = index as u32;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use std::collections::BTreeMap;
+
+    #[test]
+    fn pairs_are_stored_with_the_smaller_id_first_and_never_with_themselves() {
+        let mut set = PairSet::<u8>::default();
+        assert!(set.insert(7, 3));
+        assert!(!set.insert(3, 7));
+        assert!(!set.insert(4, 4));
+        assert_eq!((set.entries()[0].a(), set.entries()[0].b()), (3, 7));
+        assert!(set.get(7, 3).is_some());
+    }
+
+    #[test]
+    fn matches_an_ordered_map_under_random_insertions_and_removals() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut set = PairSet::<u32>::default();
+        let mut model = BTreeMap::new();
+        for step in 0..20_000u32 {
+            let a = rng.random_range(0..60);
+            let b = rng.random_range(0..60);
+            if a == b {
+                continue;
+            }
+            let key = (a.min(b), a.max(b));
+            if rng.random_bool(0.55) {
+                let added = set.insert(a, b);
+                assert_eq!(added, !model.contains_key(&key));
+                if added {
+                    set.get_mut(a, b).unwrap().payload = step;
+                    model.insert(key, step);
+                }
+            } else {
+                let removed = set.remove(a, b).map(|e| e.payload);
+                assert_eq!(removed, model.remove(&key));
+            }
+            assert_eq!(set.entries().len(), model.len());
+        }
+        for entry in set.entries() {
+            assert_eq!(model.get(&(entry.a(), entry.b())), Some(&entry.payload));
+        }
+    }
+
+    #[test]
+    fn removing_a_body_hands_back_all_its_pairs() {
+        let mut set = PairSet::<u8>::default();
+        for (a, b) in [(0, 1), (1, 2), (2, 3), (1, 3)] {
+            set.insert(a, b);
+        }
+        let mut ended = Vec::new();
+        assert_eq!(set.remove_body(1, &mut ended), 3);
+        let mut keys: Vec<_> = ended.iter().map(|e| (e.a(), e.b())).collect();
+        keys.sort_unstable();
+        assert_eq!(keys, [(0, 1), (1, 2), (1, 3)]);
+        assert_eq!(set.entries().len(), 1);
+        assert!(set.get(2, 3).is_some());
+    }
+}
