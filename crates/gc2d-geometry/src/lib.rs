@@ -5,10 +5,12 @@
 //! world vertices once per step and hands the world slices to the contact routines of this crate, which neither
 //! allocate nor panic.
 
+pub mod overlap;
 pub mod polygon;
 pub mod pose;
 
 pub use glam::DVec2;
+pub use overlap::{ContactGeometry, ContactKind, OverlapPolygon, contact_geometry, overlap_polygon};
 pub use polygon::{ConvexPolygon, MassProperties, PolygonError, MAX_VERTICES};
 pub use pose::{Aabb, Pose};
 
