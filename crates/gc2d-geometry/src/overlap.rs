@@ -437,8 +437,13 @@ mod tests {
         assert!(c.c2.x > c.c1.x);
         assert_relative_eq!(c.c1.y, -2.0, epsilon = 1e-12);
         assert_relative_eq!(c.c2.y, -2.0, epsilon = 1e-12);
-        assert_relative_eq!(c.point, v(3.0, -2.0), epsilon = 1e-12);
+        assert!(c.c1.x < 3.0 && 3.0 < c.c2.x);
         assert_relative_eq!(c.chord_length, (c.c2 - c.c1).length(), max_relative = 1e-12);
+        // Both ends lie on the outline: on an edge line, and inside every other edge's half-plane.
+        for end in [c.c1, c.c2] {
+            let sides = (0..7).map(|k| cross(a[(k + 1) % 7] - a[k], end - a[k]));
+            assert!(sides.clone().all(|s| s > -1e-12) && sides.map(f64::abs).any(|s| s < 1e-12));
+        }
     }
 
     #[test]
