@@ -13,7 +13,7 @@
 mod clip;
 
 use crate::{DVec2, MAX_VERTICES, cross};
-use clip::Ring;
+use clip::{Label, Ring, RingVertex};
 
 /// A chord shorter than this fraction of √A carries no direction: the overlap is treated as a containment.
 /// A genuine chord is that short only when `a`'s outline barely leaves `b` (or the reverse), i.e. one polygon is
@@ -130,9 +130,10 @@ fn overlap_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2], out: &mut O
     let Some(ring) = clip::clip(a, b, &mut first, &mut second) else { return };
     let area = 0.5 * ring.twice_area();
     if area > 0.0 {
-        let points = ring.points();
-        out.vertices[..points.len()].copy_from_slice(points);
-        out.len = points.len();
+        for (slot, vertex) in out.vertices.iter_mut().zip(ring.vertices()) {
+            *slot = vertex.point;
+        }
+        out.len = ring.vertices().len();
         out.area = area;
     }
 }
@@ -145,93 +146,103 @@ fn contact_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2]) -> Option<C
     if !(area > 0.0) {
         return None;
     }
-    Some(contact_from_overlap(ring, area, a, b))
+    Some(contact_from_overlap(ring.vertices(), area, a, b))
 }
 
 /// The chord rules of `docs/model.md`, applied to the labelled overlap polygon.
-fn contact_from_overlap<const CAP: usize>(ring: &Ring<CAP>, area: f64, a: &[DVec2], b: &[DVec2]) -> ContactGeometry {
-    let points = ring.points();
-    let all = ring.all_edges();
-    let shared = ring.shared_edges();
-    // Edges on a's outline inside the closed polygon b (tie rule: b's boundary counts as inside).
-    let mut on_a = all & !ring.b_edges();
-    if on_a == all && shared != 0 && shared != all {
-        // a lies inside b and touches it along shared edges: a's outline leaves b's boundary where it stops being
-        // shared, so the runs of strictly interior edges give the crossings.
-        on_a &= !shared;
+fn contact_from_overlap(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -> ContactGeometry {
+    let (mut any_b, mut shared) = (false, 0);
+    for vertex in ring {
+        any_b |= vertex.edge == Label::B;
+        shared += usize::from(vertex.edge == Label::Shared);
     }
-    let runs = cyclic_runs(on_a, points.len());
+    // a's outline inside the closed polygon b (tie rule: b's boundary counts as inside). When a lies inside b and
+    // touches it along shared edges, a's outline leaves b's boundary where it stops being shared, so only its
+    // strictly interior edges count.
+    let strictly_inside = !any_b && shared > 0 && shared < ring.len();
+    let on_a = |k: usize| match ring[k].edge {
+        Label::A => true,
+        Label::Shared => !strictly_inside,
+        Label::B => false,
+    };
+    let runs = Runs::of(ring.len(), on_a);
     let min_chord = DEGENERATE_CHORD_FRACTION * area.sqrt();
     let crossing = match runs.count {
         0 => None,
-        1 => Some((points[runs.first_entry], points[runs.first_exit])),
-        _ => farthest_crossings(points, &runs, a, b),
+        1 => Some((ring[runs.first_entry].point, ring[runs.first_exit].point)),
+        _ => farthest_crossings(ring, on_a, a, b),
     }
     .filter(|(c1, c2)| (*c2 - *c1).length() > min_chord);
     let Some((c1, c2)) = crossing else {
-        return contained_contact(points, area, a, b);
+        return contained_contact(ring, area, a, b);
     };
     let kind = if runs.count > 1 {
         ContactKind::MultipleCrossings
-    } else if shared != 0 || ring.tied_vertices() & (1 << runs.first_entry | 1 << runs.first_exit) != 0 {
+    } else if shared > 0 || ring[runs.first_entry].tied || ring[runs.first_exit].tied {
         ContactKind::Degenerate
     } else {
         ContactKind::Crossing
     };
-    chord_contact(area, c1, c2, kind)
-}
-
-fn chord_contact(area: f64, c1: DVec2, c2: DVec2, kind: ContactKind) -> ContactGeometry {
     let chord = c2 - c1;
     let chord_length = chord.length();
     ContactGeometry { area, c1, c2, point: 0.5 * (c1 + c2), normal: chord.perp() / chord_length, chord_length, kind }
 }
 
-/// The runs of set bits in a cyclic mask of `len` bits: where each starts (entry vertex) and ends (exit vertex).
+/// The runs of consecutive edges of a cyclic ring for which `on_a` holds: how many, and when there is exactly one,
+/// the vertex where it starts (the entry into `b`) and the vertex where it ends (the exit).
 struct Runs {
-    count: u32,
-    entries: u128,
-    exits: u128,
+    count: usize,
     first_entry: usize,
     first_exit: usize,
 }
 
-fn cyclic_runs(mask: u128, len: usize) -> Runs {
-    let all = if len >= 128 { u128::MAX } else { (1u128 << len) - 1 };
-    // Bit k of `previous` is bit k − 1 of `mask`, cyclically.
-    let previous = ((mask << 1) | (mask >> (len - 1))) & all;
-    let entries = mask & !previous;
-    let exits = !mask & previous & all;
-    Runs {
-        count: entries.count_ones(),
-        entries,
-        exits,
-        first_entry: entries.trailing_zeros() as usize,
-        first_exit: exits.trailing_zeros() as usize,
+impl Runs {
+    fn of(len: usize, on_a: impl Fn(usize) -> bool) -> Self {
+        let mut runs = Runs { count: 0, first_entry: 0, first_exit: 0 };
+        let mut previous = on_a(len - 1);
+        for k in 0..len {
+            let current = on_a(k);
+            if current && !previous {
+                if runs.count == 0 {
+                    runs.first_entry = k;
+                }
+                runs.count += 1;
+            } else if previous && !current {
+                runs.first_exit = k;
+            }
+            previous = current;
+        }
+        runs
     }
 }
 
 /// Deep-overlap policy: the two crossings (entries or exits) farthest apart, ordered so that the normal has a
 /// positive component along, in turn, the area gradient −∂A/∂x_a = perp(Σ exits − Σ entries), centroid(a) −
 /// centroid(b), +y, +x: the first of these that is not negligible decides.
-fn farthest_crossings(points: &[DVec2], runs: &Runs, a: &[DVec2], b: &[DVec2]) -> Option<(DVec2, DVec2)> {
-    let origin = points[0];
-    let crossing_mask = runs.entries | runs.exits;
+fn farthest_crossings(
+    ring: &[RingVertex],
+    on_a: impl Fn(usize) -> bool,
+    a: &[DVec2],
+    b: &[DVec2],
+) -> Option<(DVec2, DVec2)> {
+    let n = ring.len();
+    let is_crossing = |k: usize| on_a(k) != on_a(if k == 0 { n - 1 } else { k - 1 });
+    let origin = ring[0].point;
     let mut gradient_chord = DVec2::ZERO;
     let mut best: Option<(DVec2, DVec2)> = None;
     let mut best_distance = 0.0;
-    for k in BitIndices(crossing_mask) {
-        let p = points[k];
-        if runs.exits >> k & 1 == 1 {
-            gradient_chord += p - origin;
-        } else {
+    for k in (0..n).filter(|&k| is_crossing(k)) {
+        let p = ring[k].point;
+        if on_a(k) {
             gradient_chord -= p - origin;
+        } else {
+            gradient_chord += p - origin;
         }
-        for l in BitIndices(crossing_mask.checked_shr(k as u32 + 1).unwrap_or(0)).map(|l| l + k + 1) {
-            let distance = points[l].distance_squared(p);
+        for l in (k + 1..n).filter(|&l| is_crossing(l)) {
+            let distance = ring[l].point.distance_squared(p);
             if distance > best_distance {
                 best_distance = distance;
-                best = Some((p, points[l]));
+                best = Some((p, ring[l].point));
             }
         }
     }
@@ -258,16 +269,16 @@ fn farthest_crossings(points: &[DVec2], runs: &Runs, a: &[DVec2], b: &[DVec2]) -
 
 /// Containment policy: normal along centroid(a) − centroid(b) (+y when they coincide within
 /// [`NEGLIGIBLE_DIRECTION_FRACTION`]·√A); chord = the overlap's width across the normal, through its centroid.
-fn contained_contact(points: &[DVec2], area: f64, a: &[DVec2], b: &[DVec2]) -> ContactGeometry {
+fn contained_contact(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -> ContactGeometry {
     let offset = centroid(a) - centroid(b);
     let normal = if offset.length() > NEGLIGIBLE_DIRECTION_FRACTION * area.sqrt() { offset.normalize() } else { DVec2::Y };
     // Chord direction t with perp(t) = normal, so that normal = perp(c2 − c1)/|c2 − c1| as for every other kind.
     let tangent = DVec2::new(normal.y, -normal.x);
-    let center = centroid(points);
+    let center = ring_centroid(ring);
     let (mut low, mut high) = (0.0f64, 0.0f64);
-    let n = points.len();
+    let n = ring.len();
     for k in 0..n {
-        let (p, q) = (points[k], points[(k + 1) % n]);
+        let (p, q) = (ring[k].point, ring[if k + 1 == n { 0 } else { k + 1 }].point);
         let (dp, dq) = (normal.dot(p - center), normal.dot(q - center));
         if (dp <= 0.0) != (dq <= 0.0) {
             let at = tangent.dot(p + (q - p) * (dp / (dp - dq)) - center);
@@ -287,6 +298,15 @@ fn contained_contact(points: &[DVec2], area: f64, a: &[DVec2], b: &[DVec2]) -> C
     }
 }
 
+/// Area centroid of the overlap polygon.
+fn ring_centroid(ring: &[RingVertex]) -> DVec2 {
+    let mut points = [DVec2::ZERO; 2 * MAX_VERTICES];
+    for (slot, vertex) in points.iter_mut().zip(ring) {
+        *slot = vertex.point;
+    }
+    centroid(&points[..ring.len()])
+}
+
 /// Area centroid of a counter-clockwise polygon (vertex mean for a degenerate one), summed relative to its first
 /// vertex for precision.
 fn centroid(points: &[DVec2]) -> DVec2 {
@@ -303,21 +323,6 @@ fn centroid(points: &[DVec2]) -> DVec2 {
         origin + weighted / (3.0 * twice_area)
     } else {
         points.iter().sum::<DVec2>() / points.len() as f64
-    }
-}
-
-/// The indices of the set bits of a mask, lowest first.
-struct BitIndices(u128);
-
-impl Iterator for BitIndices {
-    type Item = usize;
-
-    fn next(&mut self) -> Option<usize> {
-        (self.0 != 0).then(|| {
-            let k = self.0.trailing_zeros() as usize;
-            self.0 &= self.0 - 1;
-            k
-        })
     }
 }
 
