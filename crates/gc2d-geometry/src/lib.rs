@@ -11,7 +11,7 @@ pub mod pose;
 
 pub use glam::DVec2;
 pub use overlap::{ContactGeometry, ContactKind, OverlapPolygon, contact_geometry, overlap_polygon};
-pub use polygon::{ConvexPolygon, MassProperties, PolygonError, MAX_VERTICES};
+pub use polygon::{ConvexPolygon, MAX_VERTICES, MassProperties, PolygonError};
 pub use pose::{Aabb, Pose};
 
 /// The z component of the 2D cross product `a × b` (positive when `b` is counter-clockwise of `a`).

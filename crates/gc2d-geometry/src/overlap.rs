@@ -129,7 +129,7 @@ fn overlap_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2], out: &mut O
     let (mut first, mut second) = (Ring::<CAP>::new(), Ring::<CAP>::new());
     let Some(ring) = clip::clip(a, b, &mut first, &mut second) else { return };
     let area = 0.5 * ring.twice_area();
-    if area > 0.0 {
+    if area.is_finite() && area > 0.0 {
         for (slot, vertex) in out.vertices.iter_mut().zip(ring.vertices()) {
             *slot = vertex.point;
         }
@@ -142,8 +142,8 @@ fn contact_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2]) -> Option<C
     let (mut first, mut second) = (Ring::<CAP>::new(), Ring::<CAP>::new());
     let ring = clip::clip(a, b, &mut first, &mut second)?;
     let area = 0.5 * ring.twice_area();
-    // `!(area > 0)` also rejects NaN from non-finite input.
-    if !(area > 0.0) {
+    // Non-finite input (infinite coordinates) can give a NaN or infinite area: no contact.
+    if !area.is_finite() || area <= 0.0 {
         return None;
     }
     Some(contact_from_overlap(ring.vertices(), area, a, b))
@@ -271,7 +271,8 @@ fn farthest_crossings(
 /// [`NEGLIGIBLE_DIRECTION_FRACTION`]·√A); chord = the overlap's width across the normal, through its centroid.
 fn contained_contact(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -> ContactGeometry {
     let offset = centroid(a) - centroid(b);
-    let normal = if offset.length() > NEGLIGIBLE_DIRECTION_FRACTION * area.sqrt() { offset.normalize() } else { DVec2::Y };
+    let normal =
+        if offset.length() > NEGLIGIBLE_DIRECTION_FRACTION * area.sqrt() { offset.normalize() } else { DVec2::Y };
     // Chord direction t with perp(t) = normal, so that normal = perp(c2 − c1)/|c2 − c1| as for every other kind.
     let tangent = DVec2::new(normal.y, -normal.x);
     let center = ring_centroid(ring);
@@ -511,8 +512,9 @@ mod tests {
             let moved: Vec<DVec2> = up.iter().map(|&p| p + shift).collect();
             contact_geometry(&moved, &down).unwrap().area
         };
-        let gradient = v(area_at(v(step, 0.0)) - area_at(v(-step, 0.0)), area_at(v(0.0, step)) - area_at(v(0.0, -step)))
-            / (2.0 * step);
+        let gradient =
+            v(area_at(v(step, 0.0)) - area_at(v(-step, 0.0)), area_at(v(0.0, step)) - area_at(v(0.0, -step)))
+                / (2.0 * step);
         assert!(c.normal.dot(-gradient) > 0.0);
     }
 

@@ -173,7 +173,12 @@ fn mark_shared_edges<const CAP: usize>(ring: &mut Ring<CAP>, origin: DVec2, dire
 /// One Sutherland–Hodgman step: keeps the part of `src` on the closed inner (left) side of the directed line.
 /// A quick first sweep settles the common cases (nothing inside: empty; nothing outside: unchanged); the clip
 /// itself recomputes the sides as it streams, which is cheaper than storing them.
-fn clip_by_line<const CAP: usize>(src: &mut Ring<CAP>, dst: &mut Ring<CAP>, origin: DVec2, direction: DVec2) -> LineClip {
+fn clip_by_line<const CAP: usize>(
+    src: &mut Ring<CAP>,
+    dst: &mut Ring<CAP>,
+    origin: DVec2,
+    direction: DVec2,
+) -> LineClip {
     let side = |p: DVec2| cross(direction, p - origin);
     // Plain comparisons (cheaper than f64::min/max) skip NaN sides, so an all-NaN polygon counts as empty.
     let (mut lowest, mut highest) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -182,7 +187,7 @@ fn clip_by_line<const CAP: usize>(src: &mut Ring<CAP>, dst: &mut Ring<CAP>, orig
         lowest = if s < lowest { s } else { lowest };
         highest = if s > highest { s } else { highest };
     }
-    if !(highest > 0.0) {
+    if highest <= 0.0 {
         return LineClip::Empty;
     }
     if lowest >= 0.0 {
