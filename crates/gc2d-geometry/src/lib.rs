@@ -9,6 +9,7 @@
 //! and rounded rectangles) or drawn at random from a [`ShapeRecipe`], with the CONST / EQUAL / GAUSS rules of
 //! [`randomize`] (reference §1.2, §1.8).
 
+pub mod overlap;
 pub mod polygon;
 pub mod pose;
 pub mod randomize;
@@ -16,6 +17,7 @@ pub mod recipe;
 pub mod shapes;
 
 pub use glam::DVec2;
+pub use overlap::{ContactGeometry, ContactKind, OverlapPolygon, contact_geometry, overlap_polygon};
 pub use polygon::{ConvexPolygon, MAX_VERTICES, MassProperties, PolygonError};
 pub use pose::{Aabb, Pose};
 pub use randomize::{Randomization, UnknownOptionValue, truncated_gaussian};
