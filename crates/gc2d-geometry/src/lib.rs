@@ -5,11 +5,13 @@
 //! world vertices once per step and hands the world slices to the contact routines of this crate, which neither
 //! allocate nor panic.
 
+pub mod closest;
 pub mod polygon;
 pub mod pose;
 
+pub use closest::{Feature, FeaturePair, Separation, closest_features};
 pub use glam::DVec2;
-pub use polygon::{ConvexPolygon, MassProperties, PolygonError, MAX_VERTICES};
+pub use polygon::{ConvexPolygon, MAX_VERTICES, MassProperties, PolygonError};
 pub use pose::{Aabb, Pose};
 
 /// The z component of the 2D cross product `a × b` (positive when `b` is counter-clockwise of `a`).

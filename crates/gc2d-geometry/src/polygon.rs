@@ -83,10 +83,7 @@ impl ConvexPolygon {
         // Work relative to the first vertex so that far-from-origin input loses no precision in the cross products.
         let origin = vertices[0];
         let local: Vec<DVec2> = vertices.iter().map(|&v| v - origin).collect();
-        let diameter = local
-            .iter()
-            .flat_map(|a| local.iter().map(move |b| (*a - *b).length()))
-            .fold(0.0, f64::max);
+        let diameter = local.iter().flat_map(|a| local.iter().map(move |b| (*a - *b).length())).fold(0.0, f64::max);
         for i in 0..n {
             let j = (i + 1) % n;
             if (local[j] - local[i]).length() <= MIN_EDGE_FRACTION * diameter {
@@ -293,8 +290,7 @@ mod tests {
             })
             .collect();
         assert_eq!(ConvexPolygon::new(&pentagram).unwrap_err(), PolygonError::SelfIntersecting);
-        let too_many: Vec<DVec2> =
-            (0..65).map(|i| v((i as f64 * 0.1).cos(), (i as f64 * 0.1).sin())).collect();
+        let too_many: Vec<DVec2> = (0..65).map(|i| v((i as f64 * 0.1).cos(), (i as f64 * 0.1).sin())).collect();
         assert_eq!(ConvexPolygon::new(&too_many).unwrap_err(), PolygonError::TooManyVertices(65));
     }
 
