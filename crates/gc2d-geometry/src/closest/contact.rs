@@ -52,26 +52,32 @@ fn strictly_opposite(x: f64, y: f64) -> bool {
     x > 0.0 && y < 0.0 || x < 0.0 && y > 0.0
 }
 
-/// The walk found contact near edge `edge_a` of `a` and edge `edge_b` of `b`: look for a crossing among those edges
-/// and their ring neighbours (a 3 × 3 block), else answer exhaustively.
+/// The walk found contact near edge `edge_a` of `a` and edge `edge_b` of `b`: look for a crossing where `a` leaves
+/// `b` among those edges and their ring neighbours (a 3 × 3 block), else answer exhaustively.
 pub(super) fn resolve(a: &[DVec2], b: &[DVec2], edge_a: usize, edge_b: usize, passes: u32) -> Separation {
     let rows = [edge_a, prev(edge_a, a.len()), next(edge_a, a.len())];
     let columns = [edge_b, prev(edge_b, b.len()), next(edge_b, b.len())];
-    match preferred_crossing(a, b, rows.iter().flat_map(|&i| columns.iter().map(move |&j| (i, j)))) {
-        Some(crossing) => crossing.separation(passes),
-        None => exhaustive(a, b, passes + 1),
+    for i in rows {
+        for j in columns {
+            if let Some(crossing) = proper_crossing(a, i, b, j).filter(|c| c.a_leaves_b) {
+                return crossing.separation(passes);
+            }
+        }
     }
+    exhaustive(a, b, passes + 1)
 }
 
-/// The first crossing where `a` leaves `b` among `pairs`, else the first crossing of any kind.
-fn preferred_crossing(a: &[DVec2], b: &[DVec2], pairs: impl Iterator<Item = (usize, usize)>) -> Option<Crossing> {
+/// The first crossing where `a` leaves `b`, in index order, else the first crossing of any kind.
+fn preferred_crossing(a: &[DVec2], b: &[DVec2]) -> Option<Crossing> {
     let mut entering = None;
-    for (i, j) in pairs {
-        if let Some(crossing) = proper_crossing(a, i, b, j) {
-            if crossing.a_leaves_b {
-                return Some(crossing);
+    for i in 0..a.len() {
+        for j in 0..b.len() {
+            if let Some(crossing) = proper_crossing(a, i, b, j) {
+                if crossing.a_leaves_b {
+                    return Some(crossing);
+                }
+                entering.get_or_insert(crossing);
             }
-            entering.get_or_insert(crossing);
         }
     }
     entering
@@ -80,8 +86,7 @@ fn preferred_crossing(a: &[DVec2], b: &[DVec2], pairs: impl Iterator<Item = (usi
 /// The exact answer by exhaustive search, O(n·m): a crossing edge pair (lowest indices, leaving preferred), else
 /// the deepest vertex when the interiors still overlap, else the nearest pair of edges.
 pub(super) fn exhaustive(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
-    let all_pairs = (0..a.len()).flat_map(|i| (0..b.len()).map(move |j| (i, j)));
-    if let Some(crossing) = preferred_crossing(a, b, all_pairs) {
+    if let Some(crossing) = preferred_crossing(a, b) {
         return crossing.separation(passes);
     }
     if !has_separating_edge(a, b) && !has_separating_edge(b, a) {
