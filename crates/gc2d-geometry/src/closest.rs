@@ -8,9 +8,9 @@
 //! the two points are mutually closest and their distance is the polygons' distance (Abb. 2.16).
 //!
 //! Warm-started from the previous step's features, the walk usually stops in its first pass. Contact — a closest
-//! point inside the other polygon (footnote 11) or features that meet — hands over to [`contact`], which finds a
-//! crossing pair of edges near the contact and falls back to an exhaustive search. So does a walk that exceeds its
-//! iteration cap. Nothing here allocates or panics.
+//! point inside the other polygon (footnote 11) or features that meet — hands over to the `contact` module, which
+//! finds a crossing pair of edges near the contact and falls back to an exhaustive search; a walk that exceeds its
+//! iteration cap falls back to that search too. Nothing here allocates or panics.
 
 mod contact;
 mod segments;
