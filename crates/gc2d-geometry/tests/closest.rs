@@ -264,7 +264,7 @@ fn warm_start_follows_a_moving_pair_like_a_cold_start() {
     }
     let fraction = |count: usize| count as f64 / stats.steps as f64;
     println!(
-        "warm-started steps: {}, overlapping {:.1} %, >1 pass {:.3} %, >2 passes {:.3} %, same features as cold {:.2} %",
+        "warm-started steps: {}, overlapping {:.1} %, >1 pass {:.3} %, >2 passes {:.3} %, features as cold {:.2} %",
         stats.steps,
         100.0 * fraction(stats.penetrating),
         100.0 * fraction(stats.more_than_one_pass),
@@ -277,4 +277,37 @@ fn warm_start_follows_a_moving_pair_like_a_cold_start() {
     );
     assert!(fraction(stats.more_than_one_pass) < 0.1);
     assert!(fraction(stats.more_than_two_passes) < 0.05);
+    // Generic positions have unique closest features, and overlaps report the unique crossing where a leaves b.
+    assert!(fraction(stats.same_features) > 0.99);
+}
+
+/// Millimetre grains at decimetre coordinates, 10 nm apart or 10 nm into each other (the stiff-contact scale of
+/// the architecture notes): the gap is resolved to round-off of the coordinates, and the overlap is detected.
+#[test]
+fn nanometre_gaps_and_overlaps_at_grain_scale() {
+    let grain = ellipse_polygon(1.75e-3, 1.5e-3, &gaps(7, 9)).unwrap();
+    let a = world(&grain, Pose::new(DVec2::new(0.07, 0.05), 0.3));
+    for (k, angle) in [0.0, 1.0, 2.0, 3.0, 4.0, 5.0].into_iter().enumerate() {
+        let direction = DVec2::from_angle(angle);
+        let far = world(&grain, Pose::new(DVec2::new(0.07, 0.05) + direction * 5e-3, 0.1 * k as f64));
+        let apart = closest_features(&a, &far, None);
+        assert!(!apart.penetrating && apart.distance > 0.0);
+        // Slide b along the line of closest points until the gap is ±10 nm.
+        let normal = (apart.point_b - apart.point_a) / apart.distance;
+        for target in [1e-8, -1e-8] {
+            let shift = normal * (target - apart.distance);
+            let b: Vec<DVec2> = far.iter().map(|&p| p + shift).collect();
+            let cold = closest_features(&a, &b, None);
+            let warm = closest_features(&a, &b, Some(apart.features));
+            for r in [cold, warm] {
+                assert_consistent(&a, &b, &r, 4e-3);
+                if target > 0.0 {
+                    assert!(!r.penetrating);
+                    assert!((r.distance - target).abs() < 1e-16 * 0.1 * 4.0, "{} vs {target}", r.distance);
+                } else {
+                    assert!(r.penetrating && r.distance == 0.0);
+                }
+            }
+        }
+    }
 }
