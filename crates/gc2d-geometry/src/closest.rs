@@ -101,9 +101,9 @@ impl Separation {
         }
     }
 
-    /// Polygons apart (or touching) with mutually closest points `point_a`, `point_b`.
-    fn apart(point_a: DVec2, point_b: DVec2, features: FeaturePair, passes: u32) -> Self {
-        Self { distance: (point_a - point_b).length(), point_a, point_b, features, passes, penetrating: false }
+    /// Polygons apart (or touching) with mutually closest points `point_a`, `point_b` at `distance`.
+    fn apart(point_a: DVec2, point_b: DVec2, distance: f64, features: FeaturePair, passes: u32) -> Self {
+        Self { distance, point_a, point_b, features, passes, penetrating: false }
     }
 
     /// Overlapping polygons, witnessed by a point common to both.
@@ -156,7 +156,7 @@ fn pass_cap(n_a: usize, n_b: usize) -> u32 {
 /// What one pass of the walk decided.
 enum Step {
     /// Both closest points lie in the other feature's Voronoi region: they realise the distance.
-    Closest(DVec2, DVec2),
+    Closest { point_a: DVec2, point_b: DVec2, distance: f64 },
     /// Replace the feature of `a` by this neighbour.
     MoveA(Feature),
     /// Replace the feature of `b` by this neighbour.
@@ -169,7 +169,9 @@ impl Step {
     /// The same decision with the roles of the two polygons exchanged.
     fn swapped(self) -> Self {
         match self {
-            Step::Closest(p, q) => Step::Closest(q, p),
+            Step::Closest { point_a, point_b, distance } => {
+                Step::Closest { point_a: point_b, point_b: point_a, distance }
+            }
             Step::MoveA(f) => Step::MoveB(f),
             Step::MoveB(f) => Step::MoveA(f),
             Step::Contact { edge_a, edge_b } => Step::Contact { edge_a: edge_b, edge_b: edge_a },
@@ -189,7 +191,10 @@ fn walk(a: &[DVec2], b: &[DVec2], start: FeaturePair) -> Separation {
             (Feature::Edge(i), Feature::Edge(j)) => edge_edge(a, i, b, j),
         };
         match step {
-            Step::Closest(pa, pb) => return Separation::apart(pa, pb, FeaturePair { a: fa, b: fb }, pass),
+            Step::Closest { point_a, point_b, distance } => {
+                let features = FeaturePair { a: fa, b: fb };
+                return Separation::apart(point_a, point_b, distance, features, pass);
+            }
             Step::MoveA(f) => fa = f,
             Step::MoveB(f) => fb = f,
             Step::Contact { edge_a, edge_b } => return contact::resolve(a, b, edge_a, edge_b, pass + 1),
@@ -198,59 +203,75 @@ fn walk(a: &[DVec2], b: &[DVec2], start: FeaturePair) -> Separation {
     contact::exhaustive(a, b, cap + 1)
 }
 
-/// Where a point lies relative to one feature's Voronoi region.
-enum Region {
-    /// Inside the region (boundaries count as inside).
-    Inside,
+/// Checks the direction `towards` (from vertex `i` of `poly` to a point) against the vertex's wedge and names the
+/// neighbouring edge across a violated boundary. A direction passing both tests lies in the vertex's normal cone,
+/// which meets the polygon only at the vertex, so no inside test is needed here.
+#[inline]
+fn leave_vertex_region(poly: &[DVec2], i: usize, towards: DVec2) -> Option<Feature> {
+    let n = poly.len();
+    let v = poly[i];
+    if towards.dot(poly[next(i, n)] - v) > 0.0 {
+        return Some(Feature::Edge(i));
+    }
+    let i_prev = prev(i, n);
+    if towards.dot(v - poly[i_prev]) < 0.0 {
+        return Some(Feature::Edge(i_prev));
+    }
+    None
+}
+
+/// Where a point lies relative to an edge's Voronoi region.
+enum EdgeRegion {
+    /// Inside the half-strip (boundaries count as inside), with the perpendicular from the point to the edge.
+    Inside(Perpendicular),
     /// Outside, across the boundary shared with this neighbouring feature.
     Leave(Feature),
     /// In the closed polygon itself; the edge is the one nearest to the point.
     InPolygon(usize),
 }
 
-/// Checks `x` against the wedge of vertex `i` of `poly`. A point passing both tests lies in the vertex's normal
-/// cone, which meets the polygon only at the vertex, so no inside test is needed here.
-#[inline]
-fn vertex_region(poly: &[DVec2], i: usize, x: DVec2) -> Region {
-    let n = poly.len();
-    let v = poly[i];
-    let offset = x - v;
-    if offset.dot(poly[next(i, n)] - v) > 0.0 {
-        return Region::Leave(Feature::Edge(i));
-    }
-    let i_prev = prev(i, n);
-    if offset.dot(v - poly[i_prev]) < 0.0 {
-        return Region::Leave(Feature::Edge(i_prev));
-    }
-    Region::Inside
+/// The perpendicular from a point in an edge's region down to the edge.
+struct Perpendicular {
+    /// Where it meets the edge.
+    foot: DVec2,
+    /// Its length: the point's distance from the edge.
+    length: f64,
+    /// Its direction from the point to the edge, scaled by the edge length.
+    direction: DVec2,
 }
 
 /// Checks `x` against the half-strip of edge `i` of `poly`. A point behind the edge's line (footnote 11) is either
 /// outside another edge — step to the edge it is furthest outside of, as in Lin's local-minimum escape — or inside
 /// the polygon. A point exactly on the edge counts as inside the polygon, so touching is reported as contact.
 #[inline]
-fn edge_region(poly: &[DVec2], i: usize, x: DVec2) -> Region {
+fn edge_region(poly: &[DVec2], i: usize, x: DVec2) -> EdgeRegion {
     let i_next = next(i, poly.len());
     let (v0, v1) = (poly[i], poly[i_next]);
     let d = v1 - v0;
     let offset = x - v0;
     let along = offset.dot(d);
     if along < 0.0 {
-        return Region::Leave(Feature::Vertex(i));
+        return EdgeRegion::Leave(Feature::Vertex(i));
     }
-    if along > d.length_squared() {
-        return Region::Leave(Feature::Vertex(i_next));
+    let length_squared = d.length_squared();
+    if along > length_squared {
+        return EdgeRegion::Leave(Feature::Vertex(i_next));
     }
     let outward = cross(offset, d);
     if outward > 0.0 {
-        return Region::Inside;
+        // Division and square root are independent, so their latencies overlap.
+        return EdgeRegion::Inside(Perpendicular {
+            foot: v0 + d * (along / length_squared),
+            length: outward / length_squared.sqrt(),
+            direction: d.perp(),
+        });
     }
     if outward == 0.0 {
-        return Region::InPolygon(i);
+        return EdgeRegion::InPolygon(i);
     }
     match contact::most_exposed_edge(poly, x) {
-        (k, exposure) if exposure > 0.0 => Region::Leave(Feature::Edge(k)),
-        (k, _) => Region::InPolygon(k),
+        (k, exposure) if exposure > 0.0 => EdgeRegion::Leave(Feature::Edge(k)),
+        (k, _) => EdgeRegion::InPolygon(k),
     }
 }
 
@@ -259,28 +280,28 @@ fn vertex_vertex(a: &[DVec2], i: usize, b: &[DVec2], j: usize) -> Step {
     if p == q {
         return Step::Contact { edge_a: i, edge_b: j };
     }
-    if let Region::Leave(f) = vertex_region(a, i, q) {
+    if let Some(f) = leave_vertex_region(a, i, q - p) {
         return Step::MoveA(f);
     }
-    if let Region::Leave(f) = vertex_region(b, j, p) {
+    if let Some(f) = leave_vertex_region(b, j, p - q) {
         return Step::MoveB(f);
     }
-    Step::Closest(p, q)
+    Step::Closest { point_a: p, point_b: q, distance: (p - q).length() }
 }
 
 /// Vertex `i` of `p_poly` against edge `j` of `q_poly`, decided in (vertex polygon, edge polygon) order.
 fn vertex_edge(p_poly: &[DVec2], i: usize, q_poly: &[DVec2], j: usize) -> Step {
     let p = p_poly[i];
-    match edge_region(q_poly, j, p) {
-        Region::Inside => {}
-        Region::Leave(f) => return Step::MoveB(f),
-        Region::InPolygon(k) => return Step::Contact { edge_a: i, edge_b: k },
-    }
-    let on_edge = segments::closest_on_segment(p, q_poly[j], q_poly[next(j, q_poly.len())]);
-    if let Region::Leave(f) = vertex_region(p_poly, i, on_edge) {
+    let perpendicular = match edge_region(q_poly, j, p) {
+        EdgeRegion::Inside(perpendicular) => perpendicular,
+        EdgeRegion::Leave(f) => return Step::MoveB(f),
+        EdgeRegion::InPolygon(k) => return Step::Contact { edge_a: i, edge_b: k },
+    };
+    // The foot is seen from the vertex along the perpendicular's direction: test that instead of the foot itself.
+    if let Some(f) = leave_vertex_region(p_poly, i, perpendicular.direction) {
         return Step::MoveA(f);
     }
-    Step::Closest(p, on_edge)
+    Step::Closest { point_a: p, point_b: perpendicular.foot, distance: perpendicular.length }
 }
 
 fn edge_edge(a: &[DVec2], i: usize, b: &[DVec2], j: usize) -> Step {
@@ -291,16 +312,16 @@ fn edge_edge(a: &[DVec2], i: usize, b: &[DVec2], j: usize) -> Step {
     }
     let (pa, pb) = segments::closest_between(p0, p1, q0, q1);
     match edge_region(a, i, pb) {
-        Region::Inside => {}
-        Region::Leave(f) => return Step::MoveA(f),
-        Region::InPolygon(k) => return Step::Contact { edge_a: k, edge_b: j },
+        EdgeRegion::Inside(_) => {}
+        EdgeRegion::Leave(f) => return Step::MoveA(f),
+        EdgeRegion::InPolygon(k) => return Step::Contact { edge_a: k, edge_b: j },
     }
     match edge_region(b, j, pa) {
-        Region::Inside => {}
-        Region::Leave(f) => return Step::MoveB(f),
-        Region::InPolygon(k) => return Step::Contact { edge_a: i, edge_b: k },
+        EdgeRegion::Inside(_) => {}
+        EdgeRegion::Leave(f) => return Step::MoveB(f),
+        EdgeRegion::InPolygon(k) => return Step::Contact { edge_a: i, edge_b: k },
     }
-    Step::Closest(pa, pb)
+    Step::Closest { point_a: pa, point_b: pb, distance: (pa - pb).length() }
 }
 
 #[cfg(test)]

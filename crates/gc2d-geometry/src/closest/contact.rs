@@ -149,7 +149,8 @@ fn deepest_vertex(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
 /// distance exactly 0, with both points at the touching vertex.
 fn nearest_edges(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
     let mut best_squared = f64::INFINITY;
-    let mut best = Separation::apart(a[0], b[0], FeaturePair { a: Feature::Vertex(0), b: Feature::Vertex(0) }, passes);
+    let vertices = FeaturePair { a: Feature::Vertex(0), b: Feature::Vertex(0) };
+    let mut best = Separation::apart(a[0], b[0], a[0].distance(b[0]), vertices, passes);
     for i in 0..a.len() {
         let i_next = next(i, a.len());
         let (p0, p1) = (a[i], a[i_next]);
@@ -166,7 +167,7 @@ fn nearest_edges(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
                 best_squared = squared;
                 let features =
                     FeaturePair { a: feature_at(pa, i, p0, i_next, p1), b: feature_at(pb, j, q0, j_next, q1) };
-                best = Separation::apart(pa, pb, features, passes);
+                best = Separation::apart(pa, pb, squared.sqrt(), features, passes);
             }
         }
     }
