@@ -327,6 +327,7 @@ fn edge_edge(a: &[DVec2], i: usize, b: &[DVec2], j: usize) -> Step {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::TAU;
 
     fn v(x: f64, y: f64) -> DVec2 {
         DVec2::new(x, y)
@@ -495,6 +496,24 @@ mod tests {
         let stale = closest_features(&a, &b, Some(FeaturePair { a: Feature::Edge(9), b: Feature::Vertex(4) }));
         assert_eq!(cold, stale);
         assert_eq!(cold.distance, 2.0);
+    }
+
+    #[test]
+    fn exhaustive_search_agrees_with_the_walk() {
+        let square = rectangle(0.0, 0.0, 1.0, 1.0);
+        let heptagon: Vec<DVec2> =
+            (0..7).map(|k| v(2.5, 0.3) + DVec2::from_angle(0.4 + k as f64 * TAU / 7.0) * 0.9).collect();
+        let triangle = [v(0.3, 1.25), v(1.0, 2.0), v(0.0, 2.0)];
+        let far_square = rectangle(4.0, 5.0, 5.0, 6.0);
+        for (a, b) in [(&square[..], &heptagon[..]), (&square, &triangle), (&heptagon, &far_square)] {
+            let walked = closest_features(a, b, None);
+            let searched = contact::exhaustive(a, b, 1);
+            assert!(!searched.penetrating && searched.distance > 0.0);
+            assert!((walked.distance - searched.distance).abs() <= 1e-15);
+            assert!((walked.point_a - searched.point_a).length() <= 1e-15);
+            assert!((walked.point_b - searched.point_b).length() <= 1e-15);
+            assert_eq!(walked.features, searched.features);
+        }
     }
 
     #[test]
