@@ -10,12 +10,14 @@
 //! [`randomize`] (reference §1.2, §1.8).
 
 pub mod overlap;
+pub mod closest;
 pub mod polygon;
 pub mod pose;
 pub mod randomize;
 pub mod recipe;
 pub mod shapes;
 
+pub use closest::{Feature, FeaturePair, Separation, closest_features};
 pub use glam::DVec2;
 pub use overlap::{ContactGeometry, ContactKind, OverlapPolygon, contact_geometry, overlap_polygon};
 pub use polygon::{ConvexPolygon, MAX_VERTICES, MassProperties, PolygonError};
