@@ -1,10 +1,32 @@
 //! The gc2d-rs simulation engine: the World and its step pipeline (see ARCHITECTURE.md, "One step, as data flows").
 //!
+//! A [`World`] holds particles and walls ([`bodies`]), the persistent pair list of the sort-and-sweep
+//! [`broadphase`] with each pair's contact history ([`narrowphase`]), the drivers that move walls and pull
+//! particles ([`motion`], [`schedules`], [`sources`]), and the [`ledger`] that accounts for every joule. Particles
+//! are integrated by the 6-value Gear predictor-corrector ([`integrator`]); [`safety`] refuses unstable time steps
+//! and stops runs that blow up.
+//!
 //! The engine knows nothing about scene files, recordings or the command line; those crates build and observe a
 //! World through the types exported here.
 
-pub mod integrator;
-pub mod motion;
-pub mod schedules;
-pub mod time_window;
+pub mod bodies;
 pub mod broadphase;
+pub mod integrator;
+pub mod ledger;
+pub mod motion;
+pub mod narrowphase;
+pub mod safety;
+pub mod schedules;
+pub mod sources;
+pub mod time_window;
+pub mod world;
+
+pub use bodies::{Bodies, BodyId, BodyKind};
+pub use integrator::GearC0;
+pub use ledger::EnergyLedger;
+pub use motion::WallMotion;
+pub use narrowphase::PairContact;
+pub use safety::{SafetyError, SafetyLimits};
+pub use sources::{DropHeight, DropSource};
+pub use time_window::TimeWindow;
+pub use world::{StepStats, World, WorldConfig, WorldError};

@@ -9,8 +9,8 @@
 //! and rounded rectangles) or drawn at random from a [`ShapeRecipe`], with the CONST / EQUAL / GAUSS rules of
 //! [`randomize`] (reference §1.2, §1.8).
 
-pub mod overlap;
 pub mod closest;
+pub mod overlap;
 pub mod polygon;
 pub mod pose;
 pub mod randomize;

@@ -1,0 +1,207 @@
+//! The body store: every particle and wall of a World as columns of a structure of arrays.
+//!
+//! Bodies are addressed by a dense slot index ([`BodyId`]) that never changes; removing a particle marks its slot dead
+//! (its vertices stay in the arrays). Body-frame and world-frame vertices of all bodies sit in two flat arrays with
+//! per-body offsets, so a step transforms them without allocating.
+
+use crate::integrator::GearState;
+use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose};
+
+/// Index of a body in the World's store; stable for the life of the World.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct BodyId(pub u32);
+
+impl BodyId {
+    /// The slot as a `usize` index into the columns.
+    #[inline]
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// What moves a body.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BodyKind {
+    /// A free particle integrated by the Gear predictor-corrector.
+    Particle,
+    /// A wall: infinite mass, placed by its motion law (static unless the scene gives it one).
+    Wall,
+}
+
+/// Range of a body's vertices in the flat vertex arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct VertexRange {
+    /// First vertex.
+    pub start: u32,
+    /// Number of vertices.
+    pub len: u32,
+}
+
+impl VertexRange {
+    /// As a `usize` range.
+    #[inline]
+    pub fn range(self) -> std::ops::Range<usize> {
+        self.start as usize..(self.start + self.len) as usize
+    }
+}
+
+/// Columns of per-body data. All `Vec`s have one entry per slot.
+#[derive(Debug, Clone, Default)]
+pub struct Bodies {
+    /// Particle or wall.
+    pub kind: Vec<BodyKind>,
+    /// False once a particle has been removed.
+    pub alive: Vec<bool>,
+    /// Where the body's vertices are in `body_vertices` and `world_vertices`.
+    pub vertices: Vec<VertexRange>,
+    /// Body-frame vertices of all bodies, centroid at the origin, CCW.
+    pub body_vertices: Vec<DVec2>,
+    /// World-frame vertices of all bodies at the current (predicted) pose.
+    pub world_vertices: Vec<DVec2>,
+    /// Pose of the centroid (particles: from the integrator; walls: from their motion law).
+    pub pose: Vec<Pose>,
+    /// Velocity of the centroid, m/s.
+    pub velocity: Vec<DVec2>,
+    /// Angular velocity, rad/s, CCW.
+    pub angular_velocity: Vec<f64>,
+    /// Gear scaled derivatives (meaningful for particles only).
+    pub gear: Vec<GearState>,
+    /// Mass, kg (per unit thickness); infinite for walls.
+    pub mass: Vec<f64>,
+    /// Moment of inertia about the centroid at scale 1, kg·m²; infinite for walls.
+    pub inertia: Vec<f64>,
+    /// 1/mass; 0 for walls.
+    pub inverse_mass: Vec<f64>,
+    /// 1/inertia at the current scale; 0 for walls.
+    pub inverse_inertia: Vec<f64>,
+    /// Area at scale 1, m².
+    pub area: Vec<f64>,
+    /// Radius of the largest circle about the centroid inside the body, at scale 1, m.
+    pub inscribed_radius: Vec<f64>,
+    /// Virtual tangential surface velocity of a wall (drums, §2.11); zero for particles.
+    pub surface_velocity: Vec<DVec2>,
+    /// Axis-aligned box around the world vertices.
+    pub aabb: Vec<Aabb>,
+    /// Force accumulated this step, N.
+    pub force: Vec<DVec2>,
+    /// Torque accumulated this step, N·m, CCW.
+    pub torque: Vec<f64>,
+}
+
+impl Bodies {
+    /// Number of slots (alive or not).
+    pub fn len(&self) -> usize {
+        self.kind.len()
+    }
+
+    /// True when the store has no slots.
+    pub fn is_empty(&self) -> bool {
+        self.kind.is_empty()
+    }
+
+    /// Appends a body and returns its slot. `mass`/`inertia` are infinite for walls.
+    pub(crate) fn push(
+        &mut self,
+        kind: BodyKind,
+        shape: &ConvexPolygon,
+        pose: Pose,
+        mass: f64,
+        inertia: f64,
+    ) -> BodyId {
+        let id = BodyId(self.kind.len() as u32);
+        let start = self.body_vertices.len() as u32;
+        self.body_vertices.extend_from_slice(shape.vertices());
+        self.world_vertices.extend(shape.vertices().iter().map(|&v| pose.apply(v)));
+        let range = VertexRange { start, len: shape.len() as u32 };
+        self.kind.push(kind);
+        self.alive.push(true);
+        self.vertices.push(range);
+        self.aabb.push(Aabb::of_points(&self.world_vertices[range.range()]));
+        self.pose.push(pose);
+        self.velocity.push(DVec2::ZERO);
+        self.angular_velocity.push(0.0);
+        self.gear.push(GearState::default());
+        self.mass.push(mass);
+        self.inertia.push(inertia);
+        self.inverse_mass.push(if mass.is_finite() { 1.0 / mass } else { 0.0 });
+        self.inverse_inertia.push(if inertia.is_finite() { 1.0 / (inertia * pose.scale * pose.scale) } else { 0.0 });
+        self.area.push(shape.area());
+        self.inscribed_radius.push(shape.inscribed_radius());
+        self.surface_velocity.push(DVec2::ZERO);
+        self.force.push(DVec2::ZERO);
+        self.torque.push(0.0);
+        id
+    }
+
+    /// World-frame vertices of one body.
+    #[inline]
+    pub fn world_vertices_of(&self, id: BodyId) -> &[DVec2] {
+        &self.world_vertices[self.vertices[id.index()].range()]
+    }
+
+    /// Body-frame vertices of one body.
+    #[inline]
+    pub fn body_vertices_of(&self, id: BodyId) -> &[DVec2] {
+        &self.body_vertices[self.vertices[id.index()].range()]
+    }
+
+    /// Ids of the living particles, in slot order.
+    pub fn particles(&self) -> impl Iterator<Item = BodyId> + '_ {
+        (0..self.len()).filter(|&i| self.alive[i] && self.kind[i] == BodyKind::Particle).map(|i| BodyId(i as u32))
+    }
+
+    /// Recomputes world vertices and boxes of every living body from its pose, in parallel over bodies. The flat
+    /// vertex array is split at body boundaries recursively, so no allocation happens and each body's vertices are
+    /// written by exactly one task.
+    pub(crate) fn update_world_vertices(&mut self) {
+        let count = self.len();
+        transform_range(
+            0,
+            count,
+            &self.vertices,
+            &self.body_vertices,
+            &self.pose,
+            &self.alive,
+            &mut self.world_vertices,
+            &mut self.aabb,
+        );
+    }
+}
+
+/// Bodies below this many per task are transformed sequentially.
+const TRANSFORM_GRAIN: usize = 512;
+
+/// Transforms bodies `first..last`; `world` starts at body `first`'s first vertex, `aabbs` at body `first`.
+#[allow(clippy::too_many_arguments)]
+fn transform_range(
+    first: usize,
+    last: usize,
+    ranges: &[VertexRange],
+    body: &[DVec2],
+    poses: &[Pose],
+    alive: &[bool],
+    world: &mut [DVec2],
+    aabbs: &mut [Aabb],
+) {
+    if last - first <= TRANSFORM_GRAIN {
+        let offset = if first < ranges.len() { ranges[first].start as usize } else { 0 };
+        for i in first..last {
+            if !alive[i] {
+                continue;
+            }
+            let r = ranges[i].range();
+            let local = r.start - offset..r.end - offset;
+            poses[i].transform_into(&body[r], &mut world[local.clone()]);
+            aabbs[i - first] = Aabb::of_points(&world[local]);
+        }
+        return;
+    }
+    let mid = first + (last - first) / 2;
+    let split = (ranges[mid].start - ranges[first].start) as usize;
+    let (world_lo, world_hi) = world.split_at_mut(split);
+    let (aabb_lo, aabb_hi) = aabbs.split_at_mut(mid - first);
+    rayon::join(
+        || transform_range(first, mid, ranges, body, poses, alive, world_lo, aabb_lo),
+        || transform_range(mid, last, ranges, body, poses, alive, world_hi, aabb_hi),
+    );
+}

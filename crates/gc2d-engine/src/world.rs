@@ -1,0 +1,695 @@
+//! The World: bodies, contacts and drivers, and the step that advances them by one Δt.
+//!
+//! One step, as data flows (ARCHITECTURE.md): predict → vertices and boxes → sort-and-sweep → narrowphase and contact
+//! law per pair (parallel, each pair writes only its own record) → accumulation in pair order → body forces →
+//! correct → walls, sources, g(t), s(t) → ledger and safety checks. Stages a scene does not use are skipped by a
+//! flag test, so a plain pile pays nothing for drag springs, moving walls, heating or sources.
+
+use crate::bodies::{Bodies, BodyId, BodyKind};
+use crate::broadphase::{self, PairEntry, SortAndSweep};
+use crate::integrator::{Gear6, GearC0, GearState, IntegratorError, TimeStep};
+use crate::ledger::EnergyLedger;
+use crate::motion::WallMotion;
+use crate::narrowphase::{PairContact, PairContext};
+use crate::safety::{self, SafetyError, SafetyLimits};
+use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
+use crate::sources::{DropHeight, DropSource, PLACEMENT_ATTEMPTS, SourceState};
+use gc2d_contact::{ContactLaw, ContactLawError};
+use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose, contact_geometry};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use thiserror::Error;
+
+/// Everything global about a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldConfig {
+    /// Δt, s.
+    pub time_step: f64,
+    /// Gear corrector coefficient c0 (default 3/16, velocity-dependent forces).
+    pub corrector: GearC0,
+    /// The contact law shared by all contacts (gc2d's material parameters are global).
+    pub contact_law: ContactLaw,
+    /// g(t); gravity points along −y.
+    pub gravity: GravitySchedule,
+    /// Global size scaling s(t), if the scene heats.
+    pub heating: Option<HeatingSchedule>,
+    /// Blow-up limits and the time-step override.
+    pub safety: SafetyLimits,
+    /// Particles whose centroid leaves this box are removed (and counted); `None` keeps every particle.
+    pub domain: Option<Aabb>,
+    /// Seed of the World's random numbers (sources).
+    pub seed: u64,
+}
+
+/// Why a World could not be built or advanced.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum WorldError {
+    /// Δt is not a usable number.
+    #[error(transparent)]
+    TimeStep(#[from] IntegratorError),
+    /// The contact law's parameters are out of range.
+    #[error(transparent)]
+    ContactLaw(#[from] ContactLawError),
+    /// The run is unsafe or blew up.
+    #[error(transparent)]
+    Safety(#[from] SafetyError),
+    /// A body could not be added.
+    #[error("{0}")]
+    InvalidBody(String),
+}
+
+/// A wall that moves, with the pose it moves from.
+#[derive(Debug, Clone, PartialEq)]
+struct MovingWall {
+    body: BodyId,
+    rest: Pose,
+    motion: WallMotion,
+}
+
+/// Counters of the last step and of the run, for progress displays and statistics.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepStats {
+    /// Pairs of touching boxes.
+    pub box_pairs: usize,
+    /// Pairs whose polygons overlap.
+    pub contacts: usize,
+    /// Largest overlap area this step as a fraction of the smaller particle's area.
+    pub max_overlap_fraction: f64,
+    /// Closest-feature queries this step that needed more than one pass.
+    pub multi_pass_queries: usize,
+    /// Particles inserted by sources since the start.
+    pub inserted: u64,
+    /// Insertions skipped since the start because no free spot was found.
+    pub insertions_skipped: u64,
+    /// Particles removed for leaving the domain since the start.
+    pub removed: u64,
+}
+
+/// Which optional stages the step runs; fixed when the World is built and when drivers are added.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+struct Stages {
+    moving_walls: bool,
+    drag_springs: bool,
+    heating: bool,
+    variable_gravity: bool,
+    sources: bool,
+    domain: bool,
+}
+
+/// A simulation: bodies, the contacts between them, the drivers that move walls and pull particles, and time.
+pub struct World {
+    config: WorldConfig,
+    gear: Gear6,
+    time: f64,
+    steps: u64,
+    bodies: Bodies,
+    broadphase: SortAndSweep<PairContact>,
+    moving_walls: Vec<MovingWall>,
+    drag_springs: Vec<(BodyId, DragSpring)>,
+    sources: Vec<SourceState>,
+    rng: ChaCha8Rng,
+    ledger: EnergyLedger,
+    stats: StepStats,
+    stages: Stages,
+    started: bool,
+}
+
+impl World {
+    /// An empty World at t = 0. Validates Δt and the contact law.
+    pub fn new(config: WorldConfig) -> Result<Self, WorldError> {
+        let time_step = TimeStep::new(config.time_step)?;
+        config.contact_law.validate()?;
+        let stages = Stages {
+            heating: config.heating.is_some(),
+            variable_gravity: !config.gravity.is_constant(),
+            domain: config.domain.is_some(),
+            ..Stages::default()
+        };
+        Ok(Self {
+            gear: Gear6::new(time_step, config.corrector),
+            rng: ChaCha8Rng::seed_from_u64(config.seed),
+            config,
+            time: 0.0,
+            steps: 0,
+            bodies: Bodies::default(),
+            broadphase: SortAndSweep::new(),
+            moving_walls: Vec::new(),
+            drag_springs: Vec::new(),
+            sources: Vec::new(),
+            ledger: EnergyLedger::default(),
+            stats: StepStats::default(),
+            stages,
+            started: false,
+        })
+    }
+
+    /// Adds a free particle of area density `density` (kg/m²) at `pose`, moving with `velocity` and
+    /// `angular_velocity` (CCW). Returns its id.
+    pub fn add_particle(
+        &mut self,
+        shape: &ConvexPolygon,
+        pose: Pose,
+        density: f64,
+        velocity: DVec2,
+        angular_velocity: f64,
+    ) -> Result<BodyId, WorldError> {
+        if !(density > 0.0 && density.is_finite()) {
+            return Err(WorldError::InvalidBody(format!("particle density must be positive, got {density}")));
+        }
+        if !(pose.position.is_finite()
+            && pose.angle.is_finite()
+            && velocity.is_finite()
+            && angular_velocity.is_finite())
+        {
+            return Err(WorldError::InvalidBody("particle pose and velocity must be finite numbers".into()));
+        }
+        let mass = shape.mass_properties(density);
+        let id = self.bodies.push(BodyKind::Particle, shape, pose, mass.mass, mass.inertia);
+        let i = id.index();
+        self.bodies.velocity[i] = velocity;
+        self.bodies.angular_velocity[i] = angular_velocity;
+        self.bodies.gear[i] = GearState::from_physical(
+            pose.position,
+            velocity,
+            DVec2::ZERO,
+            pose.angle,
+            angular_velocity,
+            0.0,
+            self.gear.time_step(),
+        );
+        self.insert_into_broadphase(id, broadphase::BodyKind::Dynamic);
+        Ok(id)
+    }
+
+    /// Adds a wall (infinite mass) at `pose`. `surface_velocity` is gc2d's virtual tangential surface velocity
+    /// (drums, §2.11); `motion` moves the wall (vibration, rotation, piston).
+    pub fn add_wall(
+        &mut self,
+        shape: &ConvexPolygon,
+        pose: Pose,
+        surface_velocity: DVec2,
+        motion: WallMotion,
+    ) -> BodyId {
+        let id = self.bodies.push(BodyKind::Wall, shape, pose, f64::INFINITY, f64::INFINITY);
+        self.bodies.surface_velocity[id.index()] = surface_velocity;
+        if !motion.is_static() {
+            self.moving_walls.push(MovingWall { body: id, rest: pose, motion });
+            self.stages.moving_walls = true;
+        }
+        self.insert_into_broadphase(id, broadphase::BodyKind::Static);
+        id
+    }
+
+    /// Attaches a drag spring (reference §2.12) to a particle.
+    pub fn add_drag_spring(&mut self, particle: BodyId, spring: DragSpring) -> Result<(), WorldError> {
+        if self.bodies.kind.get(particle.index()) != Some(&BodyKind::Particle) {
+            return Err(WorldError::InvalidBody(format!("drag spring on body {} which is not a particle", particle.0)));
+        }
+        self.drag_springs.push((particle, spring));
+        self.stages.drag_springs = true;
+        Ok(())
+    }
+
+    /// Adds a particle source.
+    pub fn add_source(&mut self, source: DropSource) -> Result<(), WorldError> {
+        source.recipe.validate().map_err(|e| WorldError::InvalidBody(format!("drop source shape: {e}")))?;
+        if !(source.interval > 0.0 && source.density > 0.0 && source.width >= 0.0) {
+            return Err(WorldError::InvalidBody(
+                "drop source needs a positive interval and density and a non-negative width".into(),
+            ));
+        }
+        self.sources.push(SourceState::new(source));
+        self.stages.sources = true;
+        Ok(())
+    }
+
+    fn insert_into_broadphase(&mut self, id: BodyId, kind: broadphase::BodyKind) {
+        // Ids are dense slots far below the broadphase limit of 2^31, and each slot is inserted once.
+        let inserted = self.broadphase.insert(id.0, self.bodies.aabb[id.index()], kind);
+        debug_assert!(inserted.is_ok());
+    }
+
+    /// Simulated time, s.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Δt, s.
+    pub fn time_step(&self) -> f64 {
+        self.config.time_step
+    }
+
+    /// The configuration the World was built with.
+    pub fn config(&self) -> &WorldConfig {
+        &self.config
+    }
+
+    /// The body store (read only).
+    pub fn bodies(&self) -> &Bodies {
+        &self.bodies
+    }
+
+    /// The energy ledger as of the last step.
+    pub fn ledger(&self) -> &EnergyLedger {
+        &self.ledger
+    }
+
+    /// Counters of the last step.
+    pub fn stats(&self) -> &StepStats {
+        &self.stats
+    }
+
+    /// Current g (magnitude; gravity points along −y).
+    pub fn gravity(&self) -> f64 {
+        self.config.gravity.magnitude(self.time)
+    }
+
+    /// Every pair of bodies whose boxes touch, with its contact record (`a < b`).
+    pub fn pairs(&self) -> impl Iterator<Item = (BodyId, BodyId, &PairContact)> {
+        self.broadphase.pairs().iter().map(|p| (BodyId(p.a()), BodyId(p.b()), &p.payload))
+    }
+
+    /// The pairs whose polygons overlapped in the last step.
+    pub fn contacts(&self) -> impl Iterator<Item = (BodyId, BodyId, &PairContact)> {
+        self.pairs().filter(|(_, _, c)| c.touching)
+    }
+
+    /// The largest stable Δt of the particles now in the World, (π/10)·sqrt(m/E) with the inscribed-circle mass.
+    pub fn stable_time_step(&self) -> Option<f64> {
+        safety::stable_time_step(&self.bodies, self.config.contact_law.elastic.e_modulus).map(|(dt, _)| dt)
+    }
+
+    /// Checks Δt against the stable bound (refused unless the safety limits allow it).
+    pub fn check_time_step(&self) -> Result<(), SafetyError> {
+        safety::check_time_step(
+            &self.bodies,
+            self.config.contact_law.elastic.e_modulus,
+            self.config.time_step,
+            &self.config.safety,
+        )
+    }
+
+    /// Advances by one Δt. The first call checks the time step and opens the energy ledger.
+    pub fn step(&mut self) -> Result<(), WorldError> {
+        if !self.started {
+            self.check_time_step()?;
+            self.started = true;
+            self.refresh_stored_energies();
+            self.ledger.initial_total = self.ledger.total();
+        }
+        let dt = self.config.time_step;
+        let t_next = self.time + dt;
+        self.predict(t_next);
+        self.bodies.update_world_vertices();
+        self.broadphase.update(&self.bodies.aabb);
+        self.close_ended_pairs();
+        self.evaluate_pairs();
+        self.accumulate_contact_forces();
+        self.apply_body_forces(t_next);
+        self.correct();
+        if self.stages.moving_walls {
+            self.advance_pistons();
+        }
+        let g_before = self.config.gravity.magnitude(self.time);
+        self.time = t_next;
+        self.steps += 1;
+        if self.stages.variable_gravity {
+            self.account_gravity_change(g_before);
+        }
+        if self.stages.domain {
+            self.remove_escaped_particles();
+        }
+        if self.stages.sources {
+            self.run_sources();
+        }
+        self.refresh_stored_energies();
+        self.check_blow_up()
+    }
+
+    /// Steps until the time reaches `t_end` (within half a step).
+    pub fn run_until(&mut self, t_end: f64) -> Result<(), WorldError> {
+        while self.time + 0.5 * self.config.time_step < t_end {
+            self.step()?;
+        }
+        Ok(())
+    }
+
+    /// Gear predictor for particles, prescribed poses for moving walls, s(t) for everyone.
+    fn predict(&mut self, t_next: f64) {
+        let gear = &self.gear;
+        let time_step = *gear.time_step();
+        let b = &mut self.bodies;
+        let predict = |(state, pose, velocity, angular_velocity, kind, alive): KinematicsRow| {
+            if *kind == BodyKind::Particle && *alive {
+                gear.predict_body(state);
+                sync_kinematics(state, &time_step, pose, velocity, angular_velocity);
+            }
+        };
+        let rows = (&mut b.gear, &mut b.pose, &mut b.velocity, &mut b.angular_velocity, &b.kind, &b.alive);
+        if b.kind.len() >= PARALLEL_MIN_BODIES {
+            rows.into_par_iter().for_each(predict);
+        } else {
+            let (g, p, v, w, k, a) = rows;
+            g.iter_mut()
+                .zip(p)
+                .zip(v)
+                .zip(w)
+                .zip(k)
+                .zip(a)
+                .for_each(|(((((g, p), v), w), k), a)| predict((g, p, v, w, k, a)));
+        }
+        if self.stages.moving_walls {
+            for wall in &self.moving_walls {
+                let kinematics = wall.motion.kinematics(t_next);
+                let i = wall.body.index();
+                let pose = kinematics.place(wall.rest);
+                b.pose[i] = pose;
+                b.velocity[i] = kinematics.point_velocity(pose.position);
+                b.angular_velocity[i] = kinematics.angular_velocity;
+            }
+        }
+        if self.stages.heating
+            && let Some(heating) = self.config.heating
+        {
+            let scale = heating.scale(t_next);
+            for i in 0..b.len() {
+                if b.kind[i] == BodyKind::Particle {
+                    b.pose[i].scale = scale;
+                    b.inverse_inertia[i] = 1.0 / (b.inertia[i] * HeatingSchedule::inertia_factor(scale));
+                }
+            }
+        }
+    }
+
+    /// Contacts whose boxes separated in one step may still have held energy: book it as opening residual.
+    fn close_ended_pairs(&mut self) {
+        let law = &self.config.contact_law;
+        for ended in self.broadphase.ended_pairs() {
+            self.ledger.opening_residual += law.stored_energy(&ended.payload.state);
+        }
+    }
+
+    /// Narrowphase and contact law for every pair, in parallel; each pair writes only its own record.
+    fn evaluate_pairs(&mut self) {
+        let context = PairContext { bodies: &self.bodies, law: &self.config.contact_law, dt: self.config.time_step };
+        let evaluate = |pair: &mut PairEntry<PairContact>| context.evaluate(pair.a(), pair.b(), &mut pair.payload);
+        if self.bodies.len() >= PARALLEL_MIN_BODIES {
+            self.broadphase.pairs_mut().par_iter_mut().for_each(evaluate);
+        } else {
+            self.broadphase.pairs_mut().iter_mut().for_each(evaluate);
+        }
+    }
+
+    /// Adds the contact forces to the bodies in pair order (independent of the thread count) and books the
+    /// contacts' energy terms.
+    fn accumulate_contact_forces(&mut self) {
+        let b = &mut self.bodies;
+        b.force.iter_mut().for_each(|f| *f = DVec2::ZERO);
+        b.torque.iter_mut().for_each(|t| *t = 0.0);
+        let mut stats = StepStats { box_pairs: self.broadphase.pairs().len(), ..self.stats };
+        stats.contacts = 0;
+        stats.max_overlap_fraction = 0.0;
+        stats.multi_pass_queries = 0;
+        let ledger = &mut self.ledger;
+        for pair in self.broadphase.pairs() {
+            let c = &pair.payload;
+            stats.multi_pass_queries += usize::from(c.passes > 1);
+            let energy = &c.energy;
+            ledger.dissipated_normal_damping += energy.normal_damping;
+            ledger.dissipated_tangential_damping += energy.tangential_damping;
+            ledger.dissipated_sliding += energy.sliding;
+            ledger.opening_residual += energy.opening_residual;
+            ledger.work_walls += energy.surface_work + c.wall_work;
+            if !c.touching {
+                continue;
+            }
+            stats.contacts += 1;
+            stats.max_overlap_fraction = stats.max_overlap_fraction.max(c.overlap_fraction);
+            let (a, bb) = (pair.a() as usize, pair.b() as usize);
+            b.force[a] += c.force_on_a;
+            b.force[bb] -= c.force_on_a;
+            b.torque[a] += c.torque_on_a;
+            b.torque[bb] += c.torque_on_b;
+        }
+        self.stats = stats;
+    }
+
+    /// Gravity and drag springs.
+    fn apply_body_forces(&mut self, t_next: f64) {
+        let g = self.config.gravity.acceleration(t_next);
+        let b = &mut self.bodies;
+        for i in 0..b.len() {
+            if b.kind[i] == BodyKind::Particle && b.alive[i] {
+                b.force[i] += b.mass[i] * g;
+            }
+        }
+        if self.stages.drag_springs {
+            let dt = self.config.time_step;
+            for (id, spring) in &self.drag_springs {
+                let i = id.index();
+                if !b.alive[i] {
+                    continue;
+                }
+                let (force, torque) = spring.force_and_torque(b.pose[i], t_next);
+                b.force[i] += force;
+                b.torque[i] += torque;
+                self.ledger.work_drag += spring.driving_power(b.pose[i], t_next) * dt;
+            }
+        }
+    }
+
+    /// Gear corrector for particles with a = F/m, α = τ/I.
+    fn correct(&mut self) {
+        let gear = &self.gear;
+        let time_step = *gear.time_step();
+        let b = &mut self.bodies;
+        let (force, torque, inverse_mass, inverse_inertia) = (&b.force, &b.torque, &b.inverse_mass, &b.inverse_inertia);
+        let correct = |i: usize, (state, pose, velocity, angular_velocity, kind, alive): KinematicsRow| {
+            if *kind == BodyKind::Particle && *alive {
+                gear.correct_body(state, force[i] * inverse_mass[i], torque[i] * inverse_inertia[i]);
+                sync_kinematics(state, &time_step, pose, velocity, angular_velocity);
+            }
+        };
+        let rows = (&mut b.gear, &mut b.pose, &mut b.velocity, &mut b.angular_velocity, &b.kind, &b.alive);
+        if b.kind.len() >= PARALLEL_MIN_BODIES {
+            rows.into_par_iter().enumerate().for_each(|(i, row)| correct(i, row));
+        } else {
+            let (g, p, v, w, k, a) = rows;
+            g.iter_mut()
+                .zip(p)
+                .zip(v)
+                .zip(w)
+                .zip(k)
+                .zip(a)
+                .enumerate()
+                .for_each(|(i, (((((g, p), v), w), k), a))| correct(i, (g, p, v, w, k, a)));
+        }
+    }
+
+    /// Force-controlled pistons react to the force the particles exerted on them this step.
+    fn advance_pistons(&mut self) {
+        let dt = self.config.time_step;
+        for wall in &mut self.moving_walls {
+            if let WallMotion::Piston(piston) = &mut wall.motion {
+                let measured = piston.measured_force(self.bodies.force[wall.body.index()]);
+                piston.advance(measured, dt);
+            }
+        }
+    }
+
+    /// A change of g at fixed positions changes the potential energy: that is work done from outside.
+    fn account_gravity_change(&mut self, g_before: f64) {
+        let dg = self.config.gravity.magnitude(self.time) - g_before;
+        if dg != 0.0 {
+            let b = &self.bodies;
+            let mgy: f64 = b.particles().map(|id| b.mass[id.index()] * b.pose[id.index()].position.y).sum();
+            self.ledger.work_gravity_change += dg * mgy;
+        }
+    }
+
+    /// Removes particles whose centroid left the domain, booking their energy as removed.
+    fn remove_escaped_particles(&mut self) {
+        let Some(domain) = self.config.domain else { return };
+        let g = self.config.gravity.magnitude(self.time);
+        let escaped: Vec<BodyId> = self
+            .bodies
+            .particles()
+            .filter(|id| {
+                let p = self.bodies.pose[id.index()].position;
+                !(domain.min.cmple(p).all() && p.cmple(domain.max).all())
+            })
+            .collect();
+        for id in escaped {
+            let i = id.index();
+            let b = &self.bodies;
+            self.ledger.energy_removed += 0.5 * b.mass[i] * b.velocity[i].length_squared()
+                + 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i]
+                + b.mass[i] * g * b.pose[i].position.y;
+            self.bodies.alive[i] = false;
+            self.broadphase.remove(id.0);
+            self.stats.removed += 1;
+        }
+    }
+
+    /// Inserts the particles the sources owe at the current time.
+    fn run_sources(&mut self) {
+        let t = self.time;
+        for s in 0..self.sources.len() {
+            while self.sources[s].take_due(t) {
+                let source = self.sources[s].source.clone();
+                match self.insert_from_source(&source) {
+                    Some(id) => {
+                        self.stats.inserted += 1;
+                        let i = id.index();
+                        let g = self.config.gravity.magnitude(t);
+                        self.ledger.work_insertions += self.bodies.mass[i] * g * self.bodies.pose[i].position.y;
+                    }
+                    None => self.stats.insertions_skipped += 1,
+                }
+            }
+        }
+    }
+
+    /// Draws a shape and finds a free spot for it on the source's line; `None` when every attempt overlapped.
+    fn insert_from_source(&mut self, source: &DropSource) -> Option<BodyId> {
+        let (shape, angle) = source.recipe.draw(&mut self.rng).ok()?;
+        let half = 0.5 * source.width;
+        let y = match source.height {
+            DropHeight::Absolute => source.position.y,
+            DropHeight::AboveHighest => {
+                let b = &self.bodies;
+                let highest = b
+                    .particles()
+                    .map(|id| b.pose[id.index()].position)
+                    .filter(|p| (p.x - source.position.x).abs() <= half)
+                    .map(|p| p.y)
+                    .fold(f64::NEG_INFINITY, f64::max);
+                source.position.y + if highest.is_finite() { highest } else { 0.0 }
+            }
+        };
+        let scale = self.config.heating.map_or(1.0, |h| h.scale(self.time));
+        let mut world = [DVec2::ZERO; gc2d_geometry::MAX_VERTICES];
+        let world = &mut world[..shape.len()];
+        for _ in 0..PLACEMENT_ATTEMPTS {
+            let x = source.position.x + if half > 0.0 { self.rng.random_range(-half..=half) } else { 0.0 };
+            let pose = Pose { position: DVec2::new(x, y), angle, scale };
+            pose.transform_into(shape.vertices(), world);
+            if !self.overlaps_any(world) {
+                return self.add_particle(&shape, pose, source.density, DVec2::ZERO, 0.0).ok();
+            }
+        }
+        None
+    }
+
+    /// True when the polygon `world` overlaps any living body.
+    fn overlaps_any(&self, world: &[DVec2]) -> bool {
+        let aabb = Aabb::of_points(world);
+        let b = &self.bodies;
+        (0..b.len()).any(|i| {
+            b.alive[i]
+                && b.aabb[i].overlaps(&aabb)
+                && contact_geometry(world, b.world_vertices_of(BodyId(i as u32))).is_some()
+        })
+    }
+
+    /// Recomputes the stored energies of the ledger from the state.
+    fn refresh_stored_energies(&mut self) {
+        let g = self.config.gravity.magnitude(self.time);
+        let b = &self.bodies;
+        let (mut translational, mut rotational, mut potential) = (0.0, 0.0, 0.0);
+        for id in b.particles() {
+            let i = id.index();
+            translational += 0.5 * b.mass[i] * b.velocity[i].length_squared();
+            rotational += 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i];
+            potential += b.mass[i] * g * b.pose[i].position.y;
+        }
+        let law = &self.config.contact_law;
+        let contact_stored: f64 = self.broadphase.pairs().iter().map(|p| law.stored_energy(&p.payload.state)).sum();
+        let drag_stored: f64 = self
+            .drag_springs
+            .iter()
+            .filter(|(id, _)| b.alive[id.index()])
+            .map(|(id, s)| s.stored_energy(b.pose[id.index()], self.time))
+            .sum();
+        let l = &mut self.ledger;
+        l.kinetic_translational = translational;
+        l.kinetic_rotational = rotational;
+        l.potential = potential;
+        l.contact_stored = contact_stored;
+        l.drag_stored = drag_stored;
+    }
+
+    /// Stops the run on NaN, on a tunnelling overlap, or on an energy gain the ledger cannot explain.
+    fn check_blow_up(&self) -> Result<(), WorldError> {
+        let limits = &self.config.safety;
+        let suggested = safety::suggested_time_step(self.config.time_step, self.stable_time_step());
+        let b = &self.bodies;
+        if let Some(i) = (0..b.len()).find(|&i| {
+            b.alive[i] && !(b.pose[i].position.is_finite() && b.velocity[i].is_finite() && b.pose[i].angle.is_finite())
+        }) {
+            return Err(SafetyError::NotFinite {
+                time: self.time,
+                step: self.steps,
+                body: i as u32,
+                suggested_dt: suggested,
+            }
+            .into());
+        }
+        if self.stats.max_overlap_fraction > limits.max_overlap_fraction
+            && let Some((a, bb, c)) =
+                self.contacts().max_by(|x, y| x.2.overlap_fraction.total_cmp(&y.2.overlap_fraction))
+        {
+            return Err(SafetyError::ExcessiveOverlap {
+                time: self.time,
+                step: self.steps,
+                a: a.0,
+                b: bb.0,
+                percent: 100.0 * c.overlap_fraction,
+                limit_percent: 100.0 * limits.max_overlap_fraction,
+                suggested_dt: suggested,
+            }
+            .into());
+        }
+        let gain = self.ledger.balance_error();
+        let scale = self.ledger.energy_scale();
+        if gain > limits.max_energy_gain_fraction * scale {
+            return Err(SafetyError::EnergyJump {
+                time: self.time,
+                step: self.steps,
+                gain,
+                percent: 100.0 * gain / scale,
+                suggested_dt: suggested,
+            }
+            .into());
+        }
+        Ok(())
+    }
+}
+
+/// Worlds with fewer bodies than this step on the calling thread: below it, handing work to the thread pool costs
+/// more than it saves. Results are bitwise the same either way (every parallel task writes only its own data).
+const PARALLEL_MIN_BODIES: usize = 512;
+
+/// The kinematic columns of one body that the predictor and corrector update.
+type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
+
+/// Copies position, angle and velocities out of a particle's Gear state.
+#[inline]
+fn sync_kinematics(
+    state: &GearState,
+    time_step: &TimeStep,
+    pose: &mut Pose,
+    velocity: &mut DVec2,
+    angular_velocity: &mut f64,
+) {
+    pose.position = state.position();
+    pose.angle = state.angle();
+    *velocity = state.velocity(time_step);
+    *angular_velocity = state.angular_velocity(time_step);
+}
