@@ -141,6 +141,8 @@ proptest! {
         let a = world(&pa, Pose::new(centre_a, a_pose.2));
         let b = world(&pb, Pose::new(centre_a + offset, b_angle));
         let scale = pa.bounding_radius() + pb.bounding_radius();
+        // No f64 computation resolves a distance finer than the round-off of the coordinates it starts from.
+        let round_off = 4.0 * f64::EPSILON * a.iter().chain(&b).map(|p| p.abs().max_element()).fold(0.0, f64::max);
 
         let reference = reference_distance(&a, &b);
         let identity = ParryPose::identity();
@@ -161,9 +163,12 @@ proptest! {
                 prop_assert!(parry_overlap.intersecting);
             } else {
                 prop_assert!(!r.penetrating);
-                prop_assert!((r.distance - reference).abs() <= 1e-12 * reference, "{} vs {}", r.distance, reference);
-                // parry's GJK carries round-off of the polygons' size into small distances (seen: 9e-16 at 5.6e-4).
-                prop_assert!((r.distance - parry).abs() <= 1e-12 * scale, "{} vs parry {}", r.distance, parry);
+                let error = (r.distance - reference).abs();
+                prop_assert!(error <= 1e-12 * reference + round_off, "{} vs {}", r.distance, reference);
+                // parry's GJK stops once its bounds are within sqrt(10 ε) ≈ 4.7e-8 relative (gjk.rs, `_eps_rel`), so
+                // it is the exact reference only to that; the brute force above is the 1e-12 one.
+                let error = (r.distance - parry).abs();
+                prop_assert!(error <= 1e-7 * reference + round_off, "{} vs parry {}", r.distance, parry);
             }
         }
     }
