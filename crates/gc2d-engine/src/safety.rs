@@ -3,10 +3,11 @@
 
 use crate::bodies::{Bodies, BodyId};
 use crate::integrator::max_stable_time_step_elongated;
+use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// Limits of the run-time blow-up checks.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SafetyLimits {
     /// Largest overlap area allowed, as a fraction of the smaller particle's area. Settled piles at the thesis's
     /// parameters stay below 1e-3; an overlap of 5 % means a particle has tunnelled into another.

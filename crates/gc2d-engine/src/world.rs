@@ -19,10 +19,11 @@ use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose, contact_geometry};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// Everything global about a run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct WorldConfig {
     /// Δt, s.
     pub time_step: f64,
@@ -60,7 +61,7 @@ pub enum WorldError {
 }
 
 /// A wall that moves, with the pose it moves from.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct MovingWall {
     body: BodyId,
     rest: Pose,
@@ -68,7 +69,7 @@ struct MovingWall {
 }
 
 /// Counters of the last step and of the run, for progress displays and statistics.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct StepStats {
     /// Pairs of touching boxes.
     pub box_pairs: usize,
@@ -87,7 +88,7 @@ pub struct StepStats {
 }
 
 /// Which optional stages the step runs; fixed when the World is built and when drivers are added.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 struct Stages {
     moving_walls: bool,
     drag_springs: bool,
@@ -98,6 +99,9 @@ struct Stages {
 }
 
 /// A simulation: bodies, the contacts between them, the drivers that move walls and pull particles, and time.
+///
+/// Serializable as a whole so that a checkpoint ([`crate::checkpoint`]) restores it bit for bit.
+#[derive(Serialize, Deserialize)]
 pub struct World {
     config: WorldConfig,
     gear: Gear6,
