@@ -142,7 +142,8 @@ fn ledger_balances_during_the_collision() {
     // D⊥(end of step)·Δh while the Gear state feels the jump of D⊥ at the first contact step and at the clip
     // gradually; see docs/model.md.
     for (gamma, first_bound, ratio_bound) in [(0.0, 2e-2, 0.5), (0.3, 0.12, 0.55)] {
-        let errors: Vec<f64> = [DT, DT / 2.0, DT / 4.0].into_iter().map(|dt| collide(dt, gamma).balance_error).collect();
+        let errors: Vec<f64> =
+            [DT, DT / 2.0, DT / 4.0].into_iter().map(|dt| collide(dt, gamma).balance_error).collect();
         assert!(errors[0] < first_bound, "γ = {gamma}: balance error {:e} of the kinetic energy", errors[0]);
         for pair in errors.windows(2) {
             assert!(pair[1] < ratio_bound * pair[0], "γ = {gamma}: balance error must shrink with Δt: {errors:?}");
