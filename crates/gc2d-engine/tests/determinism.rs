@@ -18,7 +18,7 @@ const SPACING: f64 = 2.0 * 1.1 * RADIUS + 1e-4;
 const STEPS: usize = 1000;
 
 /// 600 random RAND1 7-gons on a lattice in a closed box, flying in random directions at up to 1 m/s, so that
-/// hundreds of contacts are active by the end of the 2 ms run. More than the engine's 512-body threshold for parallel stages.
+/// about a hundred contacts are active by the end of the 2 ms run. More than the engine's 512-body threshold for parallel stages.
 fn random_pile() -> World {
     let mut world = world(config(2e-6, law(E_THESIS, 0.5, 0.6), G));
     let inner = Aabb { min: DVec2::ZERO, max: DVec2::new(COLUMNS as f64 * SPACING, ROWS as f64 * SPACING) };
@@ -66,7 +66,8 @@ fn run_in_pool(threads: usize) -> (Vec<u64>, String, usize) {
 fn pile_is_bitwise_identical_on_1_2_and_8_threads() {
     let (bits, ledger, contacts) = run_in_pool(1);
     assert_eq!(bits.len(), 6 * COLUMNS * ROWS);
-    assert!(contacts > 100, "the run must exercise contacts, saw at most {contacts}");
+    // Measured: 102 contacts in the busiest step.
+    assert!(contacts > 50, "the run must exercise contacts, saw at most {contacts}");
     for threads in [2, 8] {
         let (other_bits, other_ledger, _) = run_in_pool(threads);
         let first_difference = bits.iter().zip(&other_bits).position(|(a, b)| a != b);
