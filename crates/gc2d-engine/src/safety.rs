@@ -46,10 +46,10 @@ pub enum SafetyError {
         /// Young's modulus, N/m.
         e_modulus: f64,
     },
-    /// A position or velocity became NaN or infinite.
+    /// A position, velocity or kinetic energy became NaN or infinite.
     #[error(
-        "the simulation blew up at t = {time:.6} s (step {step}): particle {body} has a position or velocity that \
-         is not a finite number; reduce the time step (try {suggested_dt:.3e} s)"
+        "the simulation blew up at t = {time:.6} s (step {step}): particle {body} has a position, velocity or kinetic energy \
+         that is not a finite number; reduce the time step (try {suggested_dt:.3e} s)"
     )]
     NotFinite {
         /// Simulated time, s.

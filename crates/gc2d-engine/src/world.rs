@@ -634,9 +634,7 @@ impl World {
         let limits = &self.config.safety;
         let suggested = safety::suggested_time_step(self.config.time_step, self.stable_time_step());
         let b = &self.bodies;
-        if let Some(i) = (0..b.len()).find(|&i| {
-            b.alive[i] && !(b.pose[i].position.is_finite() && b.velocity[i].is_finite() && b.pose[i].angle.is_finite())
-        }) {
+        if let Some(i) = (0..b.len()).find(|&i| b.alive[i] && !state_is_finite(b, i)) {
             return Err(SafetyError::NotFinite {
                 time: self.time,
                 step: self.steps,
@@ -662,7 +660,8 @@ impl World {
         }
         let gain = self.ledger.balance_error();
         let scale = self.ledger.energy_scale();
-        if gain > limits.max_energy_gain_fraction * scale {
+        // A NaN gain fails every comparison, so it is caught explicitly: a NaN never passes silently.
+        if !gain.is_finite() || gain > limits.max_energy_gain_fraction * scale {
             return Err(SafetyError::EnergyJump {
                 time: self.time,
                 step: self.steps,
@@ -679,6 +678,20 @@ impl World {
 /// Worlds with fewer bodies than this step on the calling thread: below it, handing work to the thread pool costs
 /// more than it saves. Results are bitwise the same either way (every parallel task writes only its own data).
 const PARALLEL_MIN_BODIES: usize = 512;
+
+/// True when body `i`'s pose and velocities are finite and, for a particle, so is its kinetic energy (a finite
+/// velocity can still overflow ½mv², which would poison the ledger).
+fn state_is_finite(b: &Bodies, i: usize) -> bool {
+    let kinematics_finite = b.pose[i].position.is_finite()
+        && b.pose[i].angle.is_finite()
+        && b.velocity[i].is_finite()
+        && b.angular_velocity[i].is_finite();
+    let energy_finite = b.kind[i] == BodyKind::Wall
+        || (0.5 * b.mass[i] * b.velocity[i].length_squared()
+            + 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i])
+            .is_finite();
+    kinematics_finite && energy_finite
+}
 
 /// The kinematic columns of one body that the predictor and corrector update.
 type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
