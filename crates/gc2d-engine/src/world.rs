@@ -173,10 +173,12 @@ impl World {
         let i = id.index();
         self.bodies.velocity[i] = velocity;
         self.bodies.angular_velocity[i] = angular_velocity;
+        // Start from the acceleration of free flight: a new particle is almost always free (sources insert only into
+        // free space), and a zero start would leave its velocity half a step behind for good.
         self.bodies.gear[i] = GearState::from_physical(
             pose.position,
             velocity,
-            DVec2::ZERO,
+            self.config.gravity.acceleration(self.time),
             pose.angle,
             angular_velocity,
             0.0,
@@ -330,7 +332,7 @@ impl World {
             self.remove_escaped_particles();
         }
         if self.stages.sources {
-            self.run_sources();
+            self.run_sources()?;
         }
         self.refresh_stored_energies();
         self.check_blow_up()
@@ -541,8 +543,9 @@ impl World {
         }
     }
 
-    /// Inserts the particles the sources owe at the current time.
-    fn run_sources(&mut self) {
+    /// Inserts the particles the sources owe at the current time. A new particle smaller than any before may lower
+    /// the stable time step, so the bound is checked again after each insertion.
+    fn run_sources(&mut self) -> Result<(), WorldError> {
         let t = self.time;
         for s in 0..self.sources.len() {
             while self.sources[s].take_due(t) {
@@ -553,11 +556,13 @@ impl World {
                         let i = id.index();
                         let g = self.config.gravity.magnitude(t);
                         self.ledger.work_insertions += self.bodies.mass[i] * g * self.bodies.pose[i].position.y;
+                        self.check_time_step()?;
                     }
                     None => self.stats.insertions_skipped += 1,
                 }
             }
         }
+        Ok(())
     }
 
     /// Draws a shape and finds a free spot for it on the source's line; `None` when every attempt overlapped.

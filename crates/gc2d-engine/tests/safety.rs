@@ -140,3 +140,39 @@ fn non_finite_numbers_never_pass_silently() {
     }
     run_checking_finiteness(&mut world, 200);
 }
+
+#[test]
+fn a_source_inserting_a_particle_too_small_for_the_time_step_stops_the_run() {
+    use gc2d_engine::{DropHeight, DropSource, TimeWindow};
+    use gc2d_geometry::{AngleMode, Randomization, ShapeRecipe};
+    // The World starts empty, so the first step has nothing to check; the inserted square sets the bound.
+    let mut world = world(config(1.5 * safe_time_step(), law(E_THESIS, 0.5, 0.5), G));
+    world
+        .add_source(DropSource {
+            position: DVec2::ZERO,
+            width: 0.0,
+            height: DropHeight::Absolute,
+            window: TimeWindow::new(0.0, 1.0),
+            interval: 0.01,
+            recipe: ShapeRecipe {
+                // SPECIAL_RECTANGLE with 4 corners on semi-axes a gives a square of side a·√2.
+                semi_axes: DVec2::splat(SIDE / 2f64.sqrt()),
+                size_variation: 0.0,
+                size_randomization: Randomization::Const,
+                corners: 4,
+                corner_variation: 0,
+                corner_randomization: Randomization::Const,
+                angle_mode: AngleMode::SpecialRectangle,
+                rotation: 0.0,
+                rotation_randomization: Randomization::Const,
+            },
+            density: RHO_THESIS,
+        })
+        .unwrap();
+    match world.step() {
+        Err(WorldError::Safety(SafetyError::UnsafeTimeStep { safe_dt, .. })) => {
+            assert!((safe_dt - safe_time_step()).abs() < 1e-12 * safe_dt, "bound {safe_dt:e}");
+        }
+        other => panic!("expected UnsafeTimeStep after the insertion, got {other:?}"),
+    }
+}
