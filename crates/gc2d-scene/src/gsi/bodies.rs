@@ -115,12 +115,16 @@ fn read_wall_motion(reader: &mut ObjectReader<'_, '_>) -> Option<GsiWallMotion> 
     }
 }
 
-/// The object's corners, counter-clockwise, at least three; errors (missing or too few) are recorded.
+/// The object's corners, counter-clockwise, at least three; errors (missing or too few) are recorded. A block whose
+/// lines were refused already gives `None` without a second error.
 fn checked_corners(reader: &mut ObjectReader<'_, '_>, object: &'static str) -> Option<Sourced<Vec<DVec2>>> {
-    let Some(mut corners) = reader.corners() else {
+    let Some((mut corners, complete)) = reader.corners() else {
         reader.diagnostics.error(reader.line(), GsiErrorKind::MissingCorners { object });
         return None;
     };
+    if !complete {
+        return None;
+    }
     if corners.value.len() < 3 {
         reader.diagnostics.error(corners.line(), GsiErrorKind::TooFewCorners { count: corners.value.len() });
         return None;
@@ -152,9 +156,5 @@ pub(super) fn centroid(corners: &[DVec2]) -> DVec2 {
         moment += weight * (a + b);
     }
     let centroid = origin + moment / (3.0 * twice_area);
-    if twice_area != 0.0 && centroid.is_finite() {
-        centroid
-    } else {
-        corners.iter().copied().sum::<DVec2>() / n as f64
-    }
+    if twice_area != 0.0 && centroid.is_finite() { centroid } else { corners.iter().copied().sum::<DVec2>() / n as f64 }
 }

@@ -75,7 +75,8 @@ impl GsiBlock {
     pub(super) fn check_grid(&self) -> Result<(), (usize, String)> {
         let spacing = self.grid_distance.value;
         if !(spacing.x.is_finite() && spacing.y.is_finite() && spacing.x > 0.0 && spacing.y > 0.0) {
-            let reason = format!("GRID_DISTANCE must be two finite positive spacings, found {} {}", spacing.x, spacing.y);
+            let reason =
+                format!("GRID_DISTANCE must be two finite positive spacings, found {} {}", spacing.x, spacing.y);
             return Err((self.grid_distance.line(), reason));
         }
         for (name, range) in [("X_RANGE", &self.x_range), ("Y_RANGE", &self.y_range)] {

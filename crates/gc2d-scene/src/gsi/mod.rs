@@ -36,8 +36,7 @@ pub use lexer::MAX_LINE_LENGTH;
 pub use part_size::{ImportOptions, PartSizeConvention};
 pub use scene::{
     BIG_NUMBER, Bounds, GridType, GsiBlock, GsiDisplay, GsiDrag, GsiDropSource, GsiGeneral, GsiGravity, GsiHeating,
-    GsiParticle, GsiPiston, GsiScene, GsiShape, GsiVibration, GsiWall, GsiWallMotion, Origin, PartSizeReading,
-    Sourced,
+    GsiParticle, GsiPiston, GsiScene, GsiShape, GsiVibration, GsiWall, GsiWallMotion, Origin, PartSizeReading, Sourced,
 };
 
 use diagnostics::Diagnostics;

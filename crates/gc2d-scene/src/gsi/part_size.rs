@@ -78,7 +78,8 @@ pub(super) fn settle_part_size(scene: &mut GsiScene, convention: PartSizeConvent
         }
     };
     scene.part_size_reading = reading;
-    for shape in scene.blocks.iter_mut().map(|b| &mut b.shape).chain(scene.drop_sources.iter_mut().map(|d| &mut d.shape))
+    for shape in
+        scene.blocks.iter_mut().map(|b| &mut b.shape).chain(scene.drop_sources.iter_mut().map(|d| &mut d.shape))
     {
         shape.reading = reading;
     }

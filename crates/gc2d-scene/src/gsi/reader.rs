@@ -91,9 +91,7 @@ impl<'a, 'd> ObjectReader<'a, 'd> {
     /// A non-negative integer command without a default (`ID`).
     pub fn optional_whole(&mut self, name: &str) -> Option<Sourced<u64>> {
         match self.object.take(name) {
-            Some(Entry { line, args: Args::Whole(value), .. }) => {
-                Some(Sourced::written(value, line))
-            }
+            Some(Entry { line, args: Args::Whole(value), .. }) => Some(Sourced::written(value, line)),
             _ => None,
         }
     }
@@ -101,9 +99,7 @@ impl<'a, 'd> ObjectReader<'a, 'd> {
     /// A two-integer command.
     pub fn integers(&mut self, name: &str, default: [i64; 2]) -> Sourced<[i64; 2]> {
         match self.object.take(name) {
-            Some(Entry { line, args: Args::Integers(values), .. }) => {
-                Sourced::written(values, line)
-            }
+            Some(Entry { line, args: Args::Integers(values), .. }) => Sourced::written(values, line),
             _ => self.default(default),
         }
     }
@@ -111,9 +107,7 @@ impl<'a, 'd> ObjectReader<'a, 'd> {
     /// A word command, case preserved.
     pub fn word(&mut self, name: &str, default: &str) -> Sourced<String> {
         match self.object.take(name) {
-            Some(Entry { line, args: Args::Word(word), .. }) => {
-                Sourced::written(word.to_string(), line)
-            }
+            Some(Entry { line, args: Args::Word(word), .. }) => Sourced::written(word.to_string(), line),
             _ => self.default(default.to_string()),
         }
     }
@@ -141,11 +135,11 @@ impl<'a, 'd> ObjectReader<'a, 'd> {
         self.object.take(name).map(|entry| entry.line)
     }
 
-    /// The CORNERS block, if present.
-    pub fn corners(&mut self) -> Option<Sourced<Vec<DVec2>>> {
+    /// The CORNERS block, if present, and whether all its lines were read (see [`Args::Corners`]).
+    pub fn corners(&mut self) -> Option<(Sourced<Vec<DVec2>>, bool)> {
         match self.object.take(CORNERS) {
-            Some(Entry { line, args: Args::Corners(corners), .. }) => {
-                Some(Sourced::written(corners, line))
+            Some(Entry { line, args: Args::Corners { corners, complete }, .. }) => {
+                Some((Sourced::written(corners, line), complete))
             }
             _ => None,
         }

@@ -4,9 +4,7 @@
 use gc2d_geometry::DVec2;
 
 use super::diagnostics::{Diagnostics, GsiErrorKind, GsiWarningKind};
-use super::keywords::{
-    Arity, CORNERS, Command, END, ObjectKind, is_any_keyword, objects_with_command, suggestion,
-};
+use super::keywords::{Arity, CORNERS, Command, END, ObjectKind, is_any_keyword, objects_with_command, suggestion};
 use super::lexer::Statement;
 
 /// The parameters of one command, parsed according to its [`Arity`].
@@ -22,8 +20,9 @@ pub(super) enum Args<'a> {
     Word(&'a str),
     /// A command without parameters.
     Flag,
-    /// The corners of a CORNERS … END block, as written.
-    Corners(Vec<DVec2>),
+    /// The corners of a CORNERS … END block, as written; `complete` is false when a line of the block was refused
+    /// (and reported), so the list is known to be short.
+    Corners { corners: Vec<DVec2>, complete: bool },
 }
 
 /// One command of an object: its canonical name, line and parameters.
@@ -97,10 +96,10 @@ pub(super) fn parse_objects<'a>(statements: &[Statement<'a>], diagnostics: &mut 
         let Some(&first) = statement.words.first() else { continue };
         let current = named.last_mut().unwrap_or(&mut general);
         if first.eq_ignore_ascii_case(CORNERS) {
-            let (corners, after) = read_corners(statements, next, statement.line, diagnostics);
+            let (corners, complete, after) = read_corners(statements, next, statement.line, diagnostics);
             next = after;
             if current.kind.has_corners() {
-                let entry = Entry { name: CORNERS, line: statement.line, args: Args::Corners(corners) };
+                let entry = Entry { name: CORNERS, line: statement.line, args: Args::Corners { corners, complete } };
                 current.insert(entry, diagnostics);
             } else {
                 diagnostics.error(statement.line, GsiErrorKind::CornersNotAllowed { object: current.kind.name() });
@@ -136,35 +135,40 @@ pub(super) fn parse_objects<'a>(statements: &[Statement<'a>], diagnostics: &mut 
     Objects { general, named }
 }
 
-/// Reads corner lines from `statements[start..]` up to END. Returns the corners and the index of the first
-/// statement after the block. A keyword before END ends the block with an error and is left for the caller.
+/// Reads corner lines from `statements[start..]` up to END. Returns the corners, whether every line was a corner
+/// and the block was closed, and the index of the first statement after the block. A keyword before END ends the
+/// block with an error and is left for the caller.
 fn read_corners(
     statements: &[Statement<'_>],
     start: usize,
     opened_at: usize,
     diagnostics: &mut Diagnostics,
-) -> (Vec<DVec2>, usize) {
+) -> (Vec<DVec2>, bool, usize) {
     let mut corners = Vec::new();
+    let mut complete = true;
     let mut next = start;
     loop {
         let Some(statement) = statements.get(next) else {
             let interrupted_by = "the end of the file".to_string();
             diagnostics.error(opened_at, GsiErrorKind::UnclosedCorners { opened_at, interrupted_by });
-            return (corners, next);
+            return (corners, false, next);
         };
         let first = statement.words.first().copied().unwrap_or("");
         if first.eq_ignore_ascii_case(END) {
-            return (corners, next + 1);
+            return (corners, complete, next + 1);
         }
         if let Some(keyword) = is_any_keyword(first) {
             let interrupted_by = format!("`{keyword}` at line {}", statement.line);
             diagnostics.error(statement.line, GsiErrorKind::UnclosedCorners { opened_at, interrupted_by });
-            return (corners, next);
+            return (corners, false, next);
         }
         let coordinate = |index: usize| statement.words.get(index).and_then(|word| parse_number(word));
         match (coordinate(0), coordinate(1)) {
             (Some(x), Some(y)) if x.is_finite() && y.is_finite() => corners.push(DVec2::new(x, y)),
-            _ => diagnostics.error(statement.line, GsiErrorKind::BadCorner { found: statement.text() }),
+            _ => {
+                diagnostics.error(statement.line, GsiErrorKind::BadCorner { found: statement.text() });
+                complete = false;
+            }
         }
         next += 1;
     }
