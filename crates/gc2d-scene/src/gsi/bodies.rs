@@ -32,9 +32,10 @@ pub(super) fn read_particle(reader: &mut ObjectReader<'_, '_>) -> Option<GsiPart
         com
     };
     let drag = reader.first_line_of(&DRAG_COMMANDS).map(|_| read_drag(reader));
+    let corners = finite_or_error(reader, corners.map(|c| c.iter().map(|&v| v - centroid).collect()))?;
     Some(GsiParticle {
         line: reader.line(),
-        corners: corners.map(|c| c.iter().map(|&v| v - centroid).collect()),
+        corners,
         position,
         position_absolute,
         angle: reader.clockwise_angle("ANGLE", 0.0),
@@ -84,7 +85,7 @@ pub(super) fn read_wall(reader: &mut ObjectReader<'_, '_>) -> Option<GsiWall> {
         let r = v - centroid;
         centroid + DVec2::new(cos * r.x - sin * r.y, sin * r.x + cos * r.y) + offset.value
     };
-    let corners = corners.map(|c| c.into_iter().map(place).collect());
+    let corners = finite_or_error(reader, corners.map(|c| c.into_iter().map(place).collect()))?;
     Some(GsiWall { line: reader.line(), corners, offset, angle, surface_velocity, id, motion })
 }
 
@@ -134,6 +135,16 @@ fn checked_corners(reader: &mut ObjectReader<'_, '_>, object: &'static str) -> O
         reader.diagnostics.warn(corners.line(), GsiWarningKind::ClockwiseCorners);
     }
     Some(corners)
+}
+
+/// The placed corners, or `None` with an error if a coordinate overflowed.
+fn finite_or_error(reader: &mut ObjectReader<'_, '_>, corners: Sourced<Vec<DVec2>>) -> Option<Sourced<Vec<DVec2>>> {
+    if corners.value.iter().all(|c| c.is_finite()) {
+        Some(corners)
+    } else {
+        reader.diagnostics.error(corners.line(), GsiErrorKind::CornersOverflow);
+        None
+    }
 }
 
 /// Twice the signed area of the outline (positive when counter-clockwise), relative to the first corner.

@@ -68,8 +68,8 @@ pub enum GsiErrorKind {
     /// `GENERAL` written out: it is implicit at the top of the file and cannot be re-entered.
     #[error("GENERAL cannot be named: its commands go at the top of the file, before the first object")]
     GeneralNamed,
-    /// A parameter that should be a number is not.
-    #[error("{keyword}: `{token}` is not a number")]
+    /// A parameter that should be a finite number is not.
+    #[error("{keyword}: `{token}` is not a finite number")]
     BadNumber {
         /// The command.
         keyword: &'static str,
@@ -143,6 +143,9 @@ pub enum GsiErrorKind {
         /// Corners found.
         count: usize,
     },
+    /// Corners so far out that placing them (centroid, rotation, offset) overflows f64.
+    #[error("the corners are too large to place: a coordinate overflows")]
+    CornersOverflow,
     /// A wall with both PISTON_* and VIB_* commands.
     #[error("a wall cannot be a piston (line {piston_line}) and vibrate (line {vibration_line}) at the same time")]
     PistonAndVibration {

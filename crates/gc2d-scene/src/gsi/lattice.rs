@@ -70,19 +70,14 @@ impl GsiBlock {
         candidates.into_iter().reduce(f64::min)
     }
 
-    /// Checks that the lattice can be laid out: finite ranges, finite positive spacings and at most
-    /// [`MAX_GRID_SITES`] sites. Returns the line to blame and the reason otherwise.
+    /// Checks that the lattice can be laid out: finite positive spacings and at most [`MAX_GRID_SITES`] sites.
+    /// Returns the line to blame and the reason otherwise. (The reader admits only finite numbers.)
     pub(super) fn check_grid(&self) -> Result<(), (usize, String)> {
         let spacing = self.grid_distance.value;
         if !(spacing.x.is_finite() && spacing.y.is_finite() && spacing.x > 0.0 && spacing.y > 0.0) {
             let reason =
                 format!("GRID_DISTANCE must be two finite positive spacings, found {} {}", spacing.x, spacing.y);
             return Err((self.grid_distance.line(), reason));
-        }
-        for (name, range) in [("X_RANGE", &self.x_range), ("Y_RANGE", &self.y_range)] {
-            if !(range.value.min.is_finite() && range.value.max.is_finite()) {
-                return Err((range.line(), format!("{name} must be finite")));
-            }
         }
         let x_span = (self.x_range.value.max - self.x_range.value.min).max(0.0);
         let y_span = (self.y_range.value.max - self.y_range.value.min).max(0.0);

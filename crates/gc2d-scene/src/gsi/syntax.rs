@@ -162,9 +162,9 @@ fn read_corners(
             diagnostics.error(statement.line, GsiErrorKind::UnclosedCorners { opened_at, interrupted_by });
             return (corners, false, next);
         }
-        let coordinate = |index: usize| statement.words.get(index).and_then(|word| parse_number(word));
+        let coordinate = |index: usize| statement.words.get(index).and_then(|word| parse_number(word).ok());
         match (coordinate(0), coordinate(1)) {
-            (Some(x), Some(y)) if x.is_finite() && y.is_finite() => corners.push(DVec2::new(x, y)),
+            (Some(x), Some(y)) => corners.push(DVec2::new(x, y)),
             _ => {
                 diagnostics.error(statement.line, GsiErrorKind::BadCorner { found: statement.text() });
                 complete = false;
@@ -174,9 +174,28 @@ fn read_corners(
     }
 }
 
-/// A float as C's `strtod` reads it, except that NaN is refused. "inf" is accepted (gc2d's ∞ defaults).
-pub(super) fn parse_number(word: &str) -> Option<f64> {
-    word.parse::<f64>().ok().filter(|value| !value.is_nan())
+/// Why a word is not a usable number.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum NumberError {
+    /// Not a number at all (a comment word, a typo).
+    NotANumber,
+    /// A number, but infinite or NaN (`inf`, `nan`, `1e400`), which no gsi value may be. gc2d's own "∞" is the
+    /// finite `BIG_NUMBER`.
+    NotFinite,
+}
+
+/// A finite float in the notation C's `strtod` reads.
+pub(super) fn parse_number(word: &str) -> Result<f64, NumberError> {
+    match word.parse::<f64>() {
+        Ok(value) if value.is_finite() => Ok(value),
+        Ok(_) => Err(NumberError::NotFinite),
+        Err(_) => Err(NumberError::NotANumber),
+    }
+}
+
+/// An integer of either sign.
+fn parse_integer(word: &str) -> Result<i64, NumberError> {
+    word.parse::<i64>().map_err(|_| NumberError::NotANumber)
 }
 
 /// Parses the parameters of `command` from `statement`'s words after the first. Words after the parameters are a
@@ -195,18 +214,18 @@ fn parse_args<'a>(command: &Command, statement: &Statement<'a>, diagnostics: &mu
     let bad_number = |token: &str| GsiErrorKind::BadNumber { keyword, token: token.to_string() };
     match command.arity {
         Arity::Float => match parse_number(first) {
-            Some(value) => Some(Args::Numbers { values: [value, 0.0], given: 1 }),
-            None => {
+            Ok(value) => Some(Args::Numbers { values: [value, 0.0], given: 1 }),
+            Err(_) => {
                 diagnostics.error(line, bad_number(first));
                 None
             }
         },
         Arity::FloatPair => {
-            let Some(value) = parse_number(first) else {
+            let Ok(value) = parse_number(first) else {
                 diagnostics.error(line, bad_number(first));
                 return None;
             };
-            let (second, given) = second_parameter(keyword, parameters.get(1), line, parse_number, diagnostics);
+            let (second, given) = second_parameter(keyword, parameters.get(1), line, parse_number, diagnostics)?;
             Some(Args::Numbers { values: [value, second], given })
         }
         Arity::Whole => match first.parse::<u64>() {
@@ -217,12 +236,11 @@ fn parse_args<'a>(command: &Command, statement: &Statement<'a>, diagnostics: &mu
             }
         },
         Arity::IntegerPair => {
-            let parse_integer = |word: &str| word.parse::<i64>().ok();
-            let Some(value) = parse_integer(first) else {
+            let Ok(value) = parse_integer(first) else {
                 diagnostics.error(line, bad_number(first));
                 return None;
             };
-            let (second, _) = second_parameter(keyword, parameters.get(1), line, parse_integer, diagnostics);
+            let (second, _) = second_parameter(keyword, parameters.get(1), line, parse_integer, diagnostics)?;
             Some(Args::Integers([value, second]))
         }
         Arity::Word => Some(Args::Word(first)),
@@ -231,22 +249,25 @@ fn parse_args<'a>(command: &Command, statement: &Statement<'a>, diagnostics: &mu
 }
 
 /// The second parameter of a two-parameter command and how many parameters were given. Missing, it is 0 (§9.2
-/// rule 2); a word that is not a number is taken as the start of a comment, with a warning, and the value is 0.
+/// rule 2); a word that is not a number is taken as the start of a comment, with a warning, and the value is 0. A
+/// number that is not finite is an error (`None`).
 fn second_parameter<T: Default>(
     keyword: &'static str,
     word: Option<&&str>,
     line: usize,
-    parse: impl Fn(&str) -> Option<T>,
+    parse: impl Fn(&str) -> Result<T, NumberError>,
     diagnostics: &mut Diagnostics,
-) -> (T, usize) {
-    match word {
-        None => (T::default(), 1),
-        Some(word) => match parse(word) {
-            Some(value) => (value, 2),
-            None => {
-                diagnostics.warn(line, GsiWarningKind::SecondParameterNotANumber { keyword, token: word.to_string() });
-                (T::default(), 1)
-            }
-        },
+) -> Option<(T, usize)> {
+    let Some(word) = word else { return Some((T::default(), 1)) };
+    match parse(word) {
+        Ok(value) => Some((value, 2)),
+        Err(NumberError::NotANumber) => {
+            diagnostics.warn(line, GsiWarningKind::SecondParameterNotANumber { keyword, token: word.to_string() });
+            Some((T::default(), 1))
+        }
+        Err(NumberError::NotFinite) => {
+            diagnostics.error(line, GsiErrorKind::BadNumber { keyword, token: word.to_string() });
+            None
+        }
     }
 }

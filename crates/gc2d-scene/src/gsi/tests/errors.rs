@@ -60,9 +60,13 @@ fn commands_of_another_object_are_named_as_such() {
 fn bad_numbers_are_named_with_the_word() {
     let (line, _, message) = only_error(&file("E_Modul 1e7x"));
     assert_eq!(line, 3);
-    assert_eq!(message, "line 3: E_MODUL: `1e7x` is not a number");
-    let (_, _, message) = only_error(&file("Time nan 1"));
-    assert!(message.contains("`nan` is not a number"), "{message}");
+    assert_eq!(message, "line 3: E_MODUL: `1e7x` is not a finite number");
+    for text in ["Time nan 1", "Time 0 inf", "Gamma -Infinity", "E_Modul 1e400"] {
+        let (_, kind, message) = only_error(&file(text));
+        assert!(matches!(kind, GsiErrorKind::BadNumber { .. }), "{message}");
+    }
+    let (_, _, message) = only_error(&file("WALL\nCorners\n0 0\n1 inf\n0 1\nEND"));
+    assert!(message.contains("found `1 inf`"), "{message}");
     let (_, _, message) = only_error(&file("Steps_Data 10.5"));
     assert_eq!(message, "line 3: STEPS_DATA: `10.5` is not a non-negative whole number");
     let (_, _, message) = only_error(&file("Steps_Data -3"));
@@ -100,6 +104,12 @@ fn objects_without_or_with_bad_corners() {
 }
 
 #[test]
+fn corners_that_overflow_when_placed_are_refused() {
+    let (line, kind, _) = only_error(&file("WALL\nOffset 1e308 0\nCorners\n1e308 0\n1.7e308 0\n1.7e308 1\nEND"));
+    assert_eq!((line, kind), (5, GsiErrorKind::CornersOverflow));
+}
+
+#[test]
 fn too_long_lines_are_refused() {
     let long = format!("# {}", "x".repeat(MAX_LINE_LENGTH));
     let (line, kind, _) = only_error(&file(&format!("Delta_T 0.1\n{long}")));
@@ -133,8 +143,8 @@ fn impossible_walls_and_grids() {
     assert!(message.contains("GRID_DISTANCE must be two finite positive spacings"), "{message}");
     let (_, _, message) = only_error(&file("GENERATE_BLOCK\nX_Range 0 1\nY_Range 0 1\nGrid_Distance 1e-6 1e-6"));
     assert!(message.contains("sites, more than"), "{message}");
-    let (_, _, message) = only_error(&file("GENERATE_BLOCK\nX_Range 0 inf"));
-    assert!(message.contains("X_RANGE must be finite"), "{message}");
+    let (_, _, message) = only_error(&file("GENERATE_BLOCK\nX_Range -1e308 1e308\nGrid_Distance 1 1"));
+    assert!(message.contains("sites, more than"), "{message}");
 }
 
 #[test]

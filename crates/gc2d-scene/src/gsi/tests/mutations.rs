@@ -12,6 +12,7 @@ enum Edit {
     Delete(usize),
     Insert(usize, char),
     Replace(usize, char),
+    InsertWord(usize, &'static str),
     DuplicateLine(usize),
     DropLine(usize),
     SwapLines(usize, usize),
@@ -25,10 +26,31 @@ fn edit() -> impl Strategy<Value = Edit> {
         any::<usize>().prop_map(Edit::Delete),
         (any::<usize>(), character.clone()).prop_map(|(i, c)| Edit::Insert(i, c)),
         (any::<usize>(), character).prop_map(|(i, c)| Edit::Replace(i, c)),
+        (any::<usize>(), word()).prop_map(|(i, w)| Edit::InsertWord(i, w)),
         any::<usize>().prop_map(Edit::DuplicateLine),
         any::<usize>().prop_map(Edit::DropLine),
         (any::<usize>(), any::<usize>()).prop_map(|(i, j)| Edit::SwapLines(i, j)),
     ]
+}
+
+fn word() -> impl Strategy<Value = &'static str> {
+    prop::sample::select(vec![
+        " inf ",
+        " nan ",
+        " 1e400 ",
+        " -0 ",
+        "\nEND\n",
+        "\nCORNERS\n",
+        "\nWALL\n",
+        "\nPARTICLE\n",
+        "\nEND_OF_FILE\n",
+        " Angle ",
+        "\nAngle 1e300\n",
+        " 1e-300 ",
+        "\nGrid_Distance 1e-9 1\n",
+        "\nVib_Width 1\n",
+        "\nPosition_Absolut\n",
+    ])
 }
 
 fn apply(text: &str, edit: &Edit) -> String {
@@ -39,6 +61,10 @@ fn apply(text: &str, edit: &Edit) -> String {
             chars.remove(i % chars.len());
         }
         Edit::Insert(i, c) => chars.insert(i % (chars.len() + 1), c),
+        Edit::InsertWord(i, word) => {
+            let at = i % (chars.len() + 1);
+            chars.splice(at..at, word.chars());
+        }
         Edit::Replace(i, c) => {
             let i = i % chars.len();
             chars[i] = c;
@@ -72,7 +98,7 @@ proptest! {
             let scene = import.scene;
             prop_assert!(!scene.general.time_step.value.is_nan());
             for wall in &scene.walls {
-                prop_assert!(wall.corners.value.iter().all(|c| !c.is_nan()));
+                prop_assert!(wall.corners.value.iter().all(|c| c.is_finite()));
             }
             for block in &scene.blocks {
                 prop_assert!(block.site_count() as f64 <= crate::gsi::MAX_GRID_SITES);
