@@ -274,12 +274,18 @@ pub(super) fn objects_with_command(word: &str, current: ObjectKind) -> Vec<&'sta
         .collect()
 }
 
-/// Whether `word` is any keyword of the language (a command of any object, an object name, CORNERS, END or
-/// END_OF_FILE).
+/// The canonical spelling if `word` is any keyword of the language: a command of any object, an object name,
+/// CORNERS, END or END_OF_FILE.
 pub(super) fn is_any_keyword(word: &str) -> Option<&'static str> {
     let structural = [CORNERS, END, END_OF_FILE].into_iter().find(|k| k.eq_ignore_ascii_case(word));
-    structural
-        .or_else(|| ObjectKind::from_name(word).map(ObjectKind::name))
+    structural.or_else(|| object_or_command_name(word))
+}
+
+/// The canonical spelling if `word` is an object name or a command of any object (what line 2 starts with when
+/// the identification line was forgotten).
+pub(super) fn object_or_command_name(word: &str) -> Option<&'static str> {
+    ObjectKind::from_name(word)
+        .map(ObjectKind::name)
         .or_else(|| ObjectKind::ALL.into_iter().find_map(|kind| kind.command(word)).map(|command| command.name))
 }
 

@@ -44,7 +44,11 @@ pub(super) struct Lexed<'a> {
 pub(super) fn lex<'a>(text: &'a str, diagnostics: &mut Diagnostics) -> Result<Lexed<'a>, GsiError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut lines = text.split('\n').map(|line| line.strip_suffix('\r').unwrap_or(line)).enumerate();
-    check_header(lines.next().map_or("", |(_, line)| line))?;
+    let header = lines.next().map_or("", |(_, line)| line);
+    check_header(header)?;
+    if header.chars().count() > MAX_LINE_LENGTH {
+        diagnostics.error(1, GsiErrorKind::LineTooLong { length: header.chars().count() });
+    }
     let mut identification = lines.next().map_or("", |(_, line)| line);
     if identification.chars().count() > MAX_LINE_LENGTH {
         diagnostics.error(2, GsiErrorKind::LineTooLong { length: identification.chars().count() });

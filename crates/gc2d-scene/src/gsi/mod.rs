@@ -40,7 +40,7 @@ pub use scene::{
 };
 
 use diagnostics::Diagnostics;
-use keywords::{ObjectKind, is_any_keyword};
+use keywords::{ObjectKind, object_or_command_name};
 use reader::ObjectReader;
 
 /// A successfully read gsi file: the scene, the `$` comments to print, and the warnings.
@@ -58,7 +58,7 @@ pub struct GsiImport {
 pub fn parse_gsi(text: &str, options: &ImportOptions) -> Result<GsiImport, GsiErrors> {
     let mut diagnostics = Diagnostics::default();
     let lexed = lexer::lex(text, &mut diagnostics).map_err(|error| GsiErrors(vec![error]))?;
-    if let Some(keyword) = lexed.identification.split_ascii_whitespace().next().and_then(is_any_keyword) {
+    if let Some(keyword) = lexed.identification.split_ascii_whitespace().next().and_then(object_or_command_name) {
         diagnostics.warn(2, GsiWarningKind::IdentificationLooksLikeCommand { keyword });
     }
     let objects = syntax::parse_objects(&lexed.statements, &mut diagnostics);
