@@ -60,20 +60,21 @@ impl SceneStyle {
     fn polygon_entity(&self, id: String, vertices: &[DVec2], fill: Rgba, fill_layer: Layer) -> SceneEntity {
         let fill_z = self.z(fill_layer);
         let outline_z = self.z(if matches!(fill_layer, Layer::Walls) { Layer::Fills } else { Layer::Outlines });
+        let points: Vec<Point3> = vertices.iter().map(|&v| point(v)).collect();
         let mut entity = self.entity(id);
         entity.triangles.push(TriangleListPrimitive {
-            pose: Some(identity_pose()),
-            points: vertices.iter().map(|&v| point(v, fill_z)).collect(),
+            pose: Some(lifted_pose(fill_z)),
+            points: points.clone(),
             color: Some(color(fill)),
             colors: Vec::new(),
             indices: fan_indices(vertices.len()),
         });
         entity.lines.push(LinePrimitive {
             r#type: line_primitive::Type::LineLoop as i32,
-            pose: Some(identity_pose()),
+            pose: Some(lifted_pose(outline_z)),
             thickness: OUTLINE_PIXELS,
             scale_invariant: true,
-            points: vertices.iter().map(|&v| point(v, outline_z)).collect(),
+            points,
             color: Some(color(fill.darkened(0.55))),
             colors: Vec::new(),
             indices: Vec::new(),
@@ -126,14 +127,14 @@ pub(crate) fn contacts_update(
         let points: Vec<Point3> = contact_segments(world, force)
             .into_iter()
             .flatten()
-            .flat_map(|(from, to)| [point(from, z), point(to, z)])
+            .flat_map(|(from, to)| [point(from), point(to)])
             .collect();
         if points.is_empty() {
             continue;
         }
         entity.lines.push(LinePrimitive {
             r#type: line_primitive::Type::LineList as i32,
-            pose: Some(identity_pose()),
+            pose: Some(lifted_pose(z)),
             thickness: width,
             scale_invariant: false,
             points,
@@ -156,18 +157,20 @@ pub(crate) fn timestamp(nanoseconds: u64) -> Timestamp {
     Timestamp::new(sec, (nanoseconds % 1_000_000_000) as u32)
 }
 
-fn point(v: DVec2, z: f64) -> Point3 {
-    Point3 { x: v.x, y: v.y, z }
+/// A point of the x-y plane; the layer height goes into the primitive's pose, so it is written once per primitive.
+fn point(v: DVec2) -> Point3 {
+    Point3 { x: v.x, y: v.y, z: 0.0 }
 }
 
 fn color(c: Rgba) -> Color {
     Color { r: c.r, g: c.g, b: c.b, a: c.a }
 }
 
-/// Primitives are given in world coordinates; an explicit identity pose keeps readers from guessing a default.
-fn identity_pose() -> Pose {
+/// Primitives are given in world coordinates, shifted by `z` to their layer; the orientation is written out
+/// (identity) so that no reader has to guess a default for a missing quaternion.
+fn lifted_pose(z: f64) -> Pose {
     Pose {
-        position: Some(Vector3 { x: 0.0, y: 0.0, z: 0.0 }),
+        position: Some(Vector3 { x: 0.0, y: 0.0, z }),
         orientation: Some(Quaternion { x: 0.0, y: 0.0, z: 0.0, w: 1.0 }),
     }
 }

@@ -1,4 +1,6 @@
 //! Small Worlds for the recording tests: 7-gons falling into a box.
+// Each test crate uses a different part of these helpers.
+#![allow(dead_code)]
 
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping};
 use gc2d_engine::schedules::GravitySchedule;
@@ -99,4 +101,14 @@ pub fn add_heptagon_source(world: &mut World) {
             density: DENSITY,
         })
         .unwrap();
+}
+
+/// One 7-gon resting on a face on the floor of the box (bottom face horizontal, 0.1 mm above the floor), at x = 0.
+pub fn heptagon_on_the_floor() -> World {
+    let mut world = empty_world();
+    add_box(&mut world, WallMotion::Static);
+    let inscribed = RADIUS * (std::f64::consts::PI / 7.0).cos();
+    // Face k = 5 (between corners 5 and 6) has its outward normal at 2π·5.5/7; turning by −π/14 points it down.
+    add_heptagon(&mut world, DVec2::new(0.0, inscribed + 1e-4), -std::f64::consts::PI / 14.0);
+    world
 }
