@@ -56,11 +56,11 @@ impl ParticleColours {
             ColourBy::Speed => {
                 self.values.clear();
                 self.values.extend(bodies.velocity.iter().map(|v| v.length()));
-                self.apply_scalar(world, range, 0.0, None);
+                self.apply_scalar(world, range, None);
             }
             ColourBy::Pressure => {
                 contact_pressures(world, forces, &mut self.values);
-                self.apply_scalar(world, range, 0.0, None);
+                self.apply_scalar(world, range, None);
             }
             ColourBy::Age => {
                 self.values.clear();
@@ -72,7 +72,7 @@ impl ParticleColours {
                         ordinal += 1.0;
                     }
                 }
-                self.apply_scalar(world, range, 0.0, Some((ordinal - 1.0).max(0.0)));
+                self.apply_scalar(world, range, Some((ordinal - 1.0).max(0.0)));
             }
             ColourBy::Material => {
                 self.densities.clear();
@@ -90,14 +90,15 @@ impl ParticleColours {
         }
     }
 
-    /// Maps `self.values` of the living particles through viridis; `auto_max` overrides the frame's maximum.
-    fn apply_scalar(&mut self, world: &World, range: ColourRange, auto_min: f64, auto_max: Option<f64>) {
+    /// Maps `self.values` of the living particles through viridis. The automatic range starts at 0 and ends at
+    /// `auto_max`, or at the frame's largest value when that is `None`.
+    fn apply_scalar(&mut self, world: &World, range: ColourRange, auto_max: Option<f64>) {
         let bodies = world.bodies();
         let (min, max) = match range {
             ColourRange::Fixed { min, max } => (min, max),
             ColourRange::Auto => {
                 let frame_max = bodies.particles().map(|id| self.values[id.index()]).fold(0.0, f64::max);
-                (auto_min, auto_max.unwrap_or(frame_max))
+                (0.0, auto_max.unwrap_or(frame_max))
             }
         };
         let span = max - min;
