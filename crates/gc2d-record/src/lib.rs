@@ -1,0 +1,28 @@
+//! Recordings of gc2d-rs runs: MCAP files that Foxglove replays, and PNG snapshots for everyone else.
+//!
+//! A [`Recorder`] observes a World after each step ([`Observer`]) and, at the [`Cadence`] of about 30 frames per
+//! simulated second, writes the particles, walls, force network and statistics as Foxglove messages. Each frame is
+//! its own compressed chunk, flushed when written, so an interrupted run leaves a readable file. [`render_png`] draws
+//! one state with the same colours. See docs/recording.md for opening the files in Foxglove.
+//!
+//! The engine does not depend on this crate; the program that runs the World drives the recorder.
+
+pub mod cadence;
+pub mod colour;
+mod error;
+pub mod layout;
+mod mcap_file;
+pub mod network;
+pub mod png;
+pub mod quantities;
+pub mod recorder;
+mod scene;
+pub mod stats;
+
+pub use cadence::Cadence;
+pub use error::RecordError;
+pub use png::{PngOptions, render_png};
+pub use quantities::{ColourBy, ColourRange};
+pub use recorder::{Observer, RecordOptions, Recorder, RecordingSummary, RunInfo, SceneFile};
+pub use scene::FRAME_ID;
+pub use stats::FrameStats;

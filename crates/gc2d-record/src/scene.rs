@@ -1,0 +1,196 @@
+//! Foxglove `SceneUpdate` messages for particles, walls and the force network (protobuf, from the foxglove SDK).
+//!
+//! Everything lies in the x-y plane of frame [`FRAME_ID`]; the 3D panel looks down the z axis. Layers sit a small
+//! distance apart in z (walls below particles below outlines below force lines) so coplanar shapes do not flicker
+//! in the depth test; seen from above the offset is invisible.
+
+use crate::colour::{Rgba, WALL_GREY, force_colour};
+use crate::network::{ContactForce, contact_segments, line_width};
+use foxglove::schemas::{
+    Color, LinePrimitive, Point3, Pose, Quaternion, SceneEntity, SceneEntityDeletion, SceneUpdate, Timestamp,
+    TriangleListPrimitive, Vector3, line_primitive, scene_entity_deletion,
+};
+use gc2d_engine::{BodyId, BodyKind, World};
+use gc2d_geometry::DVec2;
+
+/// The coordinate frame of every entity.
+pub const FRAME_ID: &str = "world";
+
+/// Outline width of particles and walls, screen pixels.
+const OUTLINE_PIXELS: f64 = 1.0;
+
+/// Heights of the drawing layers, in units of the layer spacing.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Layer {
+    Walls = -1,
+    Fills = 0,
+    Outlines = 1,
+    Forces = 2,
+}
+
+/// Shared settings of the scene messages of one frame.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SceneStyle {
+    /// Simulated time as a Foxglove timestamp.
+    pub timestamp: Timestamp,
+    /// z distance between layers, m.
+    pub layer_spacing: f64,
+}
+
+impl SceneStyle {
+    fn z(&self, layer: Layer) -> f64 {
+        layer as i32 as f64 * self.layer_spacing
+    }
+
+    fn entity(&self, id: String) -> SceneEntity {
+        SceneEntity { timestamp: Some(self.timestamp), frame_id: FRAME_ID.to_string(), id, ..SceneEntity::default() }
+    }
+
+    /// A message that first clears every entity of its topic, so bodies that disappeared do not linger.
+    fn replacing_all(&self, entities: Vec<SceneEntity>) -> SceneUpdate {
+        let clear = SceneEntityDeletion {
+            timestamp: Some(self.timestamp),
+            r#type: scene_entity_deletion::Type::All as i32,
+            id: String::new(),
+        };
+        SceneUpdate { deletions: vec![clear], entities }
+    }
+
+    /// One body as a filled polygon (fan triangulation) with a thin outline.
+    fn polygon_entity(&self, id: String, vertices: &[DVec2], fill: Rgba, fill_layer: Layer) -> SceneEntity {
+        let fill_z = self.z(fill_layer);
+        let outline_z = self.z(if matches!(fill_layer, Layer::Walls) { Layer::Fills } else { Layer::Outlines });
+        let points: Vec<Point3> = vertices.iter().map(|&v| point(v)).collect();
+        let mut entity = self.entity(id);
+        entity.triangles.push(TriangleListPrimitive {
+            pose: Some(lifted_pose(fill_z)),
+            points: points.clone(),
+            color: Some(color(fill)),
+            colors: Vec::new(),
+            indices: fan_indices(vertices.len()),
+        });
+        entity.lines.push(LinePrimitive {
+            r#type: line_primitive::Type::LineLoop as i32,
+            pose: Some(lifted_pose(outline_z)),
+            thickness: OUTLINE_PIXELS,
+            scale_invariant: true,
+            points,
+            color: Some(color(fill.darkened(0.55))),
+            colors: Vec::new(),
+            indices: Vec::new(),
+        });
+        entity
+    }
+}
+
+/// `/particles`: one entity per living particle, id `p<slot>`, coloured by `colours[slot]`.
+pub(crate) fn particles_update(world: &World, colours: &[Rgba], style: &SceneStyle) -> SceneUpdate {
+    let bodies = world.bodies();
+    let entities = bodies
+        .particles()
+        .map(|id| {
+            style.polygon_entity(format!("p{}", id.0), bodies.world_vertices_of(id), colours[id.index()], Layer::Fills)
+        })
+        .collect();
+    style.replacing_all(entities)
+}
+
+/// `/walls`: one grey entity per wall, id `w<slot>`.
+pub(crate) fn walls_update(world: &World, style: &SceneStyle) -> SceneUpdate {
+    let bodies = world.bodies();
+    let entities = (0..bodies.len())
+        .filter(|&i| bodies.kind[i] == BodyKind::Wall && bodies.alive[i])
+        .map(|i| {
+            let id = BodyId(i as u32);
+            style.polygon_entity(format!("w{i}"), bodies.world_vertices_of(id), WALL_GREY, Layer::Walls)
+        })
+        .collect();
+    style.replacing_all(entities)
+}
+
+/// `/contacts`: one entity `forces` with a line list per contact, from each particle centroid to the force point,
+/// width `max_width`·|F|/F_max (in metres, so it scales with zoom) and gc2d's force colour.
+pub(crate) fn contacts_update(
+    world: &World,
+    forces: &[ContactForce],
+    max_force: f64,
+    max_width: f64,
+    style: &SceneStyle,
+) -> SceneUpdate {
+    let z = style.z(Layer::Forces);
+    let mut entity = style.entity("forces".to_string());
+    for force in forces {
+        let width = line_width(force.magnitude, max_force, max_width);
+        if width <= 0.0 {
+            continue;
+        }
+        let points: Vec<Point3> = contact_segments(world, force)
+            .into_iter()
+            .flatten()
+            .flat_map(|(from, to)| [point(from), point(to)])
+            .collect();
+        if points.is_empty() {
+            continue;
+        }
+        entity.lines.push(LinePrimitive {
+            r#type: line_primitive::Type::LineList as i32,
+            pose: Some(lifted_pose(z)),
+            thickness: width,
+            scale_invariant: false,
+            points,
+            color: Some(color(force_colour(force.magnitude / max_force))),
+            colors: Vec::new(),
+            indices: Vec::new(),
+        });
+    }
+    style.replacing_all(vec![entity])
+}
+
+/// Indices of a fan triangulation of a convex polygon with `n` vertices: (0, k, k+1) for k = 1 … n−2.
+pub(crate) fn fan_indices(n: usize) -> Vec<u32> {
+    (1..n.saturating_sub(1)).flat_map(|k| [0, k as u32, k as u32 + 1]).collect()
+}
+
+/// A Foxglove timestamp from simulated nanoseconds.
+pub(crate) fn timestamp(nanoseconds: u64) -> Timestamp {
+    let sec = (nanoseconds / 1_000_000_000).min(u32::MAX as u64) as u32;
+    Timestamp::new(sec, (nanoseconds % 1_000_000_000) as u32)
+}
+
+/// A point of the x-y plane; the layer height goes into the primitive's pose, so it is written once per primitive.
+fn point(v: DVec2) -> Point3 {
+    Point3 { x: v.x, y: v.y, z: 0.0 }
+}
+
+fn color(c: Rgba) -> Color {
+    Color { r: c.r, g: c.g, b: c.b, a: c.a }
+}
+
+/// Primitives are given in world coordinates, shifted by `z` to their layer; the orientation is written out
+/// (identity) so that no reader has to guess a default for a missing quaternion.
+fn lifted_pose(z: f64) -> Pose {
+    Pose {
+        position: Some(Vector3 { x: 0.0, y: 0.0, z }),
+        orientation: Some(Quaternion { x: 0.0, y: 0.0, z: 0.0, w: 1.0 }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fan_of_a_heptagon_has_five_triangles_sharing_vertex_zero() {
+        let indices = fan_indices(7);
+        assert_eq!(indices.len(), 15);
+        assert_eq!(&indices[..3], &[0, 1, 2]);
+        assert_eq!(&indices[12..], &[0, 5, 6]);
+        assert!(fan_indices(2).is_empty());
+    }
+
+    #[test]
+    fn timestamps_split_nanoseconds_into_seconds() {
+        let t = timestamp(2_500_000_001);
+        assert_eq!(t, Timestamp::new(2, 500_000_001));
+    }
+}
