@@ -16,6 +16,11 @@ if ! command -v "$python" >/dev/null 2>&1; then
     exit 2
 fi
 
+# Several test processes may ask at once on a fresh machine: one installs while the others wait for it.
+mkdir -p "$target"
+exec 9>"$target/python-venv.lock"
+flock 9
+
 if [[ ! -x "$venv/bin/python" ]]; then
     "$python" -m venv "$venv" >&2
 fi
