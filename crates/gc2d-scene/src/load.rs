@@ -1,4 +1,4 @@
-//! Loading a scene: RON through serde (with `implicit_some` and `unwrap_variant_newtypes` on by default), ron's
+//! Loading a scene: RON through serde (with `implicit_some` on by default, so optional values need no `Some(…)`), ron's
 //! error positions turned into spans and field paths, then validation.
 
 use crate::error::{ErrorKind, SceneError, suggest};
@@ -28,8 +28,7 @@ impl Scene {
     /// [`Scene::build`].
     pub fn from_str(text: &str, name: &str) -> Result<Scene, SceneError> {
         let source = Arc::new(SourceText::new(name, text));
-        let options = ron::Options::default()
-            .with_default_extension(Extensions::IMPLICIT_SOME | Extensions::UNWRAP_VARIANT_NEWTYPES);
+        let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
         let mut scene: Scene = options.from_str(text).map_err(|e| from_ron_error(&e, &source))?;
         if scene.name.is_empty() {
             scene.name = default_name(name);
@@ -37,6 +36,15 @@ impl Scene {
         scene.source = Some(source);
         scene.validate()?;
         Ok(scene)
+    }
+}
+
+impl Scene {
+    /// The scene as RON text that [`Scene::from_str`] reads back to an equal scene (every field written, optional
+    /// values without `Some(…)` under an `implicit_some` header). For tools that write scenes, such as the gsi importer.
+    pub fn to_ron_string(&self) -> Result<String, ron::Error> {
+        let config = ron::ser::PrettyConfig::new().struct_names(true).extensions(Extensions::IMPLICIT_SOME);
+        ron::ser::to_string_pretty(self, config)
     }
 }
 

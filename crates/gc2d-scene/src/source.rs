@@ -108,7 +108,7 @@ mod tests {
         assert_eq!(source.offset_of(2, 1), 3);
         assert_eq!(source.offset_of(2, 2), 5);
         assert_eq!(source.line_column(5), (2, 2));
-        assert_eq!(source.offset_of(4, 1), 11);
+        assert_eq!(source.offset_of(4, 1), 10);
         assert_eq!(source.offset_of(9, 9), source.text().len());
         assert_eq!(source.offset_of(1, 99), 2);
         assert_eq!(source.line_column(4), (2, 1));

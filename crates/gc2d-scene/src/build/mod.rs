@@ -170,7 +170,11 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
         wall_polygons: walls.len(),
         moving_walls,
         particles: particles.len(),
-        particle_mass_kg_m: world.bodies().particles().map(|id| world.bodies().mass[id.index()]).sum(),
+        particle_mass_kg_m: world
+            .bodies()
+            .particles()
+            .map(|id| world.bodies().mass[id.index()])
+            .fold(0.0, |a, m| a + m),
         drag_springs,
         sources: scene.sources.len(),
         planned_insertions: scene.sources.iter().map(|s| planned_insertions(s, scene.run.end_time_s)).sum(),

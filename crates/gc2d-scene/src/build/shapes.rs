@@ -48,7 +48,7 @@ pub(crate) fn outline(shape: &Shape, path: &str, rng: &mut ChaCha8Rng) -> Result
         Shape::RoundSquare { side_m, radius_m, corners_per_rounding } => {
             fixed(square_round(*side_m, *radius_m, *corners_per_rounding))
         }
-        Shape::Random(recipe) => {
+        Shape::Random { recipe } => {
             let recipe = shape_recipe(recipe, path)?;
             let (polygon, angle) = recipe.draw(rng).map_err(|e| shape_error(&e, path))?;
             Ok(Outline { polygon, written_centroid: DVec2::ZERO, drawn_angle: angle })

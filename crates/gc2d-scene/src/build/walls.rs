@@ -4,7 +4,7 @@
 use super::shapes::{outline, polygon_error};
 use crate::checks::{finite, finite_pair, ordered_range, positive, window};
 use crate::error::SceneError;
-use crate::schema::{Drum, Enclosure, Funnel, Motion, Shape, Wall, WallItem, Waveform};
+use crate::schema::{Motion, Shape, WallItem, Waveform};
 use crate::spans::field_path;
 use gc2d_engine::motion::{Piston, Rotation, Vibration, Waveform as EngineWaveform};
 use gc2d_engine::{TimeWindow, WallMotion};
@@ -28,33 +28,56 @@ pub(crate) struct PlacedWall {
 /// The wall polygons of one `walls` entry at `path`.
 pub(crate) fn expand(item: &WallItem, path: &str, rng: &mut ChaCha8Rng) -> Result<Vec<PlacedWall>, SceneError> {
     match item {
-        WallItem::Wall(wall) => Ok(vec![single(wall, path, rng)?]),
-        WallItem::Drum(drum) => drum_walls(drum, path),
-        WallItem::Funnel(funnel) => funnel_walls(funnel, path),
-        WallItem::Silo(silo) => box_walls(silo.x_range_m, silo.y_range_m, silo.thickness_m, false, path),
-        WallItem::Enclosure(Enclosure { x_range_m, y_range_m, thickness_m }) => {
+        WallItem::Wall { shape, position_m, angle_rad, surface_velocity_m_s, motion } => {
+            let placement =
+                Placement { position: *position_m, angle: *angle_rad, surface_velocity: *surface_velocity_m_s };
+            Ok(vec![single(shape, &placement, motion, path, rng)?])
+        }
+        WallItem::Drum { centre_m, inner_radius_m, thickness_m, surface_speed_m_s, segments } => {
+            drum_walls(*centre_m, *inner_radius_m, *thickness_m, *surface_speed_m_s, *segments, path)
+        }
+        WallItem::Funnel { outlet_m, opening_m, slope_rad, length_m, thickness_m } => {
+            funnel_walls(*outlet_m, *opening_m, *slope_rad, *length_m, *thickness_m, path)
+        }
+        WallItem::Silo { x_range_m, y_range_m, thickness_m } => {
+            box_walls(*x_range_m, *y_range_m, *thickness_m, false, path)
+        }
+        WallItem::Enclosure { x_range_m, y_range_m, thickness_m } => {
             box_walls(*x_range_m, *y_range_m, *thickness_m, true, path)
         }
     }
 }
 
-fn single(wall: &Wall, path: &str, rng: &mut ChaCha8Rng) -> Result<PlacedWall, SceneError> {
-    if matches!(wall.shape, Shape::Random(_)) {
+/// Where a single wall sits and how its surface moves.
+struct Placement {
+    position: Option<[f64; 2]>,
+    angle: f64,
+    surface_velocity: [f64; 2],
+}
+
+fn single(
+    shape: &Shape,
+    placement: &Placement,
+    motion_spec: &Motion,
+    path: &str,
+    rng: &mut ChaCha8Rng,
+) -> Result<PlacedWall, SceneError> {
+    if matches!(shape, Shape::Random { .. }) {
         return Err(SceneError::value(field_path(path, "shape"), "a wall cannot have a random shape")
             .with_help("draw random shapes for particles only; give walls explicit corners or a shape macro"));
     }
-    let shape = outline(&wall.shape, &field_path(path, "shape"), rng)?;
-    if let Some(position) = wall.position_m {
+    let outline = outline(shape, &field_path(path, "shape"), rng)?;
+    if let Some(position) = placement.position {
         finite_pair(&field_path(path, "position_m"), position)?;
     }
-    finite(&field_path(path, "angle_rad"), wall.angle_rad)?;
-    finite_pair(&field_path(path, "surface_velocity_m_s"), wall.surface_velocity_m_s)?;
-    let position = wall.position_m.map_or(shape.written_centroid, DVec2::from_array);
+    finite(&field_path(path, "angle_rad"), placement.angle)?;
+    finite_pair(&field_path(path, "surface_velocity_m_s"), placement.surface_velocity)?;
+    let position = placement.position.map_or(outline.written_centroid, DVec2::from_array);
     Ok(PlacedWall {
-        polygon: shape.polygon,
-        pose: Pose::new(position, wall.angle_rad),
-        surface_velocity: DVec2::from_array(wall.surface_velocity_m_s),
-        motion: motion(&wall.motion, &field_path(path, "motion"))?,
+        polygon: outline.polygon,
+        pose: Pose::new(position, placement.angle),
+        surface_velocity: DVec2::from_array(placement.surface_velocity),
+        motion: motion(motion_spec, &field_path(path, "motion"))?,
         path: path.to_owned(),
     })
 }
@@ -120,51 +143,65 @@ fn fixed_wall(corners: &[DVec2], surface_velocity: DVec2, path: &str) -> Result<
 
 /// `segments` trapezoids between radius r and r + d; each carries the surface velocity v·t̂ with t̂ the CCW tangent
 /// at its middle angle, which is tangential to its inner face.
-fn drum_walls(drum: &Drum, path: &str) -> Result<Vec<PlacedWall>, SceneError> {
+fn drum_walls(
+    centre: [f64; 2],
+    inner_radius: f64,
+    thickness: f64,
+    surface_speed: f64,
+    segments: usize,
+    path: &str,
+) -> Result<Vec<PlacedWall>, SceneError> {
     let at = |field: &str| field_path(path, field);
-    finite_pair(&at("centre_m"), drum.centre_m)?;
-    positive(&at("inner_radius_m"), drum.inner_radius_m)?;
-    positive(&at("thickness_m"), drum.thickness_m)?;
-    finite(&at("surface_speed_m_s"), drum.surface_speed_m_s)?;
-    if !(3..=MAX_DRUM_SEGMENTS).contains(&drum.segments) {
+    finite_pair(&at("centre_m"), centre)?;
+    positive(&at("inner_radius_m"), inner_radius)?;
+    positive(&at("thickness_m"), thickness)?;
+    finite(&at("surface_speed_m_s"), surface_speed)?;
+    if !(3..=MAX_DRUM_SEGMENTS).contains(&segments) {
         return Err(SceneError::value(
             at("segments"),
-            format!("{} segments: a drum needs 3 to {MAX_DRUM_SEGMENTS}", drum.segments),
+            format!("{segments} segments: a drum needs 3 to {MAX_DRUM_SEGMENTS}"),
         ));
     }
-    let centre = DVec2::from_array(drum.centre_m);
-    let (inner, outer) = (drum.inner_radius_m, drum.inner_radius_m + drum.thickness_m);
-    let n = drum.segments as f64;
-    (0..drum.segments)
+    let centre = DVec2::from_array(centre);
+    let (inner, outer) = (inner_radius, inner_radius + thickness);
+    let n = segments as f64;
+    (0..segments)
         .map(|k| {
             let (a0, a1) = (TAU * k as f64 / n, TAU * (k + 1) as f64 / n);
             let (u0, u1) = (DVec2::from_angle(a0), DVec2::from_angle(a1));
             let corners = [centre + inner * u0, centre + outer * u0, centre + outer * u1, centre + inner * u1];
             let tangent = DVec2::from_angle(0.5 * (a0 + a1) + FRAC_PI_2);
-            fixed_wall(&corners, drum.surface_speed_m_s * tangent, path)
+            fixed_wall(&corners, surface_speed * tangent, path)
         })
         .collect()
 }
 
 /// Two slabs rising at `slope` from the edges of the opening, thickness added outside the funnel.
-fn funnel_walls(funnel: &Funnel, path: &str) -> Result<Vec<PlacedWall>, SceneError> {
+fn funnel_walls(
+    outlet: [f64; 2],
+    opening: f64,
+    slope: f64,
+    length: f64,
+    thickness: f64,
+    path: &str,
+) -> Result<Vec<PlacedWall>, SceneError> {
     let at = |field: &str| field_path(path, field);
-    finite_pair(&at("outlet_m"), funnel.outlet_m)?;
-    if !(funnel.opening_m >= 0.0 && funnel.opening_m.is_finite()) {
-        return Err(SceneError::value(at("opening_m"), format!("{}: the opening must be ≥ 0 m", funnel.opening_m)));
+    finite_pair(&at("outlet_m"), outlet)?;
+    if !(opening >= 0.0 && opening.is_finite()) {
+        return Err(SceneError::value(at("opening_m"), format!("{opening}: the opening must be ≥ 0 m")));
     }
-    if !(funnel.slope_rad > 0.0 && funnel.slope_rad <= FRAC_PI_2) {
+    if !(slope > 0.0 && slope <= FRAC_PI_2) {
         return Err(SceneError::value(
             at("slope_rad"),
-            format!("{}: the slope must lie in (0, π/2] (radians from the horizontal)", funnel.slope_rad),
+            format!("{slope}: the slope must lie in (0, π/2] (radians from the horizontal)"),
         ));
     }
-    positive(&at("length_m"), funnel.length_m)?;
-    positive(&at("thickness_m"), funnel.thickness_m)?;
-    let outlet = DVec2::from_array(funnel.outlet_m);
-    let (sin, cos) = funnel.slope_rad.sin_cos();
-    let half = 0.5 * funnel.opening_m;
-    let (l, t) = (funnel.length_m, funnel.thickness_m);
+    positive(&at("length_m"), length)?;
+    positive(&at("thickness_m"), thickness)?;
+    let outlet = DVec2::from_array(outlet);
+    let (sin, cos) = slope.sin_cos();
+    let half = 0.5 * opening;
+    let (l, t) = (length, thickness);
     let side = |sign: f64| {
         let start = outlet + DVec2::new(sign * half, 0.0);
         let along = DVec2::new(sign * cos, sin);
@@ -206,20 +243,12 @@ fn box_walls(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::schema::Silo;
     use approx::assert_relative_eq;
     use rand::SeedableRng;
 
     #[test]
     fn drum_segments_form_a_ring_with_tangential_surface_speed() {
-        let drum = Drum {
-            centre_m: [0.1, 0.2],
-            inner_radius_m: 0.05,
-            thickness_m: 0.01,
-            surface_speed_m_s: 0.3,
-            segments: 12,
-        };
-        let walls = drum_walls(&drum, "walls[0]").unwrap();
+        let walls = drum_walls([0.1, 0.2], 0.05, 0.01, 0.3, 12, "walls[0]").unwrap();
         assert_eq!(walls.len(), 12);
         let centre = DVec2::new(0.1, 0.2);
         let mut area = 0.0;
@@ -241,9 +270,7 @@ mod tests {
 
     #[test]
     fn funnel_slabs_leave_the_opening_free_and_rise_at_the_slope() {
-        let funnel =
-            Funnel { outlet_m: [0.0, 0.3], opening_m: 0.02, slope_rad: 1.0, length_m: 0.1, thickness_m: 0.005 };
-        let walls = funnel_walls(&funnel, "walls[1]").unwrap();
+        let walls = funnel_walls([0.0, 0.3], 0.02, 1.0, 0.1, 0.005, "walls[1]").unwrap();
         let world = |w: &PlacedWall| w.polygon.vertices().iter().map(|v| w.pose.apply(*v)).collect::<Vec<_>>();
         let (left, right) = (world(&walls[0]), world(&walls[1]));
         let max_x_left = left.iter().map(|v| v.x).fold(f64::MIN, f64::max);
@@ -257,17 +284,16 @@ mod tests {
 
     #[test]
     fn silo_is_open_and_box_is_closed() {
-        let silo = Silo { x_range_m: [0.0, 0.1], y_range_m: [0.0, 0.4], thickness_m: 0.01 };
+        let (x_range_m, y_range_m, thickness_m) = ([0.0, 0.1], [0.0, 0.4], 0.01);
         let mut rng = ChaCha8Rng::seed_from_u64(0);
-        let open = expand(&WallItem::Silo(silo), "walls[0]", &mut rng).unwrap();
+        let open = expand(&WallItem::Silo { x_range_m, y_range_m, thickness_m }, "walls[0]", &mut rng).unwrap();
         assert_eq!(open.len(), 3);
         assert_relative_eq!(open[0].polygon.area(), 0.12 * 0.01, max_relative = 1e-12);
-        let closed = Enclosure { x_range_m: silo.x_range_m, y_range_m: silo.y_range_m, thickness_m: 0.01 };
-        let walls = expand(&WallItem::Enclosure(closed), "walls[0]", &mut rng).unwrap();
+        let walls = expand(&WallItem::Enclosure { x_range_m, y_range_m, thickness_m }, "walls[0]", &mut rng).unwrap();
         assert_eq!(walls.len(), 4);
         assert_relative_eq!(walls[3].pose.position.y, 0.405, epsilon = 1e-12);
-        let reversed = Silo { x_range_m: [0.1, 0.0], ..silo };
-        let error = expand(&WallItem::Silo(reversed), "walls[0]", &mut rng).err().unwrap();
+        let reversed = WallItem::Silo { x_range_m: [0.1, 0.0], y_range_m, thickness_m };
+        let error = expand(&reversed, "walls[0]", &mut rng).err().unwrap();
         assert_eq!(error.path, "walls[0].x_range_m");
     }
 }

@@ -11,7 +11,7 @@ mod walls;
 
 pub use bodies::{Block, DragSpring, DropHeight, GridType, Particle, Source};
 pub use shapes::{CornerPositions, CountSpread, Orientation, Recipe, Shape, SizeSpread};
-pub use walls::{Drum, Enclosure, Funnel, Motion, Silo, Wall, WallItem, Waveform};
+pub use walls::{Motion, WallItem, Waveform};
 
 use crate::source::SourceText;
 use serde::{Deserialize, Serialize};
@@ -85,7 +85,7 @@ impl Default for Scene {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Run {
-    /// Δt in s. Default (omitted): half the stable bound (π/10)·sqrt(m/E) of the lightest particle, rounded down
+    /// Δt in s. Default (omitted): a quarter of the stable bound (π/10)·sqrt(m/E) of the lightest particle, rounded down
     /// to two significant digits, or 1e-4 s when the scene has no particles.
     #[serde(default)]
     pub time_step_s: Option<f64>,

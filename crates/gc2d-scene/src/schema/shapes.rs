@@ -78,7 +78,10 @@ pub enum Shape {
         corners_per_rounding: usize,
     },
     /// A random polygon drawn from a recipe with the scene's seed (particles only).
-    Random(Recipe),
+    Random {
+        /// How to draw it.
+        recipe: Recipe,
+    },
 }
 
 /// How to draw random particles: a polygon inscribed in an ellipse with scattered size, corner count, corner

@@ -5,42 +5,77 @@ use super::defaults;
 use super::shapes::Shape;
 use serde::{Deserialize, Serialize};
 
-/// One entry of the scene's `walls` list.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub enum WallItem {
-    /// A single wall polygon.
-    Wall(Wall),
-    /// A rotating drum: a ring of wall segments with a tangential surface speed.
-    Drum(Drum),
-    /// A funnel: two sloped slabs with an opening between their lower ends.
-    Funnel(Funnel),
-    /// A silo: floor and two side walls, open at the top.
-    Silo(Silo),
-    /// A closed box: floor, side walls and lid.
-    #[serde(rename = "Box")]
-    Enclosure(Enclosure),
-}
-
-/// An immovable polygon (gsi `WALL`). It interacts with particles through the scene's contact law.
+/// One entry of the scene's `walls` list: a single wall, or a wall-builder macro that expands into several.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Wall {
-    /// The outline.
-    pub shape: Shape,
-    /// Where the centroid goes, m. Default: a `Polygon` stays where its corners are written; other shapes sit at
-    /// the origin.
-    #[serde(default)]
-    pub position_m: Option<[f64; 2]>,
-    /// Rotation about the centroid, radians CCW. Default 0.
-    #[serde(default)]
-    pub angle_rad: f64,
-    /// Virtual surface velocity, m/s: the wall stays put but its surface drags particles like a conveyor belt;
-    /// only the tangential part acts (gsi `VELOCITY`, §2.11). Default (0, 0).
-    #[serde(default)]
-    pub surface_velocity_m_s: [f64; 2],
-    /// How the wall moves. Default `Static`.
-    #[serde(default)]
-    pub motion: Motion,
+pub enum WallItem {
+    /// An immovable polygon (gsi `WALL`). It interacts with particles through the scene's contact law.
+    Wall {
+        /// The outline.
+        shape: Shape,
+        /// Where the centroid goes, m. Default: a `Polygon` stays where its corners are written; other shapes sit
+        /// at the origin.
+        #[serde(default)]
+        position_m: Option<[f64; 2]>,
+        /// Rotation about the centroid, radians CCW. Default 0.
+        #[serde(default)]
+        angle_rad: f64,
+        /// Virtual surface velocity, m/s: the wall stays put but its surface drags particles like a conveyor belt;
+        /// only the tangential part acts (gsi `VELOCITY`, §2.11). Default (0, 0).
+        #[serde(default)]
+        surface_velocity_m_s: [f64; 2],
+        /// How the wall moves. Default `Static`.
+        #[serde(default)]
+        motion: Motion,
+    },
+    /// A rotating drum after gc2d's `gc2d_drum` (D.7): `segments` trapezoidal walls between radius r and r + d
+    /// around the centre. The walls do not move; each carries the tangential surface velocity `surface_speed_m_s`
+    /// along its inner face, counter-clockwise for positive speeds, like a fixed drum lined with a conveyor belt.
+    Drum {
+        /// Centre, m.
+        centre_m: [f64; 2],
+        /// Inner radius r (the corners of the inner faces lie on it), m.
+        inner_radius_m: f64,
+        /// Wall thickness d, m.
+        thickness_m: f64,
+        /// Tangential surface speed v on the inside, m/s, CCW positive.
+        surface_speed_m_s: f64,
+        /// Number of wall segments N, 3 to 10 000.
+        segments: usize,
+    },
+    /// A funnel: two straight slabs that rise symmetrically from the edges of an opening (the point source of the
+    /// poured piles, §8.3).
+    Funnel {
+        /// Centre of the opening, m (the lower inner corners of the slabs are at x ± opening/2 on this height).
+        outlet_m: [f64; 2],
+        /// Width of the opening, m.
+        opening_m: f64,
+        /// Slope of each slab against the horizontal, radians, in (0, π/2].
+        slope_rad: f64,
+        /// Length of each slab along its slope, m.
+        length_m: f64,
+        /// Thickness of each slab, m (added outside the funnel).
+        thickness_m: f64,
+    },
+    /// A silo outline (§7.1): a floor and two side walls around the inner rectangle, open at the top.
+    Silo {
+        /// Inner x range (x_min, x_max), m.
+        x_range_m: [f64; 2],
+        /// Inner y range (floor top, wall top), m.
+        y_range_m: [f64; 2],
+        /// Wall thickness, m (added outside the inner rectangle).
+        thickness_m: f64,
+    },
+    /// A closed box, written `Box(…)`: a floor, two side walls and a lid around the inner rectangle.
+    #[serde(rename = "Box")]
+    Enclosure {
+        /// Inner x range (x_min, x_max), m.
+        x_range_m: [f64; 2],
+        /// Inner y range (floor top, lid bottom), m.
+        y_range_m: [f64; 2],
+        /// Wall thickness, m (added outside the inner rectangle).
+        thickness_m: f64,
+    },
 }
 
 /// How a wall moves (§2.11). One motion per wall: gc2d forbids a vibrating piston.
@@ -101,63 +136,4 @@ pub enum Waveform {
     Tapping,
     /// `TRIANGLE`: up to W at half period and back.
     Triangle,
-}
-
-/// A rotating drum after gc2d's `gc2d_drum` (D.7): `segments` trapezoidal walls between radius r and r + d around
-/// the centre. The walls do not move; each carries the tangential surface velocity `surface_speed_m_s` along its
-/// inner face, counter-clockwise for positive speeds, like a fixed drum lined with a conveyor belt.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Drum {
-    /// Centre, m.
-    pub centre_m: [f64; 2],
-    /// Inner radius r (the corners of the inner faces lie on it), m.
-    pub inner_radius_m: f64,
-    /// Wall thickness d, m.
-    pub thickness_m: f64,
-    /// Tangential surface speed v on the inside, m/s, CCW positive.
-    pub surface_speed_m_s: f64,
-    /// Number of wall segments N, 3 to 10 000.
-    pub segments: usize,
-}
-
-/// A funnel: two straight slabs that rise symmetrically from the edges of an opening (the point source of the
-/// poured piles, §8.3).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Funnel {
-    /// Centre of the opening, m (the lower inner corners of the slabs are at x ± opening/2 on this height).
-    pub outlet_m: [f64; 2],
-    /// Width of the opening, m.
-    pub opening_m: f64,
-    /// Slope of each slab against the horizontal, radians, in (0, π/2].
-    pub slope_rad: f64,
-    /// Length of each slab along its slope, m.
-    pub length_m: f64,
-    /// Thickness of each slab, m (added outside the funnel).
-    pub thickness_m: f64,
-}
-
-/// A silo outline (§7.1): a floor and two side walls around the inner rectangle, open at the top.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Silo {
-    /// Inner x range (x_min, x_max), m.
-    pub x_range_m: [f64; 2],
-    /// Inner y range (floor top, wall top), m.
-    pub y_range_m: [f64; 2],
-    /// Wall thickness, m (added outside the inner rectangle).
-    pub thickness_m: f64,
-}
-
-/// A closed box: a floor, two side walls and a lid around the inner rectangle.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Enclosure {
-    /// Inner x range (x_min, x_max), m.
-    pub x_range_m: [f64; 2],
-    /// Inner y range (floor top, lid bottom), m.
-    pub y_range_m: [f64; 2],
-    /// Wall thickness, m (added outside the inner rectangle).
-    pub thickness_m: f64,
 }
