@@ -64,19 +64,16 @@ impl fmt::Display for Location {
 /// An error in a scene. Its `Display` reads `file:line:column: `path`: message`; as a miette diagnostic it also
 /// shows the offending text underlined, a help line and any further errors found in the same pass.
 #[derive(Debug, Clone)]
-pub struct SceneError {
-    /// What kind of mistake.
-    pub kind: ErrorKind,
-    /// The field path of the offending value, e.g. `walls[2].shape.corners_m[3]` (empty for the whole scene).
-    pub path: String,
-    /// What is wrong, without location.
-    pub message: String,
-    /// What to do about it, if there is something specific to say.
-    pub help: Option<String>,
-    /// Where in the file, when the scene was loaded from text and the path is written there.
-    pub location: Option<Location>,
-    /// Further errors found in the same pass.
-    pub related: Vec<SceneError>,
+pub struct SceneError(Box<Details>);
+
+#[derive(Debug, Clone)]
+struct Details {
+    kind: ErrorKind,
+    path: String,
+    message: String,
+    help: Option<String>,
+    location: Option<Location>,
+    related: Vec<SceneError>,
     label: String,
     span: Option<Range<usize>>,
     source: Option<Arc<SourceText>>,
@@ -85,7 +82,7 @@ pub struct SceneError {
 impl SceneError {
     /// An error at `path`, not yet located in a text.
     pub fn new(kind: ErrorKind, path: impl Into<String>, message: impl Into<String>) -> Self {
-        Self {
+        Self(Box::new(Details {
             kind,
             path: path.into(),
             message: message.into(),
@@ -95,7 +92,7 @@ impl SceneError {
             label: "here".to_owned(),
             span: None,
             source: None,
-        }
+        }))
     }
 
     /// A value out of range (the most common semantic error).
@@ -103,40 +100,82 @@ impl SceneError {
         Self::new(ErrorKind::Value, path, message)
     }
 
+    /// What kind of mistake.
+    pub fn kind(&self) -> ErrorKind {
+        self.0.kind
+    }
+
+    /// The field path of the offending value, e.g. `walls[2].shape.corners_m[3]` (empty for the whole scene).
+    pub fn path(&self) -> &str {
+        &self.0.path
+    }
+
+    /// What is wrong, without location.
+    pub fn message(&self) -> &str {
+        &self.0.message
+    }
+
+    /// What to do about it, if there is something specific to say.
+    pub fn help_text(&self) -> Option<&str> {
+        self.0.help.as_deref()
+    }
+
+    /// Where in the file, when the scene was loaded from text and the path (or an ancestor) is written there.
+    pub fn location(&self) -> Option<&Location> {
+        self.0.location.as_ref()
+    }
+
+    /// Further errors found in the same pass, or notes that belong to this one.
+    pub fn related_errors(&self) -> &[SceneError] {
+        &self.0.related
+    }
+
+    /// The underlined byte span in the source text, if located.
+    pub fn span(&self) -> Option<Range<usize>> {
+        self.0.span.clone()
+    }
+
     /// Adds a help line.
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
-        self.help = Some(help.into());
+        self.0.help = Some(help.into());
         self
     }
 
     /// Sets the text under the underline.
     pub fn with_label(mut self, label: impl Into<String>) -> Self {
-        self.label = label.into();
+        self.0.label = label.into();
         self
     }
 
     /// Attaches a further error or note.
     pub fn with_related(mut self, related: SceneError) -> Self {
-        self.related.push(related);
+        self.0.related.push(related);
+        self
+    }
+
+    /// Replaces the message (keeping everything else).
+    pub(crate) fn with_message(mut self, message: String) -> Self {
+        self.0.message = message;
         self
     }
 
     /// Points the error at its path in `source` (when the path, or an ancestor, is written there).
     pub fn located(self, source: Option<&Arc<SourceText>>) -> Self {
         let Some(source) = source else { return self };
-        let span = source.span_of(&self.path);
+        let span = source.span_of(&self.0.path);
         self.at_span(source, span)
     }
 
     /// Points the error at a byte span of `source` (`None`: the file is still named, without a position).
     pub(crate) fn at_span(mut self, source: &Arc<SourceText>, span: Option<Range<usize>>) -> Self {
-        self.location = span.as_ref().map(|span| {
+        let details = &mut self.0;
+        details.location = span.as_ref().map(|span| {
             let (line, column) = source.line_column(span.start);
             Location { file: source.name().to_owned(), line, column }
         });
-        self.span = span;
-        self.source = Some(Arc::clone(source));
-        self.related = std::mem::take(&mut self.related).into_iter().map(|e| e.located(Some(source))).collect();
+        details.span = span;
+        details.source = Some(Arc::clone(source));
+        details.related = std::mem::take(&mut details.related).into_iter().map(|e| e.located(Some(source))).collect();
         self
     }
 
@@ -146,16 +185,11 @@ impl SceneError {
             return None;
         }
         let mut first = errors.remove(0);
-        first.related.extend(errors);
+        first.0.related.extend(errors);
         Some(first)
     }
 
-    /// The underlined byte span in the source text, if located.
-    pub fn span(&self) -> Option<Range<usize>> {
-        self.span.clone()
-    }
-
-    /// The error rendered as miette's plain-text report (no colours, no Unicode box drawing), for logs and tests.
+    /// The error rendered as miette's plain-text report (no colours), for logs and tests.
     pub fn render_plain(&self) -> String {
         let mut out = String::new();
         let handler = miette::GraphicalReportHandler::new_themed(miette::GraphicalTheme::unicode_nocolor())
@@ -170,13 +204,14 @@ impl SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if let Some(location) = &self.location {
+        let details = &self.0;
+        if let Some(location) = &details.location {
             write!(f, "{location}: ")?;
         }
-        if !self.path.is_empty() {
-            write!(f, "`{}`: ", self.path)?;
+        if !details.path.is_empty() {
+            write!(f, "`{}`: ", details.path)?;
         }
-        f.write_str(&self.message)
+        f.write_str(&details.message)
     }
 }
 
@@ -184,28 +219,28 @@ impl std::error::Error for SceneError {}
 
 impl Diagnostic for SceneError {
     fn code<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
-        Some(Box::new(self.kind.code()))
+        Some(Box::new(self.0.kind.code()))
     }
 
     fn help<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
-        self.help.as_ref().map(|h| Box::new(h) as Box<dyn fmt::Display>)
+        self.0.help.as_ref().map(|h| Box::new(h) as Box<dyn fmt::Display>)
     }
 
     fn source_code(&self) -> Option<&dyn SourceCode> {
-        self.source.as_ref().map(|s| s.named() as &dyn SourceCode)
+        self.0.source.as_ref().map(|s| s.named() as &dyn SourceCode)
     }
 
     fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
-        let span = self.span.clone()?;
-        let label = LabeledSpan::new_with_span(Some(self.label.clone()), span.start..span.end.max(span.start));
+        let span = self.0.span.clone()?;
+        let label = LabeledSpan::new_with_span(Some(self.0.label.clone()), span.start..span.end.max(span.start));
         Some(Box::new(std::iter::once(label)))
     }
 
     fn related<'a>(&'a self) -> Option<Box<dyn Iterator<Item = &'a dyn Diagnostic> + 'a>> {
-        if self.related.is_empty() {
+        if self.0.related.is_empty() {
             return None;
         }
-        Some(Box::new(self.related.iter().map(|e| e as &dyn Diagnostic)))
+        Some(Box::new(self.0.related.iter().map(|e| e as &dyn Diagnostic)))
     }
 }
 

@@ -69,12 +69,13 @@ fn from_ron_error(error: &SpannedError, source: &Arc<SourceText>) -> SceneError 
     let path = source.path_at(span.start).unwrap_or("").to_owned();
     let mut scene_error = describe(&error.code, path);
     let written = &text[span.clone()];
-    if scene_error.kind == ErrorKind::Type
-        && !scene_error.message.contains("found")
+    if scene_error.kind() == ErrorKind::Type
+        && !scene_error.message().contains("found")
         && written.len() <= 40
         && !written.contains('\n')
     {
-        scene_error.message = format!("{}, found `{written}`", scene_error.message);
+        let message = format!("{}, found `{written}`", scene_error.message());
+        scene_error = scene_error.with_message(message);
     }
     scene_error.at_span(source, Some(span))
 }
@@ -144,6 +145,13 @@ fn describe(code: &RonError, path: String) -> SceneError {
             SceneError::new(ErrorKind::Type, path, format!("expected {expected}, found {found} elements"))
                 .with_label("wrong length")
         }
+        RonError::ExpectedStructLikeEnd => match path.rsplit_once('.') {
+            Some((tuple, index)) if !index.is_empty() && index.bytes().all(|b| b.is_ascii_digit()) => {
+                SceneError::new(ErrorKind::Type, tuple, format!("this tuple takes {index} values, found more"))
+                    .with_label("one value too many")
+            }
+            _ => SceneError::new(ErrorKind::Syntax, path, lowercase_first(&code.to_string())),
+        },
         RonError::ExpectedFloat
         | RonError::ExpectedInteger
         | RonError::IntegerOutOfBounds

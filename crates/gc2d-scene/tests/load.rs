@@ -159,7 +159,7 @@ fn scenes_constructed_in_code_build_without_a_source_text() {
         ..Scene::default()
     };
     let error = scene.build().err().unwrap();
-    assert_eq!(error.path, "particles[0].material");
-    assert_eq!(error.location, None);
+    assert_eq!(error.path(), "particles[0].material");
+    assert_eq!(error.location(), None);
     assert_eq!(error.to_string(), "`particles[0].material`: unknown material `nope`");
 }

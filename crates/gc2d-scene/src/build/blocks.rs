@@ -192,6 +192,6 @@ mod tests {
         let mut huge = block(GridType::Rect);
         huge.grid_spacing_m = [1e-9, 1e-9];
         let error = Lattice::of(&huge, "blocks[0]").err().unwrap();
-        assert_eq!(error.path, "blocks[0].grid_spacing_m");
+        assert_eq!(error.path(), "blocks[0].grid_spacing_m");
     }
 }

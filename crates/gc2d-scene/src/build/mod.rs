@@ -95,7 +95,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
     }
     let time_step = safety::choose_time_step(scene.run.time_step_s, bound.as_ref(), scene.run.allow_unsafe_time_step)
         .map_err(|error| match &bound {
-        Some(b) if error.kind == ErrorKind::TimeStep => error.with_related(limiting_note(b)),
+        Some(b) if error.kind() == ErrorKind::TimeStep => error.with_related(limiting_note(b)),
         _ => error,
     })?;
 

@@ -185,7 +185,7 @@ mod tests {
         assert_eq!(choose_time_step(None, Some(&bound), false).unwrap(), 4.0e-6);
         assert_eq!(choose_time_step(None, None, false).unwrap(), FALLBACK_TIME_STEP);
         assert_eq!(choose_time_step(Some(2e-6), Some(&bound), false).unwrap(), 2e-6);
-        assert_eq!(choose_time_step(Some(2e-5), Some(&bound), false).unwrap_err().kind, ErrorKind::TimeStep);
+        assert_eq!(choose_time_step(Some(2e-5), Some(&bound), false).unwrap_err().kind(), ErrorKind::TimeStep);
         assert_eq!(choose_time_step(Some(2e-5), Some(&bound), true).unwrap(), 2e-5);
     }
 
@@ -203,7 +203,7 @@ mod tests {
         let bodies = [body(&big, 0.0, false, "a"), body(&small, 0.014, false, "b")];
         let errors = overlap_errors(&bodies, 0.05);
         assert_eq!(errors.len(), 1);
-        assert!(errors[0].message.contains("10.0 %"), "{}", errors[0].message);
+        assert!(errors[0].message().contains("10.0 %"), "{}", errors[0].message());
         assert!(overlap_errors(&bodies, 0.11).is_empty());
         // Walls never count against each other.
         let walls = [body(&big, 0.0, true, "a"), body(&small, 0.014, true, "b")];

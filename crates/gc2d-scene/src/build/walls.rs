@@ -129,7 +129,7 @@ fn motion(motion: &Motion, path: &str) -> Result<WallMotion, SceneError> {
 fn fixed_wall(corners: &[DVec2], surface_velocity: DVec2, path: &str) -> Result<PlacedWall, SceneError> {
     let (polygon, centroid) = ConvexPolygon::new(corners).map_err(|e| {
         let error = polygon_error(&e, path);
-        SceneError::value(path, format!("a generated wall is degenerate: {}", error.message))
+        SceneError::value(path, format!("a generated wall is degenerate: {}", error.message()))
             .with_help("the dimensions are too extreme for a wall polygon")
     })?;
     Ok(PlacedWall {
@@ -294,6 +294,6 @@ mod tests {
         assert_relative_eq!(walls[3].pose.position.y, 0.405, epsilon = 1e-12);
         let reversed = WallItem::Silo { x_range_m: [0.1, 0.0], y_range_m, thickness_m };
         let error = expand(&reversed, "walls[0]", &mut rng).err().unwrap();
-        assert_eq!(error.path, "walls[0].x_range_m");
+        assert_eq!(error.path(), "walls[0].x_range_m");
     }
 }

@@ -21,7 +21,7 @@ use std::sync::Arc;
 pub type Window = [f64; 2];
 
 /// A whole scene: run settings, gravity and heating, materials, walls, particles, lattice blocks and sources.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
     /// A short name (outputs are named after it). Default: the file name without `.ron`.
@@ -60,25 +60,6 @@ pub struct Scene {
     /// The text the scene was loaded from, for error spans; `None` for scenes constructed in code.
     #[serde(skip)]
     pub source: Option<Arc<SourceText>>,
-}
-
-impl Default for Scene {
-    fn default() -> Self {
-        Self {
-            name: String::new(),
-            description: String::new(),
-            run: Run::default(),
-            gravity: Gravity::default(),
-            heating: None,
-            materials: Vec::new(),
-            walls: Vec::new(),
-            particles: Vec::new(),
-            blocks: Vec::new(),
-            sources: Vec::new(),
-            view: None,
-            source: None,
-        }
-    }
 }
 
 /// How long, how finely and how safely to run.
