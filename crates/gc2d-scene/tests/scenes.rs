@@ -53,3 +53,17 @@ fn the_bundled_scenes_contain_what_their_headers_say() {
         assert!(summary.time_step_s <= 0.25 * summary.stable_time_step_s.unwrap());
     }
 }
+
+#[test]
+fn the_example_in_the_format_documentation_loads_and_builds() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md");
+    let doc = std::fs::read_to_string(path).expect("docs/scene-format.md exists");
+    let examples: Vec<&str> = doc.split("```ron\n").skip(1).map(|rest| rest.split("```").next().unwrap()).collect();
+    assert!(!examples.is_empty());
+    for example in examples {
+        let scene = Scene::from_str(example, "example.ron").unwrap_or_else(|e| panic!("{}", e.render_plain()));
+        let summary = scene.summary().unwrap_or_else(|e| panic!("{}", e.render_plain()));
+        // The box (4 walls) and a lattice of 11 × 3 hexagons.
+        assert_eq!((summary.wall_polygons, summary.particles), (4, 33));
+    }
+}
