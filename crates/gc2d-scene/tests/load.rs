@@ -145,6 +145,25 @@ fn scenes_round_trip_through_ron_text() {
 }
 
 #[test]
+fn constructors_fill_the_documented_defaults() {
+    let recipe = gc2d_scene::Recipe::new([0.002, 0.002]);
+    let text = "Scene(particles: [(shape: Random(recipe: (semi_axes_m: (0.002, 0.002))))],
+        blocks: [(x_range_m: (0, 0.01), y_range_m: (0.01, 0.01), grid_spacing_m: (0.005, 0.005), shape: (semi_axes_m: (0.002, 0.002)))],
+        sources: [(position_m: (0, 0.1), shape: (semi_axes_m: (0.002, 0.002)))])";
+    let parsed = Scene::from_str(text, "defaults.ron").unwrap();
+    let built = Scene {
+        particles: vec![gc2d_scene::Particle::new(Shape::Random { recipe })],
+        blocks: vec![gc2d_scene::Block::new([0.0, 0.01], [0.01, 0.01], [0.005, 0.005], recipe)],
+        sources: vec![gc2d_scene::Source::new([0.0, 0.1], recipe)],
+        name: "defaults".into(),
+        ..Scene::default()
+    };
+    assert_eq!(Scene { source: None, ..parsed }, built);
+    let spring: gc2d_scene::DragSpring = ron::from_str("()").unwrap();
+    assert_eq!(spring, gc2d_scene::DragSpring::default());
+}
+
+#[test]
 fn scenes_constructed_in_code_build_without_a_source_text() {
     let scene = Scene {
         particles: vec![gc2d_scene::Particle {

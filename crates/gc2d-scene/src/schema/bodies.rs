@@ -33,6 +33,21 @@ pub struct Particle {
     pub drag_spring: Option<DragSpring>,
 }
 
+impl Particle {
+    /// A particle of the given shape with every other field at its default (at rest, first material, no spring).
+    pub fn new(shape: Shape) -> Self {
+        Self {
+            shape,
+            position_m: None,
+            angle_rad: 0.0,
+            velocity_m_s: [0.0, 0.0],
+            angular_velocity_rad_s: 0.0,
+            material: None,
+            drag_spring: None,
+        }
+    }
+}
+
 /// A spring of rest length 0 from a point of a particle to a pulling point that moves along a straight line
 /// ("Teilchen mit Feder", §2.12).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -57,6 +72,20 @@ pub struct DragSpring {
     /// (t1, t2) during which the pulling point moves, s (`DRAG_TIME`). Default (0, 1).
     #[serde(default = "defaults::unit_window")]
     pub window_s: [f64; 2],
+}
+
+impl Default for DragSpring {
+    /// gc2d's defaults: K = 100 N/m, both points at the origin, direction 0, 0.1 m/s during (0, 1) s.
+    fn default() -> Self {
+        Self {
+            stiffness_n_m: defaults::drag_stiffness(),
+            fixing_point_m: [0.0, 0.0],
+            pulling_start_m: [0.0, 0.0],
+            direction_rad: 0.0,
+            speed_m_s: defaults::drag_speed(),
+            window_s: defaults::unit_window(),
+        }
+    }
 }
 
 /// Particles on a lattice inside a rectangle (gsi `GENERATE_BLOCK`). Rows sit at y_min + j·Δy up to y_max,
@@ -85,6 +114,23 @@ pub struct Block {
     /// Initial direction range (min, max), radians CCW from +x, drawn uniformly (`ANGLE_RANGE`). Default (0, 2π).
     #[serde(default = "defaults::full_turn")]
     pub direction_range_rad: [f64; 2],
+}
+
+impl Block {
+    /// A block with the given ranges, spacing and recipe, and every other field at its default (`Rect`, at rest,
+    /// first material).
+    pub fn new(x_range_m: [f64; 2], y_range_m: [f64; 2], grid_spacing_m: [f64; 2], shape: Recipe) -> Self {
+        Self {
+            x_range_m,
+            y_range_m,
+            grid_spacing_m,
+            grid: GridType::Rect,
+            shape,
+            material: None,
+            speed_range_m_s: [0.0, 0.0],
+            direction_range_rad: defaults::full_turn(),
+        }
+    }
 }
 
 /// A lattice type of GENERATE_BLOCK (Abb. B.6). The scatter is an offset in [−Δx/2, Δx/2] × [−Δy/2, Δy/2].
@@ -130,6 +176,22 @@ pub struct Source {
     /// The material's name. Default: the first material.
     #[serde(default)]
     pub material: Option<String>,
+}
+
+impl Source {
+    /// A source at `position_m` drawing from `shape`, every other field at gc2d's default (width 0, `Absolute`,
+    /// window (0, 1) s, one particle per 0.1 s, first material).
+    pub fn new(position_m: [f64; 2], shape: Recipe) -> Self {
+        Self {
+            position_m,
+            width_m: 0.0,
+            height: DropHeight::Absolute,
+            window_s: defaults::unit_window(),
+            interval_s: defaults::source_interval(),
+            shape,
+            material: None,
+        }
+    }
 }
 
 /// Where a source inserts vertically.

@@ -5,7 +5,7 @@ use super::defaults;
 use serde::{Deserialize, Serialize};
 
 /// One outline. Every variant but `Polygon` is centred on its centroid; `Polygon` corners are written where they
-/// are (see `position_m` of [`super::Particle`] and [`super::Wall`]).
+/// are (see `position_m` of [`super::Particle`] and [`super::WallItem::Wall`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Shape {
@@ -106,6 +106,20 @@ pub struct Recipe {
     /// The orientation (`PART_ROT`, `RANDOM_ROT`). Default `Const(0.0)`.
     #[serde(default)]
     pub orientation: Orientation,
+}
+
+impl Recipe {
+    /// A recipe with the given semi-axes and every other field at its default (6 regular corners, no scatter).
+    pub fn new(semi_axes_m: [f64; 2]) -> Self {
+        Self {
+            semi_axes_m,
+            size_spread: SizeSpread::Const,
+            corners: defaults::corners(),
+            corner_spread: CountSpread::Const,
+            corner_positions: CornerPositions::Regular,
+            orientation: Orientation::default(),
+        }
+    }
 }
 
 /// Scatter of a size: each semi-axis drawn independently in [l·(1 − I), l·(1 + I)] with 0 ≤ I < 1.
