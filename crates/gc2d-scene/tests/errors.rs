@@ -1,0 +1,123 @@
+//! Every error class: the kind, field path and file:line:column of the error, and the rendered diagnostic
+//! (snapshots in `tests/snapshots/`).
+
+use gc2d_scene::{ErrorKind, Scene, SceneError};
+
+/// Loads and builds `text` as `bad.ron` and returns the error.
+fn error_of(text: &str) -> SceneError {
+    match Scene::from_str(text, "bad.ron").and_then(|scene| scene.build().map(drop)) {
+        Ok(()) => panic!("expected an error for {text}"),
+        Err(error) => error,
+    }
+}
+
+/// Asserts kind, path and location, and snapshots the rendered report.
+fn check(name: &str, text: &str, kind: ErrorKind, path: &str, line_column: (usize, usize)) -> SceneError {
+    let error = error_of(text);
+    assert_eq!(error.kind(), kind, "{}", error.render_plain());
+    assert_eq!(error.path(), path, "{}", error.render_plain());
+    let location = error.location().cloned().expect("located");
+    assert_eq!((location.file.as_str(), location.line, location.column), ("bad.ron", line_column.0, line_column.1));
+    assert!(error.to_string().starts_with(&format!("bad.ron:{}:{}: `{path}`: ", line_column.0, line_column.1)));
+    insta::assert_snapshot!(name, error.render_plain());
+    error
+}
+
+#[test]
+fn syntax_errors_name_the_position() {
+    check("syntax", "Scene(\n    run: (seed: 1,\n)", ErrorKind::Syntax, "run", (3, 1));
+}
+
+#[test]
+fn unknown_fields_suggest_the_closest_name() {
+    let text = "Scene(\n    materials: [(name: \"sand\", gamm: 0.5)],\n)";
+    let error = check("unknown_field", text, ErrorKind::UnknownName, "materials[0].gamm", (2, 32));
+    assert!(error.message().contains("unknown field `gamm`, did you mean `gamma`?"));
+}
+
+#[test]
+fn unknown_variants_suggest_the_spelling_ignoring_case() {
+    let text = "Scene(\n    blocks: [(x_range_m: (0, 1), y_range_m: (0, 1), grid_spacing_m: (0.1, 0.1), grid: FCC_GAUSS,\n    shape: (semi_axes_m: (0.01, 0.01)))],\n)";
+    let error = check("unknown_variant", text, ErrorKind::UnknownName, "blocks[0].grid", (2, 87));
+    assert!(error.message().ends_with("did you mean `FccGauss`?"));
+}
+
+#[test]
+fn missing_fields_name_the_structure() {
+    let text = "Scene(\n    sources: [(position_m: (0, 1))],\n)";
+    check("missing_field", text, ErrorKind::MissingField, "sources[0].shape", (2, 34));
+}
+
+#[test]
+fn wrong_types_show_what_was_found() {
+    let text = "Scene(\n    run: (end_time_s: \"long\"),\n)";
+    let error = check("wrong_type", text, ErrorKind::Type, "run.end_time_s", (2, 23));
+    assert!(error.message().contains("found `\"long\"`"), "{}", error.message());
+    let text = "Scene(\n    particles: [(shape: Square(side_m: 0.01), position_m: (0, 1, 2))],\n)";
+    check("wrong_length", text, ErrorKind::Type, "particles[0].position_m", (2, 66));
+}
+
+#[test]
+fn out_of_range_values_point_at_the_value() {
+    let text = "Scene(\n    materials: [(name: \"sand\", mu: -0.1)],\n)";
+    check("negative_mu", text, ErrorKind::Value, "materials[0].mu", (2, 36));
+    let text = "Scene(\n    materials: [(name: \"sand\", youngs_modulus_n_m: 0)],\n)";
+    check("zero_e", text, ErrorKind::Value, "materials[0].youngs_modulus_n_m", (2, 52));
+}
+
+#[test]
+fn non_convex_corners_name_the_vertex() {
+    let text = "Scene(\n    walls: [\n        Wall(shape: Polygon(corners_m: [(0, 0), (1, 0), (0.2, 0.2), (0, 1)])),\n    ],\n)";
+    let error = check("non_convex", text, ErrorKind::Value, "walls[0].shape.corners_m[2]", (3, 57));
+    assert_eq!(error.message(), "the polygon is not convex at vertex 2");
+}
+
+#[test]
+fn unknown_materials_suggest_a_declared_one() {
+    let text = "Scene(\n    materials: [(name: \"sand\")],\n    particles: [(shape: Square(side_m: 0.01), material: \"snad\")],\n)";
+    let error = check("unknown_material", text, ErrorKind::Value, "particles[0].material", (3, 57));
+    assert!(error.message().ends_with("did you mean `sand`?"));
+}
+
+#[test]
+fn materials_must_share_one_contact_law() {
+    let text = "Scene(\n    materials: [\n        (name: \"sand\"),\n        (name: \"glass\", density_kg_m2: 2500, mu: 0.3),\n    ],\n)";
+    check("two_contact_laws", text, ErrorKind::Value, "materials[1].mu", (4, 50));
+}
+
+#[test]
+fn time_steps_above_the_bound_name_the_limiting_particle() {
+    let text =
+        "Scene(\n    run: (time_step_s: 1e-4),\n    particles: [(shape: Regular(corners: 6, radius_m: 0.002))],\n)";
+    let error = check("unsafe_time_step", text, ErrorKind::TimeStep, "run.time_step_s", (2, 24));
+    // A regular hexagon of circumradius 2 mm has inscribed radius √3 mm: (π/10)·sqrt(π·3e-6·5000/1e7) = 2.157e-5 s.
+    assert!(error.message().contains("stable bound 2.157e-5 s"), "{}", error.message());
+    assert_eq!(error.related_errors().len(), 1);
+    assert_eq!(error.related_errors()[0].path(), "particles[0]");
+    // Allowed explicitly, the same scene builds.
+    let allowed = text.replace("time_step_s: 1e-4", "time_step_s: 1e-4, allow_unsafe_time_step: true");
+    assert!(Scene::from_str(&allowed, "ok.ron").unwrap().build().is_ok());
+}
+
+#[test]
+fn overlapping_initial_particles_are_refused() {
+    let text = "Scene(\n    particles: [\n        (shape: Square(side_m: 0.01)),\n        (shape: Square(side_m: 0.01), position_m: (0.008, 0)),\n    ],\n)";
+    let error = check("overlap", text, ErrorKind::Overlap, "particles[1]", (4, 9));
+    assert!(error.message().contains("20.0 %"), "{}", error.message());
+}
+
+#[test]
+fn all_errors_of_a_pass_are_reported_together() {
+    let text = "Scene(\n    run: (end_time_s: -1),\n    materials: [(name: \"sand\", gamma: -0.5)],\n    heating: (window_s: (2, 1)),\n)";
+    let error = check("several", text, ErrorKind::Value, "run.end_time_s", (2, 23));
+    let paths: Vec<&str> = error.related_errors().iter().map(|e| e.path()).collect();
+    assert_eq!(paths, ["heating.window_s", "materials[0].gamma"]);
+    assert_eq!(error.related_errors()[1].location().map(|l| (l.line, l.column)), Some((3, 39)));
+}
+
+#[test]
+fn unreadable_files_are_io_errors() {
+    let error = Scene::from_path("/nonexistent/scene.ron").err().unwrap();
+    assert_eq!(error.kind(), ErrorKind::Io);
+    assert!(error.to_string().contains("/nonexistent/scene.ron"));
+}
