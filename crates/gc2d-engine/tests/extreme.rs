@@ -1,0 +1,295 @@
+//! Stiff, extreme and failure cases (reference §3.6, §10.4, §2.4): each either runs with the physics it should
+//! have, or stops with a message that names the time, the bodies and a time step to try. The numbers asserted here
+//! are listed in docs/validation.md, "Stiff and extreme cases (§10.4)".
+
+mod common;
+
+use common::*;
+use gc2d_engine::integrator::max_stable_time_step_elongated;
+use gc2d_engine::{BodyId, SafetyError, World, WorldConfig, WorldError};
+use gc2d_geometry::{
+    AngleMode, ContactKind, ConvexPolygon, DVec2, Pose, contact_geometry, cut_rectangle, ellipse_polygon, rectangle,
+    regular_polygon, square,
+};
+use std::f64::consts::PI;
+
+/// The §3.6 bound (π/10)·sqrt(π r² ρ/E) of a particle with inscribed radius `r` at ρ = 5000 kg/m².
+fn bound(r: f64, e: f64) -> f64 {
+    max_stable_time_step_elongated(r, RHO_THESIS, e).unwrap()
+}
+
+/// Steps until `t_end` or the first error, calling `observe` after every successful step.
+fn run_observing(world: &mut World, t_end: f64, mut observe: impl FnMut(&World)) -> Result<(), WorldError> {
+    while world.time() + 0.5 * world.time_step() < t_end {
+        world.step()?;
+        observe(world);
+    }
+    Ok(())
+}
+
+/// A static floor, 0.4 m wide and 1 cm thick, whose top surface is the line y = 0.
+fn add_floor(world: &mut World) -> BodyId {
+    add_static_wall(world, &rectangle(0.4, 0.01).unwrap(), Pose::new(DVec2::new(0.0, -0.005), 0.0))
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Very stiff particles (§10.4): E = 1e9 and 1e11 N/m with Δt scaled with the bound.
+// ---------------------------------------------------------------------------------------------------------------
+
+/// Δt as a fraction of the §3.6 bound in the stiff runs (the thesis ran 4–9× below the bound).
+const STIFF_FRACTION: f64 = 0.25;
+/// Impact speed of the stiff drops, m/s.
+const STIFF_SPEED: f64 = 0.05;
+
+/// What a drop of a 12-gon on a floor measured.
+struct Drop {
+    /// Rebound speed over impact speed at the end of the first contact.
+    restitution: f64,
+    /// Largest overlap over the particle's area during the run.
+    peak_overlap: f64,
+    /// Overlap fraction at the end.
+    static_overlap: f64,
+    /// Floor force over the weight at the end.
+    floor_force_over_weight: f64,
+    /// Speed at the end, m/s.
+    final_speed: f64,
+    /// The characteristic length l of the floor contact (frozen at first contact), m.
+    inscribed_radius: f64,
+}
+
+/// A regular 12-gon (circumradius 1.5 mm, flat side down) hits a floor at `STIFF_SPEED`, γ = μ = 0.5, and settles.
+fn stiff_drop(e: f64) -> Drop {
+    let shape = regular_polygon(12, 1.5e-3).unwrap();
+    let r = shape.inscribed_radius();
+    let mut world = world(config(STIFF_FRACTION * bound(r, e), law(e, 0.5, 0.5), G));
+    let floor = add_floor(&mut world);
+    let start = Pose::new(DVec2::new(0.0, r + 1e-6), PI / 12.0);
+    let p = world.add_particle(&shape, start, RHO_THESIS, DVec2::new(0.0, -STIFF_SPEED), 0.0).unwrap();
+    let (mut peak_overlap, mut was_touching, mut restitution) = (0.0_f64, false, None);
+    run_observing(&mut world, 0.025, |w| {
+        peak_overlap = peak_overlap.max(w.stats().max_overlap_fraction);
+        let touching = w.stats().contacts > 0;
+        if was_touching && !touching && restitution.is_none() {
+            restitution = Some(velocity(w, p).y / STIFF_SPEED);
+        }
+        was_touching = touching;
+    })
+    .unwrap_or_else(|error| panic!("E = {e:e}: {error}"));
+    let weight = world.bodies().mass[p.index()] * G;
+    Drop {
+        restitution: restitution.expect("the particle must bounce"),
+        peak_overlap,
+        static_overlap: world.stats().max_overlap_fraction,
+        floor_force_over_weight: contact_force_on(&world, p, floor).y / weight,
+        final_speed: velocity(&world, p).length(),
+        inscribed_radius: r,
+    }
+}
+
+#[test]
+fn stiff_particles_bounce_and_settle_at_the_scaled_time_step() {
+    let drops: Vec<(f64, Drop)> = [1e7, 1e9, 1e11].into_iter().map(|e| (e, stiff_drop(e))).collect();
+    for (e, d) in &drops {
+        // The flat contact is a linear spring, F = E·L·h/l, and the damping scales with sqrt(E·m): the collision is
+        // the same in units of its own duration, so the restitution does not depend on E (0.614, 0.624, 0.625; at
+        // E = 1e7 gravity acts over a longer contact and takes a little more) ...
+        assert!((d.restitution - drops[2].1.restitution).abs() < 0.015, "E = {e:e}: restitution {}", d.restitution);
+        assert!((0.55..0.7).contains(&d.restitution), "E = {e:e}: restitution {}", d.restitution);
+        // ... the peak overlap falls as 1/sqrt(E) (depth ∝ v·sqrt(m/E)): 3.74e-4, 3.68e-5, 3.68e-6 ...
+        let scaled_peak = d.peak_overlap * (e / 1e7).sqrt();
+        assert!((scaled_peak - drops[2].1.peak_overlap * 1e2).abs() < 0.03 * scaled_peak, "E = {e:e}: {scaled_peak:e}");
+        assert!(d.peak_overlap < 4e-4 * (1e7 / e).sqrt(), "E = {e:e}: peak overlap {:e}", d.peak_overlap);
+        // ... and the resting overlap is m·g·l/E over the area, ρ·g·l/E with l = |r_i| = the inscribed radius of the
+        // flat face: 7.107e-6, 7.107e-8, 7.107e-10.
+        let expected = RHO_THESIS * G * d.inscribed_radius / e;
+        assert!((d.static_overlap / expected - 1.0).abs() < 1e-3, "E = {e:e}: rest overlap {:e}", d.static_overlap);
+        assert!((d.floor_force_over_weight - 1.0).abs() < 1e-6, "E = {e:e}: floor force {}", d.floor_force_over_weight);
+        assert!(d.final_speed < 1e-9, "E = {e:e}: still moving at {:e} m/s", d.final_speed);
+    }
+}
+
+#[test]
+fn stiff_particles_are_refused_at_the_time_step_of_soft_ones() {
+    let shape = regular_polygon(12, 1.5e-3).unwrap();
+    let r = shape.inscribed_radius();
+    let soft_dt = STIFF_FRACTION * bound(r, E_THESIS);
+    for e in [1e9, 1e11] {
+        let mut world = world(config(soft_dt, law(e, 0.5, 0.5), G));
+        world.add_particle(&shape, Pose::new(DVec2::ZERO, 0.0), RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+        let error = world.step().expect_err("the soft Δt must be refused for a stiff material");
+        let safe = bound(r, e);
+        match &error {
+            WorldError::Safety(SafetyError::UnsafeTimeStep { dt, safe_dt, particle, e_modulus, .. }) => {
+                assert_eq!((*dt, *particle, *e_modulus), (soft_dt, 0, e));
+                assert!((safe_dt - safe).abs() < 1e-12 * safe, "bound {safe_dt:e}, expected {safe:e}");
+            }
+            other => panic!("E = {e:e}: expected UnsafeTimeStep, got {other:?}"),
+        }
+        let message = error.to_string();
+        assert!(message.contains(&format!("at most {safe:.3e} s")), "the message must name the safe Δt: {message}");
+        assert_eq!(world.steps(), 0);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Mass ratio 1:1000 (§10.4 "heavy mass ratios"): the bound is set by the light particle.
+// ---------------------------------------------------------------------------------------------------------------
+
+/// Side of the light grain, m; the heavy square has √1000 times the side, so 1000 times the mass.
+const GRAIN: f64 = 0.002;
+
+#[test]
+fn heavy_square_hits_a_light_one_conserving_momentum() {
+    let (light, heavy_side) = (square(GRAIN).unwrap(), GRAIN * 1000f64.sqrt());
+    let heavy = square(heavy_side).unwrap();
+    let light_bound = bound(0.5 * GRAIN, E_THESIS);
+    for fraction in [1.0, 0.5] {
+        let mut world = world(config(fraction * light_bound, law(E_THESIS, 0.0, 0.0), 0.0));
+        assert_eq!(world.config().time_step, fraction * light_bound);
+        let speed = 0.5;
+        let start = Pose::new(DVec2::new(-0.5 * heavy_side - 1e-4, 0.0), 0.0);
+        let h = world.add_particle(&heavy, start, RHO_THESIS, DVec2::new(speed, 0.0), 0.0).unwrap();
+        let l = world.add_particle(&light, Pose::new(DVec2::new(0.5 * GRAIN, 0.0), 0.0), RHO_THESIS, DVec2::ZERO, 0.0);
+        let l = l.unwrap();
+        assert_eq!(world.stable_time_step(), Some(light_bound), "the light particle sets the bound");
+        let (mh, ml) = (world.bodies().mass[h.index()], world.bodies().mass[l.index()]);
+        assert!((mh / ml - 1000.0).abs() < 1e-9);
+        let p0 = momentum(&world);
+        let kinetic_before = 0.5 * mh * speed * speed;
+        let (mut drift, mut peak) = (0.0_f64, 0.0_f64);
+        run_observing(&mut world, 2e-3, |w| {
+            drift = drift.max((momentum(w) - p0).length());
+            peak = peak.max(w.stats().max_overlap_fraction);
+        })
+        .unwrap_or_else(|error| panic!("Δt = {fraction} × bound: {error}"));
+        // 1D elastic collision: v_h = v(M − m)/(M + m), v_l = 2vM/(M + m).
+        let (vh, vl) = (speed * (mh - ml) / (mh + ml), 2.0 * speed * mh / (mh + ml));
+        let (vh_run, vl_run) = (velocity(&world, h).x, velocity(&world, l).x);
+        eprintln!(
+            "ratio f={fraction}: drift {drift:e} vh {} vl {} ke {:e} peak {peak}",
+            vh_run / vh - 1.0,
+            vl_run / vl - 1.0,
+            world.ledger().kinetic() / kinetic_before - 1.0
+        );
+        assert!(drift <= 1e-14 * p0.length(), "momentum drift {drift:e} of {}", p0.length());
+        assert!((vl_run / vl - 1.0).abs() < 3e-3 * fraction, "light speed {vl_run}, expected {vl}");
+        assert!((vh_run / vh - 1.0).abs() < 1e-5, "heavy speed {vh_run}, expected {vh}");
+        assert!((world.ledger().kinetic() / kinetic_before - 1.0).abs() < 1e-5 * fraction);
+    }
+}
+
+#[test]
+fn heavy_block_on_two_light_grains_comes_to_rest() {
+    let grain = square(GRAIN).unwrap();
+    let block_size = DVec2::new(0.1, 0.04); // 1000 grains of area: 1000 times the mass of each grain.
+    let fraction = 0.25;
+    let mut world = world(config(fraction * bound(0.5 * GRAIN, E_THESIS), law(E_THESIS, 0.5, 0.5), G));
+    let floor = add_floor(&mut world);
+    let half = 0.5 * GRAIN;
+    let grains = [-0.045, 0.045].map(|x| {
+        world.add_particle(&grain, Pose::new(DVec2::new(x, half), 0.0), RHO_THESIS, DVec2::ZERO, 0.0).unwrap()
+    });
+    let block_pose = Pose::new(DVec2::new(0.0, GRAIN + 0.5 * block_size.y), 0.0);
+    let block = rectangle(block_size.x, block_size.y).unwrap();
+    let block = world.add_particle(&block, block_pose, RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+    let b = world.bodies();
+    assert!((b.mass[block.index()] / b.mass[grains[0].index()] - 1000.0).abs() < 1e-9);
+    let weight: f64 = b.particles().map(|id| b.mass[id.index()] * G).sum();
+    let mut peak = 0.0_f64;
+    // Largest |v_y| of the block in each tenth of a second.
+    let mut envelope = [0.0_f64; 4];
+    run_observing(&mut world, 0.4, |w| {
+        peak = peak.max(w.stats().max_overlap_fraction);
+        let window = ((w.time() / 0.1) as usize).min(3);
+        envelope[window] = envelope[window].max(velocity(w, block).y.abs());
+    })
+    .unwrap();
+    // The block rings on its grains. A grain is light, so it sits between its two contacts like two Kelvin–Voigt
+    // elements in series; both grains together give the block the stiffness K = E·L/l and damping
+    // C = γ·sqrt(E·m⊥)·L/l of one contact (L = l·2: the grain's side over its half side), with m⊥ ≈ m_grain, the
+    // reduced mass of each contact. The damping is set by the light mass, so the heavy mode is underdamped,
+    // ζ = C/(2·sqrt(K·M)) ≈ 0.011, and decays at C/(2M) = 11.2 /s (measured 11.3 /s: ×0.323 per 0.1 s).
+    let b = world.bodies();
+    let (m_grain, m_block) = (b.mass[grains[0].index()], b.mass[block.index()] + 2.0 * b.mass[grains[0].index()]);
+    let predicted_rate = 0.5 * (E_THESIS * m_grain).sqrt() * 2.0 / (2.0 * m_block);
+    let measured_rate = (envelope[1] / envelope[3]).ln() / 0.2;
+    assert!((measured_rate / predicted_rate - 1.0).abs() < 0.05, "decay {measured_rate} /s, {predicted_rate} /s");
+    assert!(peak < 6e-3, "peak overlap {peak}");
+    // After 0.4 s the ring is down to 3e-4 m/s and the floor carries the weight to 1.1 %, with no sideways force.
+    let floor_force: DVec2 = grains.iter().map(|&g| contact_force_on(&world, g, floor)).sum();
+    assert!((floor_force.y / weight - 1.0).abs() < 0.015, "floor force {} of the weight", floor_force.y / weight);
+    assert!(floor_force.x.abs() < 1e-12 * weight, "sideways floor force {:e} N", floor_force.x);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Elongated 10:1 particles (§3.6, §10.4): the bound from the inscribed radius, piles, and flat plates at rest.
+// ---------------------------------------------------------------------------------------------------------------
+
+/// The 10:1 plate: 10 mm × 1 mm.
+const PLATE: DVec2 = DVec2::new(0.01, 0.001);
+
+/// Distance from the origin to the nearest edge line of a polygon given by its corners around the origin.
+fn nearest_edge_line(corners: &[DVec2]) -> f64 {
+    (0..corners.len())
+        .map(|i| {
+            let (a, b) = (corners[i], corners[(i + 1) % corners.len()]);
+            (b - a).perp_dot(-a).abs() / (b - a).length()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn elongated_particles_take_the_bound_from_the_inscribed_radius() {
+    let plate = rectangle(PLATE.x, PLATE.y).unwrap();
+    // REGULAR corners on the ellipse with semi-axes 5 mm and 0.5 mm: symmetric, so the centroid is the centre.
+    let corners: Vec<DVec2> = (0..24)
+        .map(|i| {
+            let phi = 2.0 * PI * i as f64 / 24.0;
+            DVec2::new(0.5 * PLATE.x * phi.cos(), 0.5 * PLATE.y * phi.sin())
+        })
+        .collect();
+    let ellipse = ellipse_polygon(24, 0.5 * PLATE.x, 0.5 * PLATE.y, AngleMode::Regular, &mut rand::rng()).unwrap();
+    for (shape, r_in) in [(plate, 0.5 * PLATE.y), (ellipse, nearest_edge_line(&corners))] {
+        let mut world = world(config(1e-7, law(E_THESIS, 0.5, 0.5), G));
+        world.add_particle(&shape, Pose::new(DVec2::ZERO, 0.7), RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+        let expected = PI / 10.0 * (PI * r_in * r_in * RHO_THESIS / E_THESIS).sqrt();
+        let got = world.stable_time_step().unwrap();
+        assert!((got / expected - 1.0).abs() < 1e-12, "bound {got:e}, expected {expected:e} (r_in = {r_in:e})");
+        // The mass of the particle itself would give a bound sqrt(m/(π r² ρ)) times larger: 3.6 for the plate.
+        let by_mass = PI / 10.0 * (shape.area() * RHO_THESIS / E_THESIS).sqrt();
+        assert!(by_mass / got > 3.0, "the particle's own mass would allow {:.2} times the bound", by_mass / got);
+    }
+}
+
+/// A 10:1 plate lying on a floor, just touching, at Δt = `fraction` × its bound, γ = `gamma`, μ = 0.5. Returns the
+/// largest deviation of the floor force from the weight over 20–30 ms, in weights, or the error that stopped it.
+fn plate_on_floor(fraction: f64, gamma: f64) -> Result<f64, WorldError> {
+    let plate = rectangle(PLATE.x, PLATE.y).unwrap();
+    let mut world = world(config(fraction * bound(0.5 * PLATE.y, E_THESIS), law(E_THESIS, gamma, 0.5), G));
+    let floor = add_floor(&mut world);
+    let p = world.add_particle(&plate, Pose::new(DVec2::new(0.0, 0.5 * PLATE.y), 0.0), RHO_THESIS, DVec2::ZERO, 0.0)?;
+    let weight = world.bodies().mass[p.index()] * G;
+    world.run_until(0.02)?;
+    let mut deviation = 0.0_f64;
+    run_observing(&mut world, 0.03, |w| {
+        deviation = deviation.max((contact_force_on(w, p, floor).y / weight - 1.0).abs());
+    })?;
+    Ok(deviation)
+}
+
+#[test]
+fn flat_plates_rest_only_well_below_the_bound() {
+    // γ = 0.5: at rest at 0.3 of the bound; at 0.5 the contact chatters at the Nyquist frequency (force 0 and
+    // twice the weight on alternate steps, no check fires); at 1.0 the energy check stops the run.
+    let rest = plate_on_floor(0.3, 0.5).unwrap();
+    assert!(rest < 1e-6, "at 0.3 × the bound the plate must rest: force deviation {rest:e} weights");
+    let chatter = plate_on_floor(0.5, 0.5).unwrap();
+    assert!(chatter > 0.9, "at 0.5 × the bound the flat contact chatters: deviation {chatter} weights");
+    match plate_on_floor(1.0, 0.5) {
+        Err(WorldError::Safety(SafetyError::EnergyJump { step, .. })) => assert!(step < 100, "stopped at step {step}"),
+        other => panic!("at the bound the flat contact must blow up, got {other:?}"),
+    }
+    // The mode is the normal damping's, not the spring's: with γ = 0.1 the plate rests at the full bound.
+    let weakly_damped = plate_on_floor(1.0, 0.1).unwrap();
+    assert!(weakly_damped < 1e-6, "γ = 0.1 at the bound: force deviation {weakly_damped:e} weights");
+}
