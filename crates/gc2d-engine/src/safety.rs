@@ -1,8 +1,9 @@
 //! Safety before speed: the time-step bound checked at load, and blow-up detection during the run (reference §3.6,
 //! §10.4). Every error names the time, the bodies involved and a time step to try.
 
-use crate::bodies::{Bodies, BodyId};
+use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::integrator::max_stable_time_step_elongated;
+use gc2d_geometry::contact_geometry;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -121,6 +122,22 @@ pub enum SafetyError {
         /// A time step to try, s.
         suggested_dt: f64,
     },
+    /// Two bodies already overlap when the run starts. Their elastic energy is not in the energy ledger, and the
+    /// first step sees the whole overlap as new, so the normal damping kicks them apart as if they had collided at
+    /// overlap-depth/Δt: the energy check would stop the run with a misleading "reduce the time step".
+    #[error(
+        "bodies {a} and {b} overlap by {percent:.3} % of the smaller particle's area at the start (t = 0 s, before \
+         step 1); particles must start apart — place them further apart (for a generated block, a grid spacing of \
+         at least the particle size); a smaller time step does not help"
+    )]
+    InitialOverlap {
+        /// First body.
+        a: u32,
+        /// Second body.
+        b: u32,
+        /// Overlap in percent of the smaller particle's area (of the wall's partner for a wall).
+        percent: f64,
+    },
     /// The total energy rose by more than the work put in can explain.
     #[error(
         "the simulation blew up at t = {time:.6} s (step {step}): the energy rose by {gain:.3e} J more than the work \
@@ -172,6 +189,40 @@ pub fn check_time_step(bodies: &Bodies, e_modulus: f64, dt: f64, limits: &Safety
         inscribed_radius: bodies.inscribed_radius[i] * bodies.pose[i].scale,
         e_modulus,
     })
+}
+
+/// Overlaps at most this fraction of the smaller particle's area count as touching at the start: bodies placed edge
+/// to edge by a computed lattice may overlap by round-off.
+pub const INITIAL_OVERLAP_TOLERANCE: f64 = 1e-12;
+
+/// The deepest overlap between living bodies at their current poses, as (a, b, overlap over the smaller particle's
+/// area), if it exceeds [`INITIAL_OVERLAP_TOLERANCE`]. Walls are not paired with walls. Meant to run once before the
+/// first step: a sweep along x over the boxes sorted by their lower x bound, so it allocates.
+pub fn deepest_initial_overlap(bodies: &Bodies) -> Option<(BodyId, BodyId, f64)> {
+    let mut order: Vec<usize> = (0..bodies.len()).filter(|&i| bodies.alive[i]).collect();
+    order.sort_by(|&i, &j| bodies.aabb[i].min.x.total_cmp(&bodies.aabb[j].min.x));
+    let area = |i: usize| match bodies.kind[i] {
+        BodyKind::Particle => bodies.area[i] * bodies.pose[i].scale * bodies.pose[i].scale,
+        BodyKind::Wall => f64::INFINITY,
+    };
+    let mut deepest: Option<(BodyId, BodyId, f64)> = None;
+    for (k, &i) in order.iter().enumerate() {
+        for &j in order[k + 1..].iter().take_while(|&&j| bodies.aabb[j].min.x <= bodies.aabb[i].max.x) {
+            let both_walls = bodies.kind[i] == BodyKind::Wall && bodies.kind[j] == BodyKind::Wall;
+            if both_walls || !bodies.aabb[i].overlaps(&bodies.aabb[j]) {
+                continue;
+            }
+            let (a, b) = (BodyId(i.min(j) as u32), BodyId(i.max(j) as u32));
+            let Some(geometry) = contact_geometry(bodies.world_vertices_of(a), bodies.world_vertices_of(b)) else {
+                continue;
+            };
+            let fraction = geometry.area / area(i).min(area(j));
+            if fraction > INITIAL_OVERLAP_TOLERANCE && deepest.is_none_or(|d| fraction > d.2) {
+                deepest = Some((a, b, fraction));
+            }
+        }
+    }
+    deepest
 }
 
 /// The largest distance a point of particle `i` travels in a step of `dt` at its current velocities,

@@ -301,10 +301,14 @@ impl World {
         )
     }
 
-    /// Advances by one Δt. The first call checks the time step and opens the energy ledger.
+    /// Advances by one Δt. The first call checks the time step, refuses bodies that already overlap, and opens the
+    /// energy ledger.
     pub fn step(&mut self) -> Result<(), WorldError> {
         if !self.started {
             self.check_time_step()?;
+            if let Some((a, b, fraction)) = safety::deepest_initial_overlap(&self.bodies) {
+                return Err(SafetyError::InitialOverlap { a: a.0, b: b.0, percent: 100.0 * fraction }.into());
+            }
             self.started = true;
             self.refresh_stored_energies();
             self.ledger.initial_total = self.ledger.total();
