@@ -301,10 +301,14 @@ impl World {
         )
     }
 
-    /// Advances by one Δt. The first call checks the time step and opens the energy ledger.
+    /// Advances by one Δt. The first call checks the time step, refuses bodies that already overlap, and opens the
+    /// energy ledger.
     pub fn step(&mut self) -> Result<(), WorldError> {
         if !self.started {
             self.check_time_step()?;
+            if let Some((a, b, fraction)) = safety::deepest_initial_overlap(&self.bodies) {
+                return Err(SafetyError::InitialOverlap { a: a.0, b: b.0, percent: 100.0 * fraction }.into());
+            }
             self.started = true;
             self.refresh_stored_energies();
             self.ledger.initial_total = self.ledger.total();
@@ -663,6 +667,9 @@ impl World {
             }
             .into());
         }
+        if let Some(error) = self.excessive_travel(suggested) {
+            return Err(error.into());
+        }
         let gain = self.ledger.balance_error();
         let scale = self.ledger.energy_scale();
         // A NaN gain fails every comparison, so it is caught explicitly: a NaN never passes silently.
@@ -677,6 +684,28 @@ impl World {
             .into());
         }
         Ok(())
+    }
+
+    /// The first particle that moved further in the last step than the travel limit allows (reference §3.6
+    /// failure mode 2: a particle that jumps right across a thin wall is never seen overlapping it).
+    fn excessive_travel(&self, suggested_dt: f64) -> Option<SafetyError> {
+        let fraction = self.config.safety.max_travel_fraction;
+        let dt = self.config.time_step;
+        let b = &self.bodies;
+        b.particles().find_map(|id| {
+            let i = id.index();
+            let inscribed_radius = b.inscribed_radius[i] * b.pose[i].scale;
+            let travel = safety::step_travel(b, i, dt);
+            (travel > fraction * inscribed_radius).then(|| SafetyError::ExcessiveTravel {
+                time: self.time,
+                step: self.steps,
+                body: id.0,
+                travel,
+                inscribed_radius,
+                limit_percent: 100.0 * fraction,
+                suggested_dt: suggested_dt.min(0.5 * dt * fraction * inscribed_radius / travel),
+            })
+        })
     }
 }
 

@@ -133,6 +133,7 @@ fn non_finite_numbers_never_pass_silently() {
     violent.gravity = gc2d_engine::schedules::GravitySchedule::constant(0.0);
     violent.safety.max_overlap_fraction = f64::INFINITY;
     violent.safety.max_energy_gain_fraction = f64::INFINITY;
+    violent.safety.max_travel_fraction = f64::INFINITY;
     let mut world = common::world(violent);
     let shape = square(SIDE).unwrap();
     for (x, v) in [(-0.006, 1e3), (0.006, -1e3)] {
