@@ -223,7 +223,15 @@ pub fn pressure_profile(forces: &[WallForce], options: &ProfileOptions, range: O
         })
         .collect();
     let smoothed = moving_average(&pressure, options.moving_average);
-    PressureProfile { half_width: b, step, positions, pressure, smoothed, total_normal_force, force_count: forces.len() }
+    PressureProfile {
+        half_width: b,
+        step,
+        positions,
+        pressure,
+        smoothed,
+        total_normal_force,
+        force_count: forces.len(),
+    }
 }
 
 /// Centred moving average over `window` samples (rounded up to odd), shrinking at the ends.

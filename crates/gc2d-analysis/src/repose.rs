@@ -123,9 +123,8 @@ pub fn surface_envelope(snapshot: &Snapshot, spacing: f64) -> Vec<DVec2> {
     let count = ((right - left) / spacing).floor() as usize + 1;
     let mut top = vec![f64::NEG_INFINITY; count];
     for particle in &snapshot.particles {
-        let (lo, hi) = particle.vertices.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v.x), hi.max(v.x))
-        });
+        let (lo, hi) =
+            particle.vertices.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v.x), hi.max(v.x)));
         if !(lo <= hi) {
             continue;
         }

@@ -199,11 +199,8 @@ impl Snapshot {
             BodyRef::Particle(i) => new_index.get(i).copied().flatten().map(BodyRef::Particle),
             wall => Some(wall),
         };
-        let contacts = self
-            .contacts
-            .iter()
-            .filter_map(|c| Some(Contact { a: remap(c.a)?, b: remap(c.b)?, ..*c }))
-            .collect();
+        let contacts =
+            self.contacts.iter().filter_map(|c| Some(Contact { a: remap(c.a)?, b: remap(c.b)?, ..*c })).collect();
         Snapshot { time: self.time, gravity: self.gravity, particles, walls: self.walls.clone(), contacts }
     }
 }

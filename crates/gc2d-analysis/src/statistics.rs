@@ -106,8 +106,7 @@ pub fn force_magnitude_histogram(snapshot: &Snapshot, bin_width: f64) -> Magnitu
     let bin_width = if bin_width > 0.0 && bin_width.is_finite() { bin_width } else { 0.1 };
     let magnitudes: Vec<f64> =
         snapshot.contacts.iter().map(|c| c.force_on_a.length()).filter(|f| f.is_finite()).collect();
-    let mean_force =
-        if magnitudes.is_empty() { 0.0 } else { magnitudes.iter().sum::<f64>() / magnitudes.len() as f64 };
+    let mean_force = if magnitudes.is_empty() { 0.0 } else { magnitudes.iter().sum::<f64>() / magnitudes.len() as f64 };
     if !(mean_force > 0.0) {
         return MagnitudeHistogram {
             mean_force,

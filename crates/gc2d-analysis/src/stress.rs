@@ -130,7 +130,12 @@ pub fn stress_grid(snapshot: &Snapshot, grid: &Grid, options: &StressOptions) ->
     grid.cells().filter_map(|(_, _, rect)| stress_in(snapshot, &forces, rect, options)).collect()
 }
 
-fn stress_in(snapshot: &Snapshot, forces: &ForcesByParticle, rect: Rect, options: &StressOptions) -> Option<LocalStress> {
+fn stress_in(
+    snapshot: &Snapshot,
+    forces: &ForcesByParticle,
+    rect: Rect,
+    options: &StressOptions,
+) -> Option<LocalStress> {
     let center = rect.center();
     let selected: Vec<usize> = (0..snapshot.particles.len())
         .filter(|&i| snapshot.particles[i].centroid.is_finite() && rect.contains(snapshot.particles[i].centroid))
