@@ -7,10 +7,15 @@
 
 pub mod density;
 pub mod error;
+pub mod figures;
 pub mod geometry;
 pub mod janssen;
+pub mod output;
 pub mod pressure;
 pub mod repose;
+pub mod run;
+pub mod scene_pile;
+pub mod scene_silo;
 pub mod snapshot;
 pub mod statistics;
 pub mod stress;
@@ -24,6 +29,9 @@ pub use pressure::{
     wall_forces,
 };
 pub use repose::{FlankFit, FlankOptions, PileShape, Repose, angle_of_repose, surface_envelope};
+pub use run::{AnalyzeOptions, Report, SceneKind, analyze_run, analyze_snapshot, detect_scene};
+pub use scene_pile::{FloorPressureReport, PileReport};
+pub use scene_silo::SiloReport;
 pub use snapshot::{BodyRef, Contact, Particle, Snapshot, Wall};
 pub use statistics::{
     Coordination, DirectionHistogram, MagnitudeHistogram, coordination, force_direction_histogram,

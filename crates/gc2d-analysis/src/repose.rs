@@ -125,7 +125,7 @@ pub fn surface_envelope(snapshot: &Snapshot, spacing: f64) -> Vec<DVec2> {
     for particle in &snapshot.particles {
         let (lo, hi) =
             particle.vertices.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v.x), hi.max(v.x)));
-        if !(lo <= hi) {
+        if lo.partial_cmp(&hi).is_none_or(|o| o.is_gt()) {
             continue;
         }
         let first = ((lo - left) / spacing).ceil().max(0.0) as usize;
@@ -213,7 +213,7 @@ fn fit_line(points: &[DVec2], rising: f64) -> Option<FlankFit> {
     let mean = points.iter().copied().sum::<DVec2>() / n;
     let sxx: f64 = points.iter().map(|p| (p.x - mean.x).powi(2)).sum();
     let sxy: f64 = points.iter().map(|p| (p.x - mean.x) * (p.y - mean.y)).sum();
-    if !(sxx > 0.0) {
+    if sxx.is_nan() || sxx <= 0.0 {
         return None;
     }
     let slope = sxy / sxx;

@@ -93,7 +93,7 @@ impl Snapshot {
         let mut slot_to_ref = vec![None; bodies.len()];
         let mut particles = Vec::new();
         let mut walls = Vec::new();
-        for slot in 0..bodies.len() {
+        for (slot, reference) in slot_to_ref.iter_mut().enumerate() {
             if !bodies.alive[slot] {
                 continue;
             }
@@ -102,7 +102,7 @@ impl Snapshot {
             match bodies.kind[slot] {
                 BodyKind::Particle => {
                     let scale = bodies.pose[slot].scale;
-                    slot_to_ref[slot] = Some(BodyRef::Particle(particles.len()));
+                    *reference = Some(BodyRef::Particle(particles.len()));
                     particles.push(Particle {
                         id: id.0,
                         centroid: bodies.pose[slot].position,
@@ -112,7 +112,7 @@ impl Snapshot {
                     });
                 }
                 BodyKind::Wall => {
-                    slot_to_ref[slot] = Some(BodyRef::Wall(walls.len()));
+                    *reference = Some(BodyRef::Wall(walls.len()));
                     walls.push(Wall { id: id.0, vertices });
                 }
             }

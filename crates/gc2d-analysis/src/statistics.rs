@@ -107,7 +107,7 @@ pub fn force_magnitude_histogram(snapshot: &Snapshot, bin_width: f64) -> Magnitu
     let magnitudes: Vec<f64> =
         snapshot.contacts.iter().map(|c| c.force_on_a.length()).filter(|f| f.is_finite()).collect();
     let mean_force = if magnitudes.is_empty() { 0.0 } else { magnitudes.iter().sum::<f64>() / magnitudes.len() as f64 };
-    if !(mean_force > 0.0) {
+    if mean_force.is_nan() || mean_force <= 0.0 {
         return MagnitudeHistogram {
             mean_force,
             bin_width,

@@ -65,7 +65,7 @@ impl StressTensor {
     pub fn principal(&self) -> PrincipalStress {
         let mean = 0.5 * (self.xx + self.yy);
         let radius = (0.25 * (self.xx - self.yy).powi(2) + self.xy * self.xy).sqrt();
-        let isotropic = !(radius > 1e-12 * (mean.abs() + radius));
+        let isotropic = radius.is_nan() || radius <= 1e-12 * (mean.abs() + radius);
         let theta = if isotropic { 90f64 } else { 0.5 * (2.0 * self.xy).atan2(self.xx - self.yy).to_degrees() };
         let mut psi = theta - 90.0;
         if psi <= -90.0 {
