@@ -1,0 +1,121 @@
+//! Local packing density in a test rectangle (reference §5.6, eqs. 2.43–2.45), and the grid of test rectangles that
+//! the density and stress maps share.
+//!
+//! α_i a_i is the exact area of particle i inside the rectangle (convex clipping). The simple density (2.44) divides
+//! Σ α_i a_i by the rectangle area; the corrected one (2.45) divides by the area A_k of the convex hull of the
+//! clipped particle pieces, so that a test area reaching over a free surface is not diluted by the empty part.
+
+use crate::geometry::{Rect, clip_to_rect, hull_area};
+use crate::snapshot::Snapshot;
+use gc2d_geometry::{DVec2, OverlapPolygon};
+use serde::Serialize;
+
+/// A regular grid of test rectangles covering `region`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Grid {
+    /// The covered area.
+    pub region: Rect,
+    /// Columns.
+    pub nx: usize,
+    /// Rows.
+    pub ny: usize,
+}
+
+/// No grid has more cells than this along one axis.
+pub const MAX_GRID_CELLS_PER_AXIS: usize = 1000;
+
+impl Grid {
+    /// The grid whose cells are as close as possible to `cell_size` (a whole number of cells, at least one, at most
+    /// [`MAX_GRID_CELLS_PER_AXIS`] per axis).
+    pub fn with_cell_size(region: Rect, cell_size: f64) -> Self {
+        let size = region.size();
+        let count = |extent: f64| {
+            if cell_size > 0.0 && extent > 0.0 && (extent / cell_size).is_finite() {
+                ((extent / cell_size).round() as usize).clamp(1, MAX_GRID_CELLS_PER_AXIS)
+            } else {
+                1
+            }
+        };
+        Self { region, nx: count(size.x), ny: count(size.y) }
+    }
+
+    /// The cell in column `i`, row `j` (row 0 at the bottom).
+    pub fn cell(&self, i: usize, j: usize) -> Rect {
+        let step = self.region.size() / DVec2::new(self.nx.max(1) as f64, self.ny.max(1) as f64);
+        let min = self.region.min + step * DVec2::new(i as f64, j as f64);
+        Rect::new(min, min + step)
+    }
+
+    /// All cells, row by row from the bottom, each with its (column, row).
+    pub fn cells(&self) -> impl Iterator<Item = (usize, usize, Rect)> + '_ {
+        (0..self.ny).flat_map(move |j| (0..self.nx).map(move |i| (i, j, self.cell(i, j))))
+    }
+}
+
+/// Packing density in one test rectangle.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LocalDensity {
+    /// The test rectangle.
+    pub rect: Rect,
+    /// Σ α_i a_i, the particle area inside the rectangle, m².
+    pub particle_area: f64,
+    /// Area A_k of the convex hull of the particle pieces inside the rectangle, m².
+    pub hull_area: f64,
+    /// ρ'_rel = Σ α_i a_i / A (2.44).
+    pub simple: f64,
+    /// ρ_rel = Σ α_i a_i / A_k (2.45); 0 when no particle reaches into the rectangle.
+    pub corrected: f64,
+    /// Particles with α_i > 0.
+    pub particles: usize,
+}
+
+/// Density (2.44) and (2.45) in `rect`. The hull is taken over the vertices of every particle's piece inside the
+/// rectangle: its vertices inside (E1), the crossings of its outline with the rectangle's boundary (E2), and the
+/// rectangle corners it covers.
+pub fn local_density(snapshot: &Snapshot, rect: Rect) -> LocalDensity {
+    let mut clipped = OverlapPolygon::new();
+    let mut hull_points: Vec<DVec2> = Vec::new();
+    let mut particle_area = 0.0;
+    let mut particles = 0;
+    for particle in &snapshot.particles {
+        if !overlaps_box(&particle.vertices, &rect) {
+            continue;
+        }
+        clip_to_rect(&particle.vertices, &rect, &mut clipped);
+        if clipped.area() > 0.0 {
+            particle_area += clipped.area();
+            particles += 1;
+            hull_points.extend_from_slice(clipped.vertices());
+        }
+    }
+    let hull_area = hull_area(&hull_points);
+    let area = rect.area();
+    LocalDensity {
+        rect,
+        particle_area,
+        hull_area,
+        simple: if area > 0.0 { particle_area / area } else { 0.0 },
+        corrected: if hull_area > 0.0 { particle_area / hull_area } else { 0.0 },
+        particles,
+    }
+}
+
+/// Density in every cell of `grid`, row by row from the bottom.
+pub fn density_grid(snapshot: &Snapshot, grid: &Grid) -> Vec<LocalDensity> {
+    grid.cells().map(|(_, _, rect)| local_density(snapshot, rect)).collect()
+}
+
+/// Packing fraction of the whole granulate: total particle area over the convex hull of all particle vertices, i.e.
+/// (2.45) with a test area enclosing everything. Used for the bulk density ρ = ρ_rel · ρ_particle (3.5).
+pub fn bulk_packing_fraction(snapshot: &Snapshot) -> f64 {
+    let points: Vec<DVec2> = snapshot.particles.iter().flat_map(|p| p.vertices.iter().copied()).collect();
+    let hull = hull_area(&points);
+    if hull > 0.0 { snapshot.total_particle_area() / hull } else { 0.0 }
+}
+
+/// True when the bounding box of `vertices` meets `rect`.
+fn overlaps_box(vertices: &[DVec2], rect: &Rect) -> bool {
+    Rect::bounding(vertices.iter().copied()).is_some_and(|b| {
+        b.min.x <= rect.max.x && b.max.x >= rect.min.x && b.min.y <= rect.max.y && b.max.y >= rect.min.y
+    })
+}
