@@ -131,6 +131,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
             max_overlap_fraction: scene.run.max_overlap_fraction,
             max_energy_gain_fraction: scene.run.max_energy_gain_fraction,
             allow_unsafe_time_step: scene.run.allow_unsafe_time_step,
+            ..SafetyLimits::default()
         },
         domain: scene.run.domain.map(|d| Aabb {
             min: DVec2::new(d.x_range_m[0], d.y_range_m[0]),

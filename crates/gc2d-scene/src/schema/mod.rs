@@ -91,7 +91,7 @@ pub struct Run {
     /// Largest overlap allowed, as a fraction of the smaller particle's area, at load and during the run. Default 0.05.
     #[serde(default = "defaults::max_overlap_fraction")]
     pub max_overlap_fraction: f64,
-    /// Largest unexplained energy gain, as a fraction of the run's energy scale, before the run stops. Default 0.25.
+    /// Largest unexplained energy gain, as a fraction of the run's energy scale, before the run stops. Default 1.0 (the engine's).
     #[serde(default = "defaults::max_energy_gain_fraction")]
     pub max_energy_gain_fraction: f64,
     /// Gear corrector coefficient c₀. Default `VelocityDependent` (3/16).
@@ -247,10 +247,10 @@ pub(crate) mod defaults {
         100.0
     }
     pub fn max_overlap_fraction() -> f64 {
-        0.05
+        gc2d_engine::SafetyLimits::default().max_overlap_fraction
     }
     pub fn max_energy_gain_fraction() -> f64 {
-        0.25
+        gc2d_engine::SafetyLimits::default().max_energy_gain_fraction
     }
     pub fn gravity_steps() -> u32 {
         5
