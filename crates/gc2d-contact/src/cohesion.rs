@@ -1,11 +1,13 @@
 //! Cohesion: an attraction proportional to the contact-line length (2.28).
 
+use serde::{Deserialize, Serialize};
+
 /// Cohesive force F_coh = k_coh·|c1c2| (2.28), attractive (along −n on body i), acting at the contact point and only
 /// while the bodies overlap (there is no contact line otherwise).
 ///
 /// Because the approach of the bodies changes the overlap area by dA = |c1c2|·dh, this force is exactly the
 /// gradient of the potential U_coh = −k_coh·A: cohesion stores −k_coh·A and dissipates nothing.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Cohesion {
     /// Cohesion strength k_coh, N/m.
     pub k_coh: f64,

@@ -1,13 +1,14 @@
 //! Per-contact constants frozen at the first contact step (reference §2.5, §4.1; decision D1).
 
 use crate::{BodyMotion, ContactGeometry, reciprocal_or_zero};
+use serde::{Deserialize, Serialize};
 
 /// The characteristic length and the two effective masses of a contact.
 ///
 /// gc2d computes the reduced mass "only at the first occurrence of the collision" and caches it (§4.1), and assumes
 /// "l constant during the collision" (after 2.21). All three are therefore computed from the geometry of the first
 /// overlapping step and kept until the contact ends.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ContactConstants {
     /// l = |r_i||r_j|/(|r_i| + |r_j|) (2.15), m; against an anchored body (wall) l = |r_i|, the |r_j| → ∞ limit.
     pub length: f64,

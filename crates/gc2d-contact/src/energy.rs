@@ -1,5 +1,7 @@
 //! The energy terms one contact reports for one step, for the engine's energy ledger.
 
+use serde::{Deserialize, Serialize};
+
 /// Energy stored and dissipated by one contact over the step that ends at this evaluation, in J (per unit
 /// thickness). The definitions are in `docs/model.md` ("Contact law", energy).
 ///
@@ -7,7 +9,7 @@
 /// the next [`crate::ContactState`]. The work the contact force does on the relative motion of the bodies over the
 /// step is `−`[`EnergyTerms::absorbed`]; the virtual surface velocity of a wall injects
 /// [`EnergyTerms::surface_work`] on top.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct EnergyTerms {
     /// Change of the normal elastic energy U⊥ (trapezoid rule, may be negative).
     pub normal_elastic_change: f64,

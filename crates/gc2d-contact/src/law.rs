@@ -5,13 +5,14 @@ use crate::{
     NormalElastic, TangentialStep, reciprocal_or_zero,
 };
 use gc2d_geometry::{DVec2, cross};
+use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// The contact law of a scene, assembled from sub-models. A `None` sub-model is switched off and costs one branch.
 ///
 /// gc2d has one E, γ, μ and k_coh per scene, shared by walls, so one law per scene reproduces it; a law per material
 /// pair fits the same type later.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ContactLaw {
     /// Overlap-area elasticity F⊥ = E·A/l (2.20); always present.
     pub elastic: NormalElastic,

@@ -1,9 +1,11 @@
 //! Normal sub-models: overlap-area elasticity (2.20) and clipped normal damping (2.21, E3, 2.22).
 
+use serde::{Deserialize, Serialize};
+
 /// Elastic normal force proportional to the overlap area: F⊥ = E·A/l (2.20), with h_eff = A/l (2.19).
 ///
 /// E is the 2D Young's modulus in N/m, one value per scene in gc2d (walls share it).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct NormalElastic {
     /// Young's modulus E, N/m.
     pub e_modulus: f64,
@@ -22,7 +24,7 @@ impl NormalElastic {
 /// D*⊥ = γ·sqrt(E·m⊥)·(A − A_old)/(l·Δt) — (2.21) with the dimension fixed as in erratum E3 — and, by (2.22),
 /// D⊥ = max(D*⊥, −F⊥) so that F⊥ + D⊥ ≥ 0: damping can cancel the elastic repulsion but never pull. While the
 /// overlap grows D*⊥ > 0 > −F⊥ and the max changes nothing, so the one expression covers both branches of (2.22).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct NormalDamping {
     /// Damping constant γ (dimensionless); γ = 0 is the elastic case.
     pub gamma: f64,

@@ -1,13 +1,14 @@
 //! Per-contact history carried from step to step (reference §2.7, §2.8, App. B.2 `Old_Area`, `Summ_Friction`).
 
 use crate::ContactConstants;
+use serde::{Deserialize, Serialize};
 
 /// What a contact remembers between steps. Small and `Copy`: it lives in the broadphase pair list, and the default
 /// value is "not touching".
 ///
 /// The contact is active (touching) exactly when `constants` is `Some`; all other fields are zero when it is not.
 /// When the overlap area returns to zero the whole state resets, including the spring (decision D11).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct ContactState {
     /// l, m⊥, m∥ frozen at the first overlapping step; `None` while the bodies do not touch.
     pub constants: Option<ContactConstants>,

@@ -1,6 +1,7 @@
 //! Tangential sub-model: Cundall–Strack spring with tangential damping and a Coulomb cap (2.23–2.27).
 
 use crate::reciprocal_or_zero;
+use serde::{Deserialize, Serialize};
 
 /// Cundall–Strack friction: a spring attached at the contact point, dragged along when it exceeds the Coulomb limit.
 ///
@@ -12,7 +13,7 @@ use crate::reciprocal_or_zero;
 /// - force on i along the tangent F∥ = clamp(S + D∥, ±C) (2.27 with the stored part kept elastic).
 ///
 /// The stored scalar S is re-applied along the current tangent each step (it does not rotate with the contact line).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CundallStrack {
     /// Friction coefficient μ (gc2d's `MUE_STATISCH`).
     pub mu: f64,

@@ -6,9 +6,10 @@
 
 use crate::integrator::GearState;
 use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose};
+use serde::{Deserialize, Serialize};
 
 /// Index of a body in the World's store; stable for the life of the World.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 pub struct BodyId(pub u32);
 
 impl BodyId {
@@ -20,7 +21,7 @@ impl BodyId {
 }
 
 /// What moves a body.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum BodyKind {
     /// A free particle integrated by the Gear predictor-corrector.
     Particle,
@@ -29,7 +30,7 @@ pub enum BodyKind {
 }
 
 /// Range of a body's vertices in the flat vertex arrays.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct VertexRange {
     /// First vertex.
     pub start: u32,
@@ -46,7 +47,7 @@ impl VertexRange {
 }
 
 /// Columns of per-body data. All `Vec`s have one entry per slot.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct Bodies {
     /// Particle or wall.
     pub kind: Vec<BodyKind>,

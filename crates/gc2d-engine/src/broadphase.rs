@@ -33,6 +33,7 @@ pub use pair_set::PairEntry;
 use bodies::{Bodies, SlotState};
 use gc2d_geometry::Aabb;
 use pair_set::PairSet;
+use serde::{Deserialize, Serialize};
 use std::cmp::Ordering;
 
 /// The largest body id plus one: one bit of an endpoint's key says whether it is a begin or an end.
@@ -52,7 +53,7 @@ pub enum BroadphaseError {
 /// Counters of one [`SortAndSweep::update`], for the statistics the engine logs.
 ///
 /// Removals made with [`SortAndSweep::remove`] are counted in the next update's counters.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct BroadphaseStats {
     /// Adjacent swaps performed by the insertion sorts of both axes.
     pub swaps: u64,
@@ -70,7 +71,7 @@ pub struct BroadphaseStats {
 const END_BIT: u32 = 1 << 31;
 
 /// One bound of one body's interval on one axis.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 struct Endpoint {
     value: f64,
     /// Body id, with [`END_BIT`] set for an end. Comparing keys puts begins before ends, then orders by body.
@@ -120,7 +121,7 @@ impl Endpoint {
 /// the narrowphase over [`pairs_mut`](Self::pairs_mut) (each pair writes only its own payload, so `par_iter_mut` is
 /// safe), and read [`ended_pairs`](Self::ended_pairs) for the contacts that ended. Once the buffers have grown to the
 /// scene's size, `update` does not allocate.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SortAndSweep<T> {
     bodies: Bodies,
     /// Sorted endpoints of the x axis (index 0) and the y axis (index 1).
@@ -137,8 +138,10 @@ pub struct SortAndSweep<T> {
     /// Counters of `remove` calls since the last update.
     carried: BroadphaseStats,
     /// Scratch: the sorted endpoints of the bodies being merged.
+    #[serde(skip)]
     merge_buffer: Vec<Endpoint>,
     /// Scratch for the sweep that finds new bodies' pairs.
+    #[serde(skip)]
     sweep: SweepScratch,
 }
 

@@ -18,6 +18,7 @@
 //! Rotation is a scalar angle, counter-clockwise positive, integrated by exactly the same scheme as x and y (§3.5).
 
 use glam::DVec2;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::ops::{Add, Mul, Sub};
 use thiserror::Error;
@@ -36,7 +37,7 @@ pub enum IntegratorError {
 
 /// A validated time step Δt with its Taylor scale factors Δt^n/n! (F.10) and their reciprocals, precomputed so that
 /// converting between scaled and physical derivatives is a multiplication.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct TimeStep {
     dt: f64,
     scale: [f64; GEAR_ORDER],
@@ -82,7 +83,7 @@ impl TimeStep {
 /// (both drift linearly in time, 1–2·10⁻⁵ of the energy per period), so 3/16 keeps the property the thesis chose Gear
 /// for: numerical error does not feed energy into the system. 3/20 is the more accurate for conservative forces
 /// (order ≈ 7 versus 5 on the oscillator); with velocity-dependent forces both are fifth order. See `docs/model.md`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 pub enum GearC0 {
     /// c₀ = 3/20: Gear's coefficient for forces that depend on positions only.
     PositionDependent,
@@ -111,7 +112,7 @@ impl GearC0 {
 ///
 /// This is what a checkpoint stores: gc2d writes `Com`, velocity, acceleration and `PC_TRANS3..5` for translation and
 /// `ANGLE`, `OMEGA`, `OMEGA_DOT` and `PC_ROT3..5` for rotation (§3.5), so a checkpoint does not depend on Δt.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct PhysicalDerivatives {
     /// Position of the centre of mass and its derivatives 1..5.
     pub linear: [DVec2; GEAR_ORDER],
@@ -124,7 +125,7 @@ pub struct PhysicalDerivatives {
 /// The scaled values belong to one Δt; converting to or from physical derivatives, or to another Δt
 /// ([`GearState::rescale`]), needs that [`TimeStep`]. Plain data (144 bytes) so that the engine can keep a
 /// `Vec<GearState>` as one column of its particle store.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct GearState {
     /// Scaled derivatives 0..5 of the centre-of-mass position (all in metres).
     pub linear: [DVec2; GEAR_ORDER],
@@ -216,7 +217,7 @@ impl GearState {
 }
 
 /// The 6-value Gear predictor-corrector for second-order ODEs with one corrector pass per step (§3.3, §3.4).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Gear6 {
     time_step: TimeStep,
     c0: GearC0,

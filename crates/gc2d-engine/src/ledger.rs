@@ -4,8 +4,10 @@
 //! are summed step by step from what the contact law and the drivers report. `balance_error` is what the two sides
 //! disagree by: time-integration error in a sound run, a blow-up when it jumps.
 
+use serde::{Deserialize, Serialize};
+
 /// Energies of a World, J per unit thickness.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct EnergyLedger {
     /// Σ ½ m v² over particles.
     pub kinetic_translational: f64,

@@ -4,13 +4,14 @@
 //! [`broadphase`] with each pair's contact history ([`narrowphase`]), the drivers that move walls and pull
 //! particles ([`motion`], [`schedules`], [`sources`]), and the [`ledger`] that accounts for every joule. Particles
 //! are integrated by the 6-value Gear predictor-corrector ([`integrator`]); [`safety`] refuses unstable time steps
-//! and stops runs that blow up.
+//! and stops runs that blow up. A World saves and restores its complete state as a [`checkpoint`].
 //!
 //! The engine knows nothing about scene files, recordings or the command line; those crates build and observe a
 //! World through the types exported here.
 
 pub mod bodies;
 pub mod broadphase;
+pub mod checkpoint;
 pub mod integrator;
 pub mod ledger;
 pub mod motion;
@@ -22,6 +23,7 @@ pub mod time_window;
 pub mod world;
 
 pub use bodies::{Bodies, BodyId, BodyKind};
+pub use checkpoint::CheckpointError;
 pub use integrator::GearC0;
 pub use ledger::EnergyLedger;
 pub use motion::WallMotion;

@@ -10,6 +10,7 @@
 //!
 //! All angles are counter-clockwise from +x, in radians; all quantities SI.
 
+use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 use std::str::FromStr;
 
@@ -19,7 +20,7 @@ use crate::time_window::TimeWindow;
 
 /// The periodic shape of a vibration, `VIB_TYPE` (reference §2.11, Abb. B.5). Each shape rises from 0 and has
 /// unit amplitude; [`Vibration`] scales it by the width W.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Waveform {
     /// `COSINUS`: A = W·½(1 − cos 2πft), smooth, one rise and fall per period.
     Cosine,
@@ -102,7 +103,7 @@ impl FromStr for Waveform {
 /// at t1: unless t1 is a whole number of periods the wall already sits at A(t1) ≠ 0 before the window opens, and it
 /// freezes at A(t2) after it closes. Scenes that restart from a settled state should choose t1 = k/f, where all four
 /// waveforms are 0.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Vibration {
     /// Direction of the displacement, radians CCW from +x (`VIB_ANGLE`; gc2d's default π/2 is vertical).
     pub direction_angle: f64,
@@ -163,7 +164,7 @@ impl Vibration {
 ///
 /// The angle turned is ω·(t_c − t1) with t_c the time clamped to the window, so the wall starts at its rest pose and
 /// keeps its last angle after t2. The window's start must be finite for the wall to turn.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Rotation {
     /// The fixed point the wall turns about, world coordinates, m.
     pub pivot: DVec2,
@@ -205,7 +206,7 @@ const MIN_GAIN_FRACTION: f64 = 1e-12;
 /// the approach is the monotone exponential of the proportional law, with time constant |F_target|/(k·v_max).
 ///
 /// With F_target = 0 the piston stands still when nothing touches it and gives way at full gain when pushed.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Piston {
     /// Direction in which the piston pushes, radians CCW from +x (`PISTON_ANGLE`, default 0).
     pub direction_angle: f64,
@@ -218,7 +219,7 @@ pub struct Piston {
 }
 
 /// The integrated state of a [`Piston`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct PistonState {
     /// Distance travelled along the direction from the rest pose, m.
     pub displacement: f64,
@@ -336,7 +337,7 @@ impl WallKinematics {
 
 /// How a wall moves. One variant per wall, so a wall that is both a piston and vibrating (forbidden by gc2d,
 /// B.1.5.1/B.1.5.2) cannot be represented.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub enum WallMotion {
     /// The wall never moves (it may still have a virtual surface velocity; see the module docs).
     #[default]

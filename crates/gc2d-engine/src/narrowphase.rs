@@ -5,9 +5,10 @@
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use gc2d_contact::{BodyMotion, ContactLaw, ContactState, EnergyTerms};
 use gc2d_geometry::{DVec2, FeaturePair, closest_features, contact_geometry};
+use serde::{Deserialize, Serialize};
 
 /// Everything the World keeps about one pair of bodies whose boxes touch: the contact history and this step's result.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct PairContact {
     /// Closest features of the last step, the warm start of the next query.
     pub warm_start: Option<FeaturePair>,

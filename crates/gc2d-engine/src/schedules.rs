@@ -4,6 +4,7 @@
 //! Each is a small value type evaluated by the engine once per step; none of them knows about the World. Angles are
 //! counter-clockwise from +x, quantities SI per unit thickness.
 
+use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 use std::str::FromStr;
 
@@ -12,7 +13,7 @@ use gc2d_geometry::{DVec2, Pose, cross};
 use crate::time_window::TimeWindow;
 
 /// How g changes from g1 to g2 over the window, `G_TYPE` (reference §2.13).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum GravityProfile {
     /// g = g1 at all times.
     Constant,
@@ -56,7 +57,7 @@ impl FromStr for GravityProfile {
 /// interval k (k = 0 … p1−1) holds g1 + k·Δ, Δ = (g2 − g1)/p1, and ends with a linear ramp to g1 + (k+1)·Δ over the
 /// last fraction p2 of the interval. So g stays g1 until the first ramp, reaches g2 exactly at t2, SMOOTH_STEP with
 /// p2 = 0 is STEP (jumps at t1 + k·(t2 − t1)/p1, k = 1 … p1) and with p2 = 1 is LINEAR.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct GravitySchedule {
     /// Shape of the change.
     pub profile: GravityProfile,
@@ -136,7 +137,7 @@ impl GravitySchedule {
 /// thesis says of thermal expansion ("area and density change", §2.3.1). The moment of inertia about the centroid
 /// then scales as s² (see [`HeatingSchedule::inertia_factor`]). Keeping mass fixed conserves mass and momentum and
 /// keeps the energy ledger closed.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct HeatingSchedule {
     /// [t1, t2] during which the temperature cycles (`HEAT_TIME`, default (∞, ∞): never).
     pub window: TimeWindow,
@@ -211,7 +212,7 @@ impl HeatingSchedule {
 /// particle, the "massless rod" of §2.12; the pulling point is in absolute world coordinates; `direction_angle` is
 /// counter-clockwise from +x like every direction in gc2d-rs, and the gsi importer passes `DRAG_ANGLE` through
 /// unchanged (it is a direction, not a clockwise particle angle).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct DragSpring {
     /// K, N/m (`DRAG_K`, default 100).
     pub stiffness: f64,

@@ -2,9 +2,10 @@
 
 use crate::time_window::TimeWindow;
 use gc2d_geometry::{DVec2, ShapeRecipe};
+use serde::{Deserialize, Serialize};
 
 /// Where a source puts the new particle's centroid vertically.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum DropHeight {
     /// gc2d `ABS`: at the source's y.
     Absolute,
@@ -15,7 +16,7 @@ pub enum DropHeight {
 
 /// A particle source. Each insertion draws a shape from `recipe`, places it at a uniformly random x within
 /// `width` around `position.x`, and starts it at rest.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DropSource {
     /// Centre of the insertion line, m.
     pub position: DVec2,
@@ -37,7 +38,7 @@ pub struct DropSource {
 pub const PLACEMENT_ATTEMPTS: usize = 10;
 
 /// A source and the time of its next insertion.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub(crate) struct SourceState {
     pub source: DropSource,
     pub next_insertion: f64,

@@ -1,12 +1,14 @@
 //! The time window `[t1, t2]` of gc2d's time laws and its clamp (reference (B.1) and (B.3)).
 
+use serde::{Deserialize, Serialize};
+
 /// A closed time interval `[start, end]` in seconds during which a time law is active.
 ///
 /// gc2d evaluates its time laws (vibration, heating, gravity ramps, drag springs) at the time clamped to the window,
 /// so the law stands still before `start` and freezes after `end` (eqs. B.1, B.3). Either end may be infinite
 /// (gc2d's `∞` defaults). Nothing here panics or returns NaN for a reversed or non-finite window: a window with
 /// `start > end` clamps every time to `end` and is never active.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct TimeWindow {
     /// t1, s.
     pub start: f64,

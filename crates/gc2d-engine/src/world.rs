@@ -19,10 +19,11 @@ use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose, contact_geometry};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// Everything global about a run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct WorldConfig {
     /// Δt, s.
     pub time_step: f64,
@@ -60,7 +61,7 @@ pub enum WorldError {
 }
 
 /// A wall that moves, with the pose it moves from.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct MovingWall {
     body: BodyId,
     rest: Pose,
@@ -68,7 +69,7 @@ struct MovingWall {
 }
 
 /// Counters of the last step and of the run, for progress displays and statistics.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct StepStats {
     /// Pairs of touching boxes.
     pub box_pairs: usize,
@@ -87,7 +88,7 @@ pub struct StepStats {
 }
 
 /// Which optional stages the step runs; fixed when the World is built and when drivers are added.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 struct Stages {
     moving_walls: bool,
     drag_springs: bool,
@@ -98,6 +99,9 @@ struct Stages {
 }
 
 /// A simulation: bodies, the contacts between them, the drivers that move walls and pull particles, and time.
+///
+/// Serializable as a whole so that a checkpoint ([`crate::checkpoint`]) restores it bit for bit.
+#[derive(Serialize, Deserialize)]
 pub struct World {
     config: WorldConfig,
     gear: Gear6,
@@ -169,10 +173,12 @@ impl World {
         let i = id.index();
         self.bodies.velocity[i] = velocity;
         self.bodies.angular_velocity[i] = angular_velocity;
+        // Start from the acceleration of free flight: a new particle is almost always free (sources insert only into
+        // free space), and a zero start would leave its velocity half a step behind for good.
         self.bodies.gear[i] = GearState::from_physical(
             pose.position,
             velocity,
-            DVec2::ZERO,
+            self.config.gravity.acceleration(self.time),
             pose.angle,
             angular_velocity,
             0.0,
@@ -326,7 +332,7 @@ impl World {
             self.remove_escaped_particles();
         }
         if self.stages.sources {
-            self.run_sources();
+            self.run_sources()?;
         }
         self.refresh_stored_energies();
         self.check_blow_up()
@@ -537,8 +543,9 @@ impl World {
         }
     }
 
-    /// Inserts the particles the sources owe at the current time.
-    fn run_sources(&mut self) {
+    /// Inserts the particles the sources owe at the current time. A new particle smaller than any before may lower
+    /// the stable time step, so the bound is checked again after each insertion.
+    fn run_sources(&mut self) -> Result<(), WorldError> {
         let t = self.time;
         for s in 0..self.sources.len() {
             while self.sources[s].take_due(t) {
@@ -549,11 +556,13 @@ impl World {
                         let i = id.index();
                         let g = self.config.gravity.magnitude(t);
                         self.ledger.work_insertions += self.bodies.mass[i] * g * self.bodies.pose[i].position.y;
+                        self.check_time_step()?;
                     }
                     None => self.stats.insertions_skipped += 1,
                 }
             }
         }
+        Ok(())
     }
 
     /// Draws a shape and finds a free spot for it on the source's line; `None` when every attempt overlapped.
@@ -630,9 +639,7 @@ impl World {
         let limits = &self.config.safety;
         let suggested = safety::suggested_time_step(self.config.time_step, self.stable_time_step());
         let b = &self.bodies;
-        if let Some(i) = (0..b.len()).find(|&i| {
-            b.alive[i] && !(b.pose[i].position.is_finite() && b.velocity[i].is_finite() && b.pose[i].angle.is_finite())
-        }) {
+        if let Some(i) = (0..b.len()).find(|&i| b.alive[i] && !state_is_finite(b, i)) {
             return Err(SafetyError::NotFinite {
                 time: self.time,
                 step: self.steps,
@@ -658,7 +665,8 @@ impl World {
         }
         let gain = self.ledger.balance_error();
         let scale = self.ledger.energy_scale();
-        if gain > limits.max_energy_gain_fraction * scale {
+        // A NaN gain fails every comparison, so it is caught explicitly: a NaN never passes silently.
+        if !gain.is_finite() || gain > limits.max_energy_gain_fraction * scale {
             return Err(SafetyError::EnergyJump {
                 time: self.time,
                 step: self.steps,
@@ -675,6 +683,20 @@ impl World {
 /// Worlds with fewer bodies than this step on the calling thread: below it, handing work to the thread pool costs
 /// more than it saves. Results are bitwise the same either way (every parallel task writes only its own data).
 const PARALLEL_MIN_BODIES: usize = 512;
+
+/// True when body `i`'s pose and velocities are finite and, for a particle, so is its kinetic energy (a finite
+/// velocity can still overflow ½mv², which would poison the ledger).
+fn state_is_finite(b: &Bodies, i: usize) -> bool {
+    let kinematics_finite = b.pose[i].position.is_finite()
+        && b.pose[i].angle.is_finite()
+        && b.velocity[i].is_finite()
+        && b.angular_velocity[i].is_finite();
+    let energy_finite = b.kind[i] == BodyKind::Wall
+        || (0.5 * b.mass[i] * b.velocity[i].length_squared()
+            + 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i])
+            .is_finite();
+    kinematics_finite && energy_finite
+}
 
 /// The kinematic columns of one body that the predictor and corrector update.
 type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);

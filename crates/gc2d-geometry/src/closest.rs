@@ -16,9 +16,10 @@ mod contact;
 mod segments;
 
 use crate::{DVec2, cross};
+use serde::{Deserialize, Serialize};
 
 /// A feature of a polygon's boundary ring.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Feature {
     /// Vertex `i`.
     Vertex(usize),
@@ -27,7 +28,7 @@ pub enum Feature {
 }
 
 /// One feature of each polygon: what the engine stores per contact to warm-start the next step's query.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct FeaturePair {
     /// Feature of the first polygon.
     pub a: Feature,

@@ -1,12 +1,13 @@
 //! Placing a body-frame polygon in the world (reference §1.4, eqs. 2.30/2.31 with CCW angles) and axis-aligned boxes.
 
 use crate::DVec2;
+use serde::{Deserialize, Serialize};
 
 /// Where a body sits in the world: centroid position, counter-clockwise angle and uniform scale.
 ///
 /// The scale `s` multiplies body coordinates before rotation (reference §1.6, global heating); `s = 1` is the
 /// original size. gc2d's clockwise angles are converted at the file-format boundary only.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Pose {
     /// Centroid in world coordinates, m.
     pub position: DVec2,
@@ -46,7 +47,7 @@ impl Pose {
 }
 
 /// An axis-aligned bounding box. Boxes that touch count as overlapping (reference §4.2).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Aabb {
     /// Lower-left corner.
     pub min: DVec2,

@@ -3,6 +3,7 @@
 
 use rand::Rng;
 use rand_distr::StandardNormal;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::str::FromStr;
 use thiserror::Error;
@@ -34,7 +35,7 @@ pub fn truncated_gaussian<R: Rng + ?Sized>(rng: &mut R) -> f64 {
 
 /// How a generated particle's size, corner count or orientation scatters about its nominal value (gsi options
 /// `RANDOM_SIZE`, `RANDOM_NUM_CORNERS`, `RANDOM_ROT`; reference §1.2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Randomization {
     /// `CONST`: always the nominal value; the variation is ignored.
     Const,

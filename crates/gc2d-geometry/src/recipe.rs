@@ -5,10 +5,11 @@ use crate::randomize::Randomization;
 use crate::shapes::{AngleMode, ShapeError, corner_count, ellipse_polygon};
 use crate::{ConvexPolygon, DVec2, MAX_VERTICES};
 use rand::Rng;
+use serde::{Deserialize, Serialize};
 
 /// How to make one randomly varied particle: an ellipse-inscribed polygon with scattered size, corner count, corner
 /// positions and orientation (reference §1.2). Field names follow the gsi commands in their doc comments.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ShapeRecipe {
     /// `PART_SIZE` (l_x, l_y): the nominal ellipse **semi-axes** in m (the thesis's particle "radius").
     pub semi_axes: DVec2,

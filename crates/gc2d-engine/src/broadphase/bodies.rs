@@ -4,9 +4,10 @@
 //! scattered order, touches 16 bytes per body rather than a whole record.
 
 use gc2d_geometry::Aabb;
+use serde::{Deserialize, Serialize};
 
 /// Whether a body moves. Two static bodies (walls) are never paired: their contact would exert no force.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum BodyKind {
     /// A free particle.
     Dynamic,
@@ -15,7 +16,7 @@ pub enum BodyKind {
 }
 
 /// Where a body slot stands.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub(super) enum SlotState {
     /// Not in the broadphase.
     Absent,
@@ -26,7 +27,7 @@ pub(super) enum SlotState {
 }
 
 /// The flags of one body slot.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 struct Flags {
     state: SlotState,
     kind: BodyKind,
@@ -35,7 +36,7 @@ struct Flags {
 }
 
 /// One axis of a box, with `lower <= upper` and neither NaN.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
 pub(super) struct Interval {
     pub(super) lower: f64,
     pub(super) upper: f64,
@@ -57,7 +58,7 @@ impl Interval {
 }
 
 /// All body slots, indexed by body id.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub(super) struct Bodies {
     flags: Vec<Flags>,
     /// The box of the current update, x and y.

@@ -5,12 +5,14 @@
 //! O(1). Nothing here depends on a random seed or on memory addresses, so the same sequence of insertions and removals
 //! gives the same entry order on every run.
 
+use serde::{Deserialize, Serialize};
+
 /// One candidate pair: two bodies whose bounding boxes overlap or touch, and the engine's per-pair record.
 ///
 /// The record (`payload`) is created with `T::default()` when the boxes start to touch and lives until they separate,
 /// which is the lifetime of gc2d's collision struct (reference §4.6, §10.2 D11): the contact history (old overlap area,
 /// tangential spring, warm-start features) is kept here.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PairEntry<T> {
     a: u32,
     b: u32,
@@ -39,7 +41,7 @@ const EMPTY: u32 = u32::MAX;
 const MIN_SLOTS: usize = 64;
 
 /// Dense pair entries plus an index from (a, b) to the entry's position.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub(crate) struct PairSet<T> {
     entries: Vec<PairEntry<T>>,
     /// Open-addressing table of entry positions; its length is zero or a power of two.

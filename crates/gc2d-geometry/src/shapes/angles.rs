@@ -4,6 +4,7 @@
 use crate::MAX_VERTICES;
 use crate::randomize::UnknownOptionValue;
 use rand::Rng;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 use std::str::FromStr;
 
@@ -21,7 +22,7 @@ pub const MAX_REDRAWS: usize = 100;
 
 /// How the corner angles φ_i of a polygon inscribed in an ellipse are chosen (gsi `PART_RANDOM_POS_CORNERS`,
 /// reference §1.2). Every mode honours the minimum gap [`MIN_GAP_FRACTION`] · 2π/N between neighbouring corners.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum AngleMode {
     /// `REGULAR`: φ_i = i·2π/N.
     Regular,

@@ -1,0 +1,335 @@
+//! Checkpoints: a run split at a checkpoint ends bitwise identical to the unsplit run (reference §10.1 item 19), and
+//! damaged or foreign files are refused with a clear error.
+
+use gc2d_contact::{Cohesion, ContactLaw, CundallStrack, NormalDamping, NormalElastic};
+use gc2d_engine::checkpoint::{CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MAGIC, PROGRAM_VERSION};
+use gc2d_engine::motion::{Piston, Vibration, Waveform};
+use gc2d_engine::schedules::{DragSpring, GravityProfile, GravitySchedule, HeatingSchedule};
+use gc2d_engine::{
+    CheckpointError, DropHeight, DropSource, GearC0, SafetyLimits, TimeWindow, WallMotion, World, WorldConfig,
+};
+use gc2d_geometry::{Aabb, AngleMode, DVec2, Pose, Randomization, ShapeRecipe, rectangle, regular_polygon, square};
+
+const DT: f64 = 1e-4;
+/// Steps of the unsplit run; the split run checkpoints after half of them.
+const STEPS: u64 = 3000;
+
+/// A small box of particles exercising every kind of state a checkpoint must carry: a vibrating floor, a static
+/// wall, a force-controlled piston wall, a drop source (random numbers, next insertion time), a drag spring,
+/// variable gravity, heating, a domain, and a contact law with damping, friction and cohesion.
+fn scene() -> World {
+    let config = WorldConfig {
+        time_step: DT,
+        corrector: GearC0::VelocityDependent,
+        contact_law: ContactLaw {
+            elastic: NormalElastic { e_modulus: 1e5 },
+            damping: Some(NormalDamping { gamma: 0.3 }),
+            friction: Some(CundallStrack { mu: 0.5 }),
+            cohesion: Some(Cohesion { k_coh: 2.0 }),
+        },
+        gravity: GravitySchedule {
+            profile: GravityProfile::Linear,
+            start_value: 9.81,
+            end_value: 8.0,
+            window: TimeWindow::new(0.0, 10.0),
+            steps: 5,
+            ramp_fraction: 0.5,
+        },
+        heating: Some(HeatingSchedule {
+            window: TimeWindow::new(0.0, 10.0),
+            amplitude: 0.02,
+            frequency: 3.0,
+            slope: HeatingSchedule::DEFAULT_SLOPE,
+        }),
+        safety: SafetyLimits::default(),
+        domain: Some(Aabb { min: DVec2::new(-1.0, -1.0), max: DVec2::new(1.0, 1.0) }),
+        seed: 7,
+    };
+    let mut world = World::new(config).unwrap();
+    let floor = rectangle(0.3, 0.02).unwrap();
+    let side = rectangle(0.02, 0.3).unwrap();
+    let vibration = Vibration {
+        direction_angle: std::f64::consts::FRAC_PI_2,
+        window: TimeWindow::new(0.0, f64::INFINITY),
+        amplitude: 5e-4,
+        frequency: 20.0,
+        waveform: Waveform::Cosine,
+    };
+    world.add_wall(&floor, Pose::new(DVec2::new(0.0, -0.01), 0.0), DVec2::ZERO, WallMotion::Vibrating(vibration));
+    world.add_wall(&side, Pose::new(DVec2::new(-0.11, 0.15), 0.0), DVec2::ZERO, WallMotion::Static);
+    let piston = Piston::new(std::f64::consts::PI, 0.5, 0.05);
+    world.add_wall(&side, Pose::new(DVec2::new(0.105, 0.15), 0.0), DVec2::ZERO, WallMotion::Piston(piston));
+    let hexagon = regular_polygon(6, 0.009).unwrap();
+    let small = square(0.012).unwrap();
+    let mut first = None;
+    for row in 0..4 {
+        for column in 0..7 {
+            let shape = if (row + column) % 2 == 0 { &hexagon } else { &small };
+            let position = DVec2::new(-0.08 + 0.024 * f64::from(column), 0.0095 + 0.0195 * f64::from(row));
+            let spin = 0.3 * f64::from(column - 3);
+            let id = world.add_particle(shape, Pose::new(position, 0.1 * f64::from(row)), 800.0, DVec2::ZERO, spin);
+            first.get_or_insert(id.unwrap());
+        }
+    }
+    let pulled = first.unwrap();
+    let spring = DragSpring {
+        stiffness: 20.0,
+        fixing_point: DVec2::new(0.003, 0.0),
+        pulling_start: world.bodies().pose[pulled.index()].position,
+        direction_angle: 0.3,
+        speed: 0.1,
+        window: TimeWindow::new(0.0, 1.0),
+    };
+    world.add_drag_spring(pulled, spring).unwrap();
+    world
+        .add_source(DropSource {
+            position: DVec2::new(0.0, 0.05),
+            width: 0.12,
+            height: DropHeight::AboveHighest,
+            window: TimeWindow::new(0.0, 1.0),
+            interval: 0.02,
+            recipe: ShapeRecipe {
+                semi_axes: DVec2::new(0.006, 0.005),
+                size_variation: 0.2,
+                size_randomization: Randomization::Equal,
+                corners: 6,
+                corner_variation: 2,
+                corner_randomization: Randomization::Equal,
+                angle_mode: AngleMode::Rand1,
+                rotation: 0.0,
+                rotation_randomization: Randomization::Equal,
+            },
+            density: 800.0,
+        })
+        .unwrap();
+    world
+}
+
+fn run(world: &mut World, steps: u64) {
+    for _ in 0..steps {
+        world.step().unwrap();
+    }
+}
+
+fn checkpoint_bytes(world: &World) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    world.save_checkpoint(&mut bytes).unwrap();
+    bytes
+}
+
+/// The bit patterns of every body's position and angle.
+fn position_bits(world: &World) -> Vec<u64> {
+    let poses = &world.bodies().pose;
+    poses.iter().flat_map(|p| [p.position.x, p.position.y, p.angle].map(f64::to_bits)).collect()
+}
+
+/// The first index where two bit lists differ, with both values (or the two lengths).
+fn first_difference(a: &[u64], b: &[u64]) -> Option<(usize, u64, u64)> {
+    if a.len() != b.len() {
+        return Some((usize::MAX, a.len() as u64, b.len() as u64));
+    }
+    a.iter().zip(b).enumerate().find(|(_, (x, y))| x != y).map(|(i, (x, y))| (i, *x, *y))
+}
+
+/// The bit patterns of everything a step reads or a user observes, body by body and contact by contact.
+fn observed_bits(world: &World) -> Vec<u64> {
+    let b = world.bodies();
+    let mut bits = Vec::new();
+    for i in 0..b.len() {
+        let gear = &b.gear[i];
+        let vectors = [b.pose[i].position, b.velocity[i], b.force[i]].into_iter().chain(gear.linear);
+        bits.extend(vectors.flat_map(|v| [v.x.to_bits(), v.y.to_bits()]));
+        let scalars = [b.pose[i].angle, b.pose[i].scale, b.angular_velocity[i], b.torque[i], b.inverse_inertia[i]];
+        bits.extend(scalars.into_iter().chain(gear.angular).map(f64::to_bits));
+        bits.push(u64::from(b.alive[i]));
+    }
+    for (a, bb, c) in world.pairs() {
+        bits.extend([u64::from(a.0), u64::from(bb.0), u64::from(c.touching), u64::from(c.passes)]);
+        let s = &c.state;
+        let constants = s.constants.map_or([0.0; 3], |k| [k.length, k.normal_mass, k.tangential_mass]);
+        let e = &c.energy;
+        let scalars = [s.previous_area, s.previous_chord, s.spring, s.normal_energy, c.torque_on_a, c.torque_on_b]
+            .into_iter()
+            .chain(constants)
+            .chain([c.force_on_a.x, c.force_on_a.y, c.point.x, c.point.y, c.overlap_fraction, c.wall_work])
+            .chain([e.normal_elastic_change, e.spring_change, e.normal_damping, e.sliding, e.opening_residual]);
+        bits.extend(scalars.map(f64::to_bits));
+    }
+    let l = world.ledger();
+    let ledger = [
+        l.kinetic_translational,
+        l.kinetic_rotational,
+        l.potential,
+        l.contact_stored,
+        l.drag_stored,
+        l.dissipated_normal_damping,
+        l.dissipated_tangential_damping,
+        l.dissipated_sliding,
+        l.opening_residual,
+        l.work_walls,
+        l.work_drag,
+        l.work_gravity_change,
+        l.work_insertions,
+        l.energy_removed,
+        l.initial_total,
+    ];
+    bits.extend(ledger.map(f64::to_bits));
+    bits.extend([world.time().to_bits(), world.steps(), world.stats().inserted, world.stats().contacts as u64]);
+    bits
+}
+
+#[test]
+fn a_run_split_at_a_checkpoint_ends_bitwise_identical_to_the_unsplit_run() {
+    let mut unsplit = scene();
+    run(&mut unsplit, STEPS);
+
+    let mut first_half = scene();
+    run(&mut first_half, STEPS / 2);
+    // The split falls in the middle of the action, so every kind of history is live.
+    let springs = first_half.contacts().filter(|(_, _, c)| c.state.spring != 0.0).count();
+    assert!(springs >= 5, "only {springs} contacts carry a tangential spring at the split");
+    assert!(first_half.stats().inserted >= 5, "the source inserted {} particles", first_half.stats().inserted);
+    let piston_x = first_half.bodies().pose[2].position.x;
+    assert!(piston_x < 0.105 - 1e-3, "the piston has not moved (x = {piston_x})");
+    assert!(first_half.ledger().dissipated() > 0.0 && first_half.ledger().work_drag != 0.0);
+
+    let saved = checkpoint_bytes(&first_half);
+    drop(first_half);
+    let mut resumed = World::load_checkpoint(saved.as_slice()).unwrap();
+    run(&mut resumed, STEPS / 2);
+
+    assert_eq!(resumed.steps(), STEPS);
+    assert_eq!(first_difference(&position_bits(&resumed), &position_bits(&unsplit)), None, "positions differ");
+    let pairs = |w: &World| w.pairs().map(|(a, b, _)| (a, b)).collect::<Vec<_>>();
+    assert_eq!(pairs(&resumed), pairs(&unsplit), "pair list order differs");
+    assert_eq!(first_difference(&observed_bits(&resumed), &observed_bits(&unsplit)), None);
+    assert!(checkpoint_bytes(&resumed) == checkpoint_bytes(&unsplit), "the final states serialize differently");
+}
+
+#[test]
+fn a_checkpoint_round_trip_preserves_every_byte() {
+    let mut world = scene();
+    // Before the first step: bodies still pending in the broadphase, ledger not opened.
+    let fresh = checkpoint_bytes(&world);
+    assert_eq!(checkpoint_bytes(&World::load_checkpoint(fresh.as_slice()).unwrap()), fresh);
+    run(&mut world, 700);
+    let bytes = checkpoint_bytes(&world);
+    let loaded = World::load_checkpoint(bytes.as_slice()).unwrap();
+    assert!(checkpoint_bytes(&loaded) == bytes);
+    assert_eq!(first_difference(&observed_bits(&loaded), &observed_bits(&world)), None);
+    assert_eq!(loaded.config(), world.config());
+}
+
+#[test]
+fn checkpoint_files_are_written_atomically_and_read_back() {
+    let mut world = scene();
+    run(&mut world, 100);
+    let directory = std::env::temp_dir().join(format!("gc2d-checkpoint-test-{}", std::process::id()));
+    std::fs::create_dir_all(&directory).unwrap();
+    let path = directory.join("run.ckpt");
+    world.save_checkpoint_file(&path).unwrap();
+    assert!(!directory.join("run.ckpt.tmp").exists());
+    let loaded = World::load_checkpoint_file(&path).unwrap();
+    assert!(checkpoint_bytes(&loaded) == checkpoint_bytes(&world));
+    let missing = World::load_checkpoint_file(directory.join("missing.ckpt"));
+    assert!(matches!(missing, Err(CheckpointError::Io(_))));
+    std::fs::remove_dir_all(&directory).unwrap();
+}
+
+/// Byte offset of the payload: magic, format version, version length and string, payload length, checksum.
+fn payload_offset() -> usize {
+    8 + 4 + 2 + PROGRAM_VERSION.len() + 8 + 8
+}
+
+#[test]
+fn truncated_checkpoints_are_refused_at_every_length() {
+    let mut world = scene();
+    run(&mut world, 50);
+    let bytes = checkpoint_bytes(&world);
+    let header = payload_offset();
+    for cut in (0..header).chain([header, header + 1, bytes.len() / 2, bytes.len() - 1]) {
+        match World::load_checkpoint(&bytes[..cut]) {
+            Err(CheckpointError::Truncated { expected, found, .. }) => assert!(found < expected, "cut at {cut}"),
+            other => panic!("cut at {cut} of {}: expected Truncated, got {:?}", bytes.len(), other.err()),
+        }
+    }
+    let message = World::load_checkpoint(&bytes[..bytes.len() - 1]).err().unwrap().to_string();
+    assert!(message.contains("truncated") && message.contains("payload"), "{message}");
+}
+
+#[test]
+fn foreign_and_corrupted_checkpoints_are_refused() {
+    let world = scene();
+    let bytes = checkpoint_bytes(&world);
+    assert_eq!(bytes[..8], CHECKPOINT_MAGIC);
+
+    let mut wrong_magic = bytes.clone();
+    wrong_magic[..8].copy_from_slice(b"GC2DCKPX");
+    assert!(matches!(World::load_checkpoint(wrong_magic.as_slice()), Err(CheckpointError::NotACheckpoint)));
+    assert!(matches!(World::load_checkpoint(&b"PARAMETER v1.4\n"[..]), Err(CheckpointError::NotACheckpoint)));
+
+    let mut newer_format = bytes.clone();
+    newer_format[8..12].copy_from_slice(&(CHECKPOINT_FORMAT_VERSION + 1).to_le_bytes());
+    match World::load_checkpoint(newer_format.as_slice()) {
+        Err(CheckpointError::FormatVersion { found, expected }) => {
+            assert_eq!((found, expected), (CHECKPOINT_FORMAT_VERSION + 1, CHECKPOINT_FORMAT_VERSION));
+        }
+        other => panic!("expected FormatVersion, got {:?}", other.err()),
+    }
+
+    let mut other_program = bytes.clone();
+    let version = 14..14 + PROGRAM_VERSION.len();
+    assert_eq!(&other_program[version.clone()], PROGRAM_VERSION.as_bytes());
+    other_program[version.start] = b'9';
+    match World::load_checkpoint(other_program.as_slice()) {
+        Err(error @ CheckpointError::ProgramVersion { .. }) => {
+            assert!(error.to_string().contains(PROGRAM_VERSION), "{error}");
+        }
+        other => panic!("expected ProgramVersion, got {:?}", other.err()),
+    }
+
+    // Any single flipped bit in the payload is caught by the checksum before decoding.
+    for position in [payload_offset(), payload_offset() + 100, bytes.len() - 1] {
+        let mut flipped = bytes.clone();
+        flipped[position] ^= 0x10;
+        assert!(
+            matches!(World::load_checkpoint(flipped.as_slice()), Err(CheckpointError::Corrupted { .. })),
+            "flip at {position}"
+        );
+    }
+}
+
+#[test]
+fn a_payload_that_passes_the_checksum_but_is_not_a_world_is_an_error() {
+    let garbage: Vec<u8> = (0..200u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8).collect();
+    let mut file = Vec::new();
+    file.extend_from_slice(&CHECKPOINT_MAGIC);
+    file.extend_from_slice(&CHECKPOINT_FORMAT_VERSION.to_le_bytes());
+    file.extend_from_slice(&(PROGRAM_VERSION.len() as u16).to_le_bytes());
+    file.extend_from_slice(PROGRAM_VERSION.as_bytes());
+    file.extend_from_slice(&(garbage.len() as u64).to_le_bytes());
+    let checksum =
+        garbage.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3));
+    file.extend_from_slice(&checksum.to_le_bytes());
+    file.extend_from_slice(&garbage);
+    let result = World::load_checkpoint(file.as_slice());
+    assert!(
+        matches!(result, Err(CheckpointError::Encoding(_) | CheckpointError::Inconsistent(_))),
+        "{:?}",
+        result.err()
+    );
+}
+
+/// The payload length of a fixed scene pins the serialized layout: a field added to, removed from or retyped in any
+/// type of the World changes it. When this fails, bump `CHECKPOINT_FORMAT_VERSION` and update the length.
+#[test]
+fn checkpoint_layout_is_pinned() {
+    let mut world = scene();
+    run(&mut world, 1);
+    let payload = checkpoint_bytes(&world).len() - payload_offset();
+    assert_eq!(
+        payload, 19874,
+        "the checkpoint layout changed: bump CHECKPOINT_FORMAT_VERSION (now {CHECKPOINT_FORMAT_VERSION}) and pin the \
+         new payload length"
+    );
+}
