@@ -1,0 +1,303 @@
+//! Building a World from a scene: walls (with the wall-builder macros expanded), particles, lattice blocks, drag
+//! springs and sources, then the load-time safety checks (initial overlaps, time-step bound).
+//!
+//! Random draws are deterministic per `run.seed`: the shapes of `Random` particles and of blocks (and the block
+//! scatter and velocities) come from ChaCha8 stream 1 of the seed, in scene order (particles, then blocks); the
+//! World's own stream 0 drives the sources during the run; stream 2 samples source shapes for the time-step bound.
+
+pub(crate) mod blocks;
+pub(crate) mod safety;
+pub(crate) mod shapes;
+pub(crate) mod walls;
+
+use crate::error::{ErrorKind, SceneError};
+use crate::schema::{Corrector, DropHeight, Gravity, GravityProfile, Scene, Source};
+use crate::spans::field_path;
+use crate::summary::Summary;
+use crate::validate::{Materials, contact_law};
+use blocks::Lattice;
+use gc2d_engine::schedules::{
+    DragSpring as EngineDragSpring, GravityProfile as EngineProfile, GravitySchedule, HeatingSchedule,
+};
+use gc2d_engine::{DropSource, GearC0, SafetyLimits, TimeWindow, World, WorldConfig, WorldError};
+use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use safety::{PlacedBody, TimeStepBound};
+use walls::PlacedWall;
+
+/// ChaCha8 stream of the build's draws (the World uses stream 0 for its sources).
+const BUILD_STREAM: u64 = 1;
+/// ChaCha8 stream of the source samples for the time-step bound.
+const SOURCE_SAMPLE_STREAM: u64 = 2;
+
+/// A free particle ready for `World::add_particle`.
+struct PlannedParticle {
+    polygon: ConvexPolygon,
+    pose: Pose,
+    velocity: DVec2,
+    angular_velocity: f64,
+    density: f64,
+    drag_spring: Option<EngineDragSpring>,
+    path: String,
+}
+
+/// A built scene and what the summary reports about it.
+pub(crate) struct Built {
+    pub world: World,
+    pub summary: Summary,
+}
+
+impl Scene {
+    /// Builds the World the scene describes: validates it, expands wall macros, generates blocks, and checks that
+    /// no two initial bodies overlap by more than `run.max_overlap_fraction` and that Δt is below the stable bound
+    /// of every particle present at the start or inserted by a source (unless `run.allow_unsafe_time_step`).
+    /// The same scene with the same seed gives a bitwise identical World.
+    pub fn build(&self) -> Result<World, SceneError> {
+        Ok(self.build_with_summary()?.world)
+    }
+
+    /// What the scene contains once built: counts of walls, particles and sources, materials, Δt and its bound.
+    pub fn summary(&self) -> Result<Summary, SceneError> {
+        Ok(self.build_with_summary()?.summary)
+    }
+
+    pub(crate) fn build_with_summary(&self) -> Result<Built, SceneError> {
+        self.validate()?;
+        build(self).map_err(|e| e.located(self.source.as_ref()))
+    }
+}
+
+fn build(scene: &Scene) -> Result<Built, SceneError> {
+    let materials = Materials::of(scene);
+    let law = contact_law(materials.first());
+    let e_modulus = law.elastic.e_modulus;
+    let mut rng = ChaCha8Rng::seed_from_u64(scene.run.seed);
+    rng.set_stream(BUILD_STREAM);
+
+    let mut walls: Vec<PlacedWall> = Vec::new();
+    for (i, item) in scene.walls.iter().enumerate() {
+        walls.extend(walls::expand(item, &format!("walls[{i}]"), &mut rng)?);
+    }
+    let particles = plan_particles(scene, &materials, &mut rng)?;
+    let sources = plan_sources(scene, &materials)?;
+
+    let mut bound = particles
+        .iter()
+        .filter_map(|p| TimeStepBound::of(&p.polygon, p.density, e_modulus, &p.path))
+        .reduce(|a, b| if b.time_step < a.time_step { b } else { a });
+    let mut sample_rng = ChaCha8Rng::seed_from_u64(scene.run.seed);
+    sample_rng.set_stream(SOURCE_SAMPLE_STREAM);
+    for (i, source) in sources.iter().enumerate() {
+        let path = format!("sources[{i}]");
+        let source_bound = TimeStepBound::of_source(&source.recipe, source.density, e_modulus, &path, &mut sample_rng);
+        bound = TimeStepBound::min(bound, source_bound);
+    }
+    let time_step = safety::choose_time_step(scene.run.time_step_s, bound.as_ref(), scene.run.allow_unsafe_time_step)
+        .map_err(|error| match &bound {
+        Some(b) if error.kind == ErrorKind::TimeStep => error.with_related(limiting_note(b)),
+        _ => error,
+    })?;
+
+    let placed: Vec<PlacedBody> = walls
+        .iter()
+        .map(|w| PlacedBody { polygon: &w.polygon, pose: w.pose, is_wall: true, path: &w.path })
+        .chain(particles.iter().map(|p| PlacedBody {
+            polygon: &p.polygon,
+            pose: p.pose,
+            is_wall: false,
+            path: &p.path,
+        }))
+        .collect();
+    if let Some(error) = SceneError::combine(safety::overlap_errors(&placed, scene.run.max_overlap_fraction)) {
+        return Err(error);
+    }
+
+    let config = WorldConfig {
+        time_step,
+        corrector: match scene.run.corrector {
+            Corrector::VelocityDependent => GearC0::VelocityDependent,
+            Corrector::PositionDependent => GearC0::PositionDependent,
+        },
+        contact_law: law,
+        gravity: gravity(&scene.gravity),
+        heating: scene.heating.map(|h| HeatingSchedule {
+            window: TimeWindow::new(h.window_s[0], h.window_s[1]),
+            amplitude: h.amplitude,
+            frequency: h.frequency_hz,
+            slope: h.slope,
+        }),
+        safety: SafetyLimits {
+            max_overlap_fraction: scene.run.max_overlap_fraction,
+            max_energy_gain_fraction: scene.run.max_energy_gain_fraction,
+            allow_unsafe_time_step: scene.run.allow_unsafe_time_step,
+        },
+        domain: scene.run.domain.map(|d| Aabb {
+            min: DVec2::new(d.x_range_m[0], d.y_range_m[0]),
+            max: DVec2::new(d.x_range_m[1], d.y_range_m[1]),
+        }),
+        seed: scene.run.seed,
+    };
+    let mut world = World::new(config).map_err(|e| engine_error(&e, ""))?;
+    let moving_walls = walls.iter().filter(|w| !w.motion.is_static()).count();
+    for wall in &walls {
+        world.add_wall(&wall.polygon, wall.pose, wall.surface_velocity, wall.motion);
+    }
+    let mut drag_springs = 0;
+    for particle in &particles {
+        let id = world
+            .add_particle(
+                &particle.polygon,
+                particle.pose,
+                particle.density,
+                particle.velocity,
+                particle.angular_velocity,
+            )
+            .map_err(|e| engine_error(&e, &particle.path))?;
+        if let Some(spring) = particle.drag_spring {
+            world.add_drag_spring(id, spring).map_err(|e| engine_error(&e, &particle.path))?;
+            drag_springs += 1;
+        }
+    }
+    for (i, source) in sources.into_iter().enumerate() {
+        world.add_source(source).map_err(|e| engine_error(&e, &format!("sources[{i}]")))?;
+    }
+    world.check_time_step().map_err(|e| engine_error(&WorldError::Safety(e), "run.time_step_s"))?;
+
+    let summary = Summary {
+        name: scene.name.clone(),
+        materials: materials.names(),
+        wall_polygons: walls.len(),
+        moving_walls,
+        particles: particles.len(),
+        particle_mass_kg_m: world.bodies().particles().map(|id| world.bodies().mass[id.index()]).sum(),
+        drag_springs,
+        sources: scene.sources.len(),
+        planned_insertions: scene.sources.iter().map(|s| planned_insertions(s, scene.run.end_time_s)).sum(),
+        time_step_s: time_step,
+        time_step_is_automatic: scene.run.time_step_s.is_none(),
+        stable_time_step_s: bound.as_ref().map(|b| b.time_step),
+        limiting_entry: bound.map(|b| b.path),
+        end_time_s: scene.run.end_time_s,
+    };
+    Ok(Built { world, summary })
+}
+
+/// A note pointing at the scene entry whose particle sets the time-step bound.
+fn limiting_note(bound: &TimeStepBound) -> SceneError {
+    SceneError::new(
+        ErrorKind::TimeStep,
+        bound.path.clone(),
+        format!("the lightest particle (inscribed radius {:.3e} m) comes from here", bound.inscribed_radius),
+    )
+    .with_label("sets the bound")
+}
+
+/// An engine error while adding what `path` describes (validation catches these first; this is a backstop).
+fn engine_error(error: &WorldError, path: &str) -> SceneError {
+    let kind = if matches!(error, WorldError::Safety(_)) { ErrorKind::TimeStep } else { ErrorKind::Value };
+    SceneError::new(kind, path, error.to_string())
+}
+
+/// Explicit particles then block particles, with their materials, poses and drag springs.
+fn plan_particles(
+    scene: &Scene,
+    materials: &Materials,
+    rng: &mut ChaCha8Rng,
+) -> Result<Vec<PlannedParticle>, SceneError> {
+    let mut planned = Vec::new();
+    for (i, particle) in scene.particles.iter().enumerate() {
+        let path = format!("particles[{i}]");
+        let material = materials.resolve(particle.material.as_deref(), &field_path(&path, "material"))?;
+        let shape = shapes::outline(&particle.shape, &field_path(&path, "shape"), rng)?;
+        let position = particle.position_m.map_or(shape.written_centroid, DVec2::from_array);
+        planned.push(PlannedParticle {
+            polygon: shape.polygon,
+            pose: Pose::new(position, particle.angle_rad + shape.drawn_angle),
+            velocity: DVec2::from_array(particle.velocity_m_s),
+            angular_velocity: particle.angular_velocity_rad_s,
+            density: material.density_kg_m2,
+            drag_spring: particle.drag_spring.map(|s| EngineDragSpring {
+                stiffness: s.stiffness_n_m,
+                fixing_point: DVec2::from_array(s.fixing_point_m),
+                pulling_start: DVec2::from_array(s.pulling_start_m),
+                direction_angle: s.direction_rad,
+                speed: s.speed_m_s,
+                window: TimeWindow::new(s.window_s[0], s.window_s[1]),
+            }),
+            path,
+        });
+    }
+    for (i, block) in scene.blocks.iter().enumerate() {
+        let path = format!("blocks[{i}]");
+        let material = materials.resolve(block.material.as_deref(), &field_path(&path, "material"))?;
+        let lattice = Lattice::of(block, &path)?;
+        let recipe = shapes::shape_recipe(&block.shape, &field_path(&path, "shape"))?;
+        for particle in blocks::generate(block, &lattice, &recipe, rng, &path)? {
+            planned.push(PlannedParticle {
+                polygon: particle.polygon,
+                pose: Pose::new(particle.position, particle.angle),
+                velocity: particle.velocity,
+                angular_velocity: 0.0,
+                density: material.density_kg_m2,
+                drag_spring: None,
+                path: path.clone(),
+            });
+        }
+    }
+    Ok(planned)
+}
+
+fn plan_sources(scene: &Scene, materials: &Materials) -> Result<Vec<DropSource>, SceneError> {
+    scene
+        .sources
+        .iter()
+        .enumerate()
+        .map(|(i, source)| {
+            let path = format!("sources[{i}]");
+            let material = materials.resolve(source.material.as_deref(), &field_path(&path, "material"))?;
+            Ok(DropSource {
+                position: DVec2::from_array(source.position_m),
+                width: source.width_m,
+                height: match source.height {
+                    DropHeight::Absolute => gc2d_engine::DropHeight::Absolute,
+                    DropHeight::AboveHighest => gc2d_engine::DropHeight::AboveHighest,
+                },
+                window: TimeWindow::new(source.window_s[0], source.window_s[1]),
+                interval: source.interval_s,
+                recipe: shapes::shape_recipe(&source.shape, &field_path(&path, "shape"))?,
+                density: material.density_kg_m2,
+            })
+        })
+        .collect()
+}
+
+fn gravity(gravity: &Gravity) -> GravitySchedule {
+    match *gravity {
+        Gravity::Constant(g) => GravitySchedule::constant(g),
+        Gravity::Varying { profile, from_m_s2, to_m_s2, window_s, steps, ramp_fraction } => GravitySchedule {
+            profile: match profile {
+                GravityProfile::Linear => EngineProfile::Linear,
+                GravityProfile::Step => EngineProfile::Step,
+                GravityProfile::SmoothStep => EngineProfile::SmoothStep,
+            },
+            start_value: from_m_s2,
+            end_value: to_m_s2,
+            window: TimeWindow::new(window_s[0], window_s[1]),
+            steps,
+            ramp_fraction,
+        },
+    }
+}
+
+/// How many insertions a source attempts before the run ends: one at max(t1, 0) and one per interval while the time
+/// is inside its window and not past the end time.
+fn planned_insertions(source: &Source, end_time: f64) -> u64 {
+    let first = source.window_s[0].max(0.0);
+    let last = source.window_s[1].min(end_time);
+    if !(last >= first && source.interval_s > 0.0) {
+        return 0;
+    }
+    let span = (last - first) / source.interval_s;
+    if span.is_finite() { span.floor() as u64 + u64::from(first < source.window_s[1]) } else { 0 }
+}

@@ -1,0 +1,212 @@
+//! Load-time safety: the stable time step of the scene's particles (including those its sources will insert) and
+//! the overlap of the initial bodies (reference §3.6, §10.4).
+
+use crate::error::{ErrorKind, SceneError};
+use gc2d_engine::integrator::max_stable_time_step_elongated;
+use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose, ShapeRecipe, contact_geometry};
+use rand_chacha::ChaCha8Rng;
+
+/// Shapes drawn per source to estimate the smallest particle it will insert.
+pub const SOURCE_SAMPLES: usize = 256;
+
+/// Fraction of the stable bound used when the scene leaves Δt out.
+pub const AUTOMATIC_TIME_STEP_FRACTION: f64 = 0.5;
+
+/// Δt when the scene leaves it out and has no particles to bound it (gc2d's default `DELTA_T`), s.
+pub const FALLBACK_TIME_STEP: f64 = 1e-4;
+
+/// The particle that limits the time step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeStepBound {
+    /// (π/10)·sqrt(m/E) with m = π·r²·ρ, s.
+    pub time_step: f64,
+    /// The inscribed radius r of the limiting particle, m.
+    pub inscribed_radius: f64,
+    /// Field path of the scene entry it comes from.
+    pub path: String,
+}
+
+impl TimeStepBound {
+    /// The bound for one particle shape, `None` for unusable values.
+    pub fn of(polygon: &ConvexPolygon, density: f64, e_modulus: f64, path: &str) -> Option<Self> {
+        let radius = polygon.inscribed_radius();
+        max_stable_time_step_elongated(radius, density, e_modulus).map(|time_step| Self {
+            time_step,
+            inscribed_radius: radius,
+            path: path.to_owned(),
+        })
+    }
+
+    /// The smaller of two bounds (the first on ties).
+    pub fn min(a: Option<Self>, b: Option<Self>) -> Option<Self> {
+        match (a, b) {
+            (Some(a), Some(b)) => Some(if b.time_step < a.time_step { b } else { a }),
+            (a, b) => a.or(b),
+        }
+    }
+
+    /// The bound of the smallest of [`SOURCE_SAMPLES`] shapes drawn from a source's recipe.
+    pub fn of_source(
+        recipe: &ShapeRecipe,
+        density: f64,
+        e_modulus: f64,
+        path: &str,
+        rng: &mut ChaCha8Rng,
+    ) -> Option<Self> {
+        (0..SOURCE_SAMPLES)
+            .filter_map(|_| recipe.draw(rng).ok())
+            .filter_map(|(polygon, _)| Self::of(&polygon, density, e_modulus, path))
+            .reduce(|a, b| if b.time_step < a.time_step { b } else { a })
+    }
+}
+
+/// The time step to run with: the scene's, checked against the bound, or an automatic one.
+pub fn choose_time_step(
+    requested: Option<f64>,
+    bound: Option<&TimeStepBound>,
+    allow_unsafe: bool,
+) -> Result<f64, SceneError> {
+    let Some(dt) = requested else {
+        return Ok(
+            bound.map_or(FALLBACK_TIME_STEP, |b| round_down_to_two_digits(AUTOMATIC_TIME_STEP_FRACTION * b.time_step))
+        );
+    };
+    if !(dt > 0.0 && dt.is_finite()) {
+        return Err(SceneError::value("run.time_step_s", format!("{dt}: must be a positive finite number of seconds")));
+    }
+    match bound {
+        Some(bound) if dt > bound.time_step && !allow_unsafe => Err(SceneError::new(
+            ErrorKind::TimeStep,
+            "run.time_step_s",
+            format!(
+                "time step {dt:.3e} s is above the stable bound {:.3e} s = (π/10)·sqrt(m/E) of the lightest particle \
+                 (m = π·r²·ρ with inscribed radius r = {:.3e} m, from `{}`)",
+                bound.time_step, bound.inscribed_radius, bound.path
+            ),
+        )
+        .with_help(format!(
+            "use a time step of at most {:.3e} s, leave `time_step_s` out to get one chosen, or set \
+             `allow_unsafe_time_step: true`",
+            bound.time_step
+        ))
+        .with_label("too large")),
+        _ => Ok(dt),
+    }
+}
+
+/// x rounded down to two significant digits (x > 0).
+fn round_down_to_two_digits(x: f64) -> f64 {
+    let unit = 10f64.powf(x.log10().floor() - 1.0);
+    let rounded = (x / unit).floor() * unit;
+    if rounded > 0.0 && rounded <= x { rounded } else { x }
+}
+
+/// A body placed for the overlap check.
+pub struct PlacedBody<'a> {
+    /// Its outline.
+    pub polygon: &'a ConvexPolygon,
+    /// Where it is.
+    pub pose: Pose,
+    /// True for walls (walls may overlap each other).
+    pub is_wall: bool,
+    /// Field path of its scene entry.
+    pub path: &'a str,
+}
+
+/// Most overlaps reported at once.
+const MAX_REPORTED_OVERLAPS: usize = 8;
+
+/// Overlaps between particles, and between particles and walls, larger than `max_fraction` of the smaller
+/// particle's area. Sweeps the bodies sorted by their lower x bound, so the cost is O(N log N) plus the pairs whose
+/// boxes overlap.
+pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneError> {
+    let world: Vec<Vec<DVec2>> =
+        bodies.iter().map(|b| b.polygon.vertices().iter().map(|v| b.pose.apply(*v)).collect()).collect();
+    let boxes: Vec<Aabb> = world.iter().map(|w| Aabb::of_points(w)).collect();
+    let mut order: Vec<usize> = (0..bodies.len()).collect();
+    order.sort_by(|&a, &b| boxes[a].min.x.total_cmp(&boxes[b].min.x).then(a.cmp(&b)));
+    let mut active: Vec<usize> = Vec::new();
+    let mut errors = Vec::new();
+    for &i in &order {
+        active.retain(|&j| boxes[j].max.x >= boxes[i].min.x);
+        for &j in &active {
+            let (a, b) = (i.min(j), i.max(j));
+            if (bodies[a].is_wall && bodies[b].is_wall) || !boxes[a].overlaps(&boxes[b]) {
+                continue;
+            }
+            let Some(contact) = contact_geometry(&world[a], &world[b]) else { continue };
+            let particle_areas = [a, b].into_iter().filter(|&k| !bodies[k].is_wall).map(|k| bodies[k].polygon.area());
+            let smaller = particle_areas.fold(f64::INFINITY, f64::min);
+            let fraction = contact.area / smaller;
+            if fraction > max_fraction {
+                errors.push(overlap_error(&bodies[a], &bodies[b], contact.point, fraction, max_fraction));
+                if errors.len() == MAX_REPORTED_OVERLAPS {
+                    return errors;
+                }
+            }
+        }
+        active.push(i);
+    }
+    errors
+}
+
+fn overlap_error(a: &PlacedBody, b: &PlacedBody, at: DVec2, fraction: f64, limit: f64) -> SceneError {
+    let what = if a.is_wall || b.is_wall { "a particle and a wall" } else { "two particles" };
+    let other = if a.path == b.path { "another body of the same entry".to_owned() } else { format!("`{}`", a.path) };
+    SceneError::new(
+        ErrorKind::Overlap,
+        b.path,
+        format!(
+            "{what} overlap by {:.1} % of the smaller particle's area at ({:.4}, {:.4}) m (limit {:.1} %); the other \
+             body is {other}",
+            100.0 * fraction,
+            at.x,
+            at.y,
+            100.0 * limit
+        ),
+    )
+    .with_help(
+        "move them apart (for blocks: a larger grid spacing or smaller particles), or raise `run.max_overlap_fraction`",
+    )
+    .with_label("overlaps")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gc2d_geometry::square;
+
+    #[test]
+    fn automatic_time_steps_round_down_to_two_digits() {
+        assert_eq!(round_down_to_two_digits(8.15e-6), 8.1e-6);
+        assert!((round_down_to_two_digits(1.0e-5) - 1.0e-5).abs() < 1e-20);
+        assert!(round_down_to_two_digits(9.99e-7) <= 9.99e-7);
+        let bound = TimeStepBound { time_step: 1.63e-5, inscribed_radius: 1e-3, path: "p".into() };
+        assert_eq!(choose_time_step(None, Some(&bound), false).unwrap(), 8.1e-6);
+        assert_eq!(choose_time_step(None, None, false).unwrap(), FALLBACK_TIME_STEP);
+        assert_eq!(choose_time_step(Some(2e-6), Some(&bound), false).unwrap(), 2e-6);
+        assert_eq!(choose_time_step(Some(2e-5), Some(&bound), false).unwrap_err().kind, ErrorKind::TimeStep);
+        assert_eq!(choose_time_step(Some(2e-5), Some(&bound), true).unwrap(), 2e-5);
+    }
+
+    #[test]
+    fn overlaps_are_measured_against_the_smaller_particle() {
+        let big = square(0.02).unwrap();
+        let small = square(0.01).unwrap();
+        let body = |polygon, x: f64, is_wall, path| PlacedBody {
+            polygon,
+            pose: Pose::new(DVec2::new(x, 0.0), 0.0),
+            is_wall,
+            path,
+        };
+        // The small square sticks 1 mm into the big one: overlap 1e-5 m² = 10 % of the small square.
+        let bodies = [body(&big, 0.0, false, "a"), body(&small, 0.014, false, "b")];
+        let errors = overlap_errors(&bodies, 0.05);
+        assert_eq!(errors.len(), 1);
+        assert!(errors[0].message.contains("10.0 %"), "{}", errors[0].message);
+        assert!(overlap_errors(&bodies, 0.11).is_empty());
+        // Walls never count against each other.
+        let walls = [body(&big, 0.0, true, "a"), body(&small, 0.014, true, "b")];
+        assert!(overlap_errors(&walls, 0.0).is_empty());
+    }
+}

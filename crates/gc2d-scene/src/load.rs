@@ -1,0 +1,181 @@
+//! Loading a scene: RON through serde (with `implicit_some` and `unwrap_variant_newtypes` on by default), ron's
+//! error positions turned into spans and field paths, then validation.
+
+use crate::error::{ErrorKind, SceneError, suggest};
+use crate::schema::Scene;
+use crate::source::SourceText;
+use ron::error::{Error as RonError, SpannedError};
+use ron::extensions::Extensions;
+use std::ops::Range;
+use std::path::Path;
+use std::sync::Arc;
+
+impl Scene {
+    /// Reads, parses and validates the scene file at `path`. The scene's name defaults to the file stem.
+    pub fn from_path(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            SceneError::new(ErrorKind::Io, "", format!("cannot read scene file {}: {e}", path.display()))
+        })?;
+        Scene::from_str(&text, &path.display().to_string())
+    }
+
+    /// Parses and validates scene `text`; `name` is the file name shown in errors (and, without directories and
+    /// `.ron`, the scene's default name).
+    ///
+    /// Checks everything that can be checked without building the World: syntax, field names, types, ranges,
+    /// material references and shapes. Time-step and initial-overlap checks need the built World; see
+    /// [`Scene::build`].
+    pub fn from_str(text: &str, name: &str) -> Result<Scene, SceneError> {
+        let source = Arc::new(SourceText::new(name, text));
+        let options = ron::Options::default()
+            .with_default_extension(Extensions::IMPLICIT_SOME | Extensions::UNWRAP_VARIANT_NEWTYPES);
+        let mut scene: Scene = options.from_str(text).map_err(|e| from_ron_error(&e, &source))?;
+        if scene.name.is_empty() {
+            scene.name = default_name(name);
+        }
+        scene.source = Some(source);
+        scene.validate()?;
+        Ok(scene)
+    }
+}
+
+/// The file name without directories and a `.ron` ending.
+fn default_name(file: &str) -> String {
+    let base = file.rsplit(['/', '\\']).next().unwrap_or(file);
+    base.strip_suffix(".ron").unwrap_or(base).to_owned()
+}
+
+/// Turns ron's error (a code and a line/column span) into a located scene error with its field path.
+fn from_ron_error(error: &SpannedError, source: &Arc<SourceText>) -> SceneError {
+    let start = source.offset_of(error.span.start.line, error.span.start.col);
+    let end = source.offset_of(error.span.end.line, error.span.end.col).max(start);
+    let text = source.text();
+    let start = start + text[start..end].len() - text[start..end].trim_start().len();
+    let span = if start < end {
+        start..end
+    } else {
+        let next = start + text[start..].len() - text[start..].trim_start().len();
+        source.value_span_at(next).unwrap_or_else(|| widen_to_token(text, next..next))
+    };
+    let path = source.path_at(span.start).unwrap_or("").to_owned();
+    let mut scene_error = describe(&error.code, path);
+    let written = &text[span.clone()];
+    if scene_error.kind == ErrorKind::Type
+        && !scene_error.message.contains("found")
+        && written.len() <= 40
+        && !written.contains('\n')
+    {
+        scene_error.message = format!("{}, found `{written}`", scene_error.message);
+    }
+    scene_error.at_span(source, Some(span))
+}
+
+/// An empty span grows to the word (or the single character) at its start, so there is something to underline.
+fn widen_to_token(text: &str, span: Range<usize>) -> Range<usize> {
+    if span.end > span.start {
+        return span;
+    }
+    let start = span.start.min(text.len());
+    let word_end = text[start..].find(|c: char| !(c.is_alphanumeric() || c == '_')).map_or(text.len(), |i| start + i);
+    if word_end > start {
+        return start..word_end;
+    }
+    let next = text[start..].chars().next().map_or(0, char::len_utf8);
+    start..start + next
+}
+
+/// The message, kind, path and help for one ron error code found at `path`.
+fn describe(code: &RonError, path: String) -> SceneError {
+    let list = |names: &[&str]| names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ");
+    let did_you_mean = |found: &str, expected: &[&str]| {
+        suggest(found, expected).map_or(String::new(), |s| format!(", did you mean `{s}`?"))
+    };
+    match code {
+        RonError::NoSuchStructField { expected, found, outer } => {
+            let owner = outer.as_deref().map_or(String::new(), |o| format!(" of `{o}`"));
+            SceneError::new(
+                ErrorKind::UnknownName,
+                path,
+                format!("unknown field `{found}`{}", did_you_mean(found, expected)),
+            )
+            .with_help(format!("the fields{owner} are {}", list(expected)))
+            .with_label("unknown field")
+        }
+        RonError::NoSuchEnumVariant { expected, found, outer } => {
+            let owner = outer.as_deref().map_or(String::new(), |o| format!(" of `{o}`"));
+            SceneError::new(
+                ErrorKind::UnknownName,
+                path,
+                format!("unknown variant `{found}`{}", did_you_mean(found, expected)),
+            )
+            .with_help(format!("the variants{owner} are {}", list(expected)))
+            .with_label("unknown variant")
+        }
+        RonError::ExpectedDifferentStructName { expected, found } => SceneError::new(
+            ErrorKind::UnknownName,
+            path,
+            format!("expected a `{expected}` here, found `{found}`{}", did_you_mean(found, &[expected])),
+        )
+        .with_help(format!("write `{expected}(…)` or just `(…)`")),
+        RonError::MissingStructField { field, outer } => {
+            let owner = outer.as_deref().map_or(String::new(), |o| format!(" in `{o}`"));
+            let full_path = crate::spans::field_path(&path, field);
+            SceneError::new(ErrorKind::MissingField, full_path, format!("missing field `{field}`{owner}"))
+                .with_help("this field has no default; see docs/scene-format.md")
+                .with_label("this structure needs it")
+        }
+        RonError::DuplicateStructField { field, .. } => {
+            SceneError::new(ErrorKind::Syntax, path, format!("field `{field}` is given twice"))
+        }
+        RonError::InvalidValueForType { expected, found } => {
+            SceneError::new(ErrorKind::Type, path, format!("expected {expected}, found {found}"))
+                .with_label("wrong type")
+        }
+        RonError::ExpectedDifferentLength { expected, found } => {
+            SceneError::new(ErrorKind::Type, path, format!("expected {expected}, found {found} elements"))
+                .with_label("wrong length")
+        }
+        RonError::ExpectedFloat
+        | RonError::ExpectedInteger
+        | RonError::IntegerOutOfBounds
+        | RonError::ExpectedBoolean
+        | RonError::ExpectedString
+        | RonError::ExpectedArray
+        | RonError::ExpectedMap
+        | RonError::ExpectedOption
+        | RonError::ExpectedUnit
+        | RonError::ExpectedStructLike
+        | RonError::ExpectedNamedStructLike(_)
+        | RonError::ExpectedIdentifier => {
+            SceneError::new(ErrorKind::Type, path, lowercase_first(&code.to_string())).with_label("wrong type")
+        }
+        other => SceneError::new(ErrorKind::Syntax, path, lowercase_first(&other.to_string())),
+    }
+}
+
+fn lowercase_first(text: &str) -> String {
+    let mut chars = text.chars();
+    chars.next().map_or(String::new(), |c| c.to_lowercase().chain(chars).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_names_drop_directories_and_the_extension() {
+        assert_eq!(default_name("scenes/pile.ron"), "pile");
+        assert_eq!(default_name("C:\\x\\silo.ron"), "silo");
+        assert_eq!(default_name("inline"), "inline");
+    }
+
+    #[test]
+    fn empty_spans_widen_to_the_word() {
+        let text = "a: gamm, b";
+        assert_eq!(widen_to_token(text, 3..3), 3..7);
+        assert_eq!(widen_to_token(text, 7..7), 7..8);
+        assert_eq!(widen_to_token(text, 10..10), 10..10);
+        assert_eq!(widen_to_token(text, 0..2), 0..2);
+    }
+}

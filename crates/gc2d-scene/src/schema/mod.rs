@@ -1,0 +1,325 @@
+//! The scene types: what a RON scene file says, one Rust type per RON structure (see `docs/scene-format.md`).
+//!
+//! Every field is public and every type has a documented default where the field may be omitted, so a scene can be
+//! written by hand, loaded from RON, or constructed in code (the gsi importer fills these types). Units are part of
+//! the field names (`time_step_s`, `density_kg_m2`); dimensionless fields name the thesis symbol (`gamma`, `mu`).
+//! Positions and vectors are `(x, y)` pairs, `[f64; 2]` in Rust. Angles are radians, counter-clockwise from +x.
+
+mod bodies;
+mod shapes;
+mod walls;
+
+pub use bodies::{Block, DragSpring, DropHeight, GridType, Particle, Source};
+pub use shapes::{CornerPositions, CountSpread, Orientation, Recipe, Shape, SizeSpread};
+pub use walls::{Drum, Enclosure, Funnel, Motion, Silo, Wall, WallItem, Waveform};
+
+use crate::source::SourceText;
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+
+/// A time window `(t1, t2)` in seconds; `inf` is allowed for an open end.
+pub type Window = [f64; 2];
+
+/// A whole scene: run settings, gravity and heating, materials, walls, particles, lattice blocks and sources.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// A short name (outputs are named after it). Default: the file name without `.ron`.
+    #[serde(default)]
+    pub name: String,
+    /// Free text saying what the scene shows.
+    #[serde(default)]
+    pub description: String,
+    /// Time step, end time, seed, output cadence and safety options.
+    #[serde(default)]
+    pub run: Run,
+    /// g(t), acting along −y. Default `Constant(9.81)`.
+    #[serde(default)]
+    pub gravity: Gravity,
+    /// Global particle size cycling s(t) (gsi `HEAT_*`). Default: none.
+    #[serde(default)]
+    pub heating: Option<Heating>,
+    /// Named materials. Default: one material named `default` with the default values.
+    #[serde(default)]
+    pub materials: Vec<Material>,
+    /// Walls: single polygons and the wall-builder macros (drum, funnel, silo, box).
+    #[serde(default)]
+    pub walls: Vec<WallItem>,
+    /// Individually placed particles (gsi `PARTICLE`).
+    #[serde(default)]
+    pub particles: Vec<Particle>,
+    /// Particles on a lattice in a rectangle (gsi `GENERATE_BLOCK`).
+    #[serde(default)]
+    pub blocks: Vec<Block>,
+    /// Particle sources that insert particles during the run (gsi `DROPSOURCE`).
+    #[serde(default)]
+    pub sources: Vec<Source>,
+    /// The region a picture of the scene should show (gsi `DISPLAY` `X_RANGE`/`Y_RANGE`). Default: none.
+    #[serde(default)]
+    pub view: Option<Area>,
+    /// The text the scene was loaded from, for error spans; `None` for scenes constructed in code.
+    #[serde(skip)]
+    pub source: Option<Arc<SourceText>>,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Self {
+            name: String::new(),
+            description: String::new(),
+            run: Run::default(),
+            gravity: Gravity::default(),
+            heating: None,
+            materials: Vec::new(),
+            walls: Vec::new(),
+            particles: Vec::new(),
+            blocks: Vec::new(),
+            sources: Vec::new(),
+            view: None,
+            source: None,
+        }
+    }
+}
+
+/// How long, how finely and how safely to run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Run {
+    /// Δt in s. Default (omitted): half the stable bound (π/10)·sqrt(m/E) of the lightest particle, rounded down
+    /// to two significant digits, or 1e-4 s when the scene has no particles.
+    #[serde(default)]
+    pub time_step_s: Option<f64>,
+    /// Simulated time at which the run ends, s. Default 1.
+    #[serde(default = "defaults::end_time")]
+    pub end_time_s: f64,
+    /// Recorded frames per simulated second (gsi `STEPS_DATA` = 1/(Δt·frames_per_second)). Default 100.
+    #[serde(default = "defaults::frames_per_second")]
+    pub frames_per_second: f64,
+    /// Simulated time between two checkpoints, s (gsi `STEPS_CHECKPOINT`·Δt). Default: no checkpoints.
+    #[serde(default)]
+    pub checkpoint_interval_s: Option<f64>,
+    /// Seed of every random draw (random shapes, block scatter, sources). Default 0.
+    #[serde(default)]
+    pub seed: u64,
+    /// Particles whose centroid leaves this box are removed. Default: none (particles are kept wherever they go).
+    #[serde(default)]
+    pub domain: Option<Area>,
+    /// Run even if Δt is above the stable bound (for experiments on instability). Default false.
+    #[serde(default)]
+    pub allow_unsafe_time_step: bool,
+    /// Largest overlap allowed, as a fraction of the smaller particle's area, at load and during the run. Default 0.05.
+    #[serde(default = "defaults::max_overlap_fraction")]
+    pub max_overlap_fraction: f64,
+    /// Largest unexplained energy gain, as a fraction of the run's energy scale, before the run stops. Default 0.25.
+    #[serde(default = "defaults::max_energy_gain_fraction")]
+    pub max_energy_gain_fraction: f64,
+    /// Gear corrector coefficient c₀. Default `VelocityDependent` (3/16).
+    #[serde(default)]
+    pub corrector: Corrector,
+}
+
+impl Default for Run {
+    fn default() -> Self {
+        Self {
+            time_step_s: None,
+            end_time_s: defaults::end_time(),
+            frames_per_second: defaults::frames_per_second(),
+            checkpoint_interval_s: None,
+            seed: 0,
+            domain: None,
+            allow_unsafe_time_step: false,
+            max_overlap_fraction: defaults::max_overlap_fraction(),
+            max_energy_gain_fraction: defaults::max_energy_gain_fraction(),
+            corrector: Corrector::default(),
+        }
+    }
+}
+
+/// The Gear corrector coefficient c₀ (reference §3.4, decision D4 in `docs/model.md`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Corrector {
+    /// c₀ = 3/16, for velocity-dependent forces (damping, friction).
+    #[default]
+    VelocityDependent,
+    /// c₀ = 3/20, Gear's coefficient for position-dependent forces only.
+    PositionDependent,
+}
+
+/// An axis-aligned rectangle given by its x and y ranges, m.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Area {
+    /// (x_min, x_max), m.
+    pub x_range_m: [f64; 2],
+    /// (y_min, y_max), m.
+    pub y_range_m: [f64; 2],
+}
+
+/// The magnitude of gravity over time; it acts along −y (gsi `G`, `G_TIME`, `G_PARAMETER`, `G_TYPE`, §2.13).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Gravity {
+    /// g in m/s², constant.
+    Constant(f64),
+    /// g changes from `from_m_s2` to `to_m_s2` over `window_s`, following `profile`.
+    Varying {
+        /// How g changes.
+        profile: GravityProfile,
+        /// g1, m/s², before and at t1.
+        from_m_s2: f64,
+        /// g2, m/s², from t2 on.
+        to_m_s2: f64,
+        /// (t1, t2), s.
+        window_s: Window,
+        /// p1: number of steps for `Step` and `SmoothStep`. Default 5.
+        #[serde(default = "defaults::gravity_steps")]
+        steps: u32,
+        /// p2: the ramp's share of each step for `SmoothStep`, in [0, 1]. Default 0.5.
+        #[serde(default = "defaults::ramp_fraction")]
+        ramp_fraction: f64,
+    },
+}
+
+impl Default for Gravity {
+    fn default() -> Self {
+        Gravity::Constant(defaults::GRAVITY)
+    }
+}
+
+/// The shape of a gravity change (gsi `G_TYPE`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum GravityProfile {
+    /// Linear from g1 to g2.
+    Linear,
+    /// p1 equal jumps.
+    Step,
+    /// p1 equal steps, each ending with a linear ramp over the fraction p2 of the step.
+    SmoothStep,
+}
+
+/// Global size cycling of all particles, s(t) = 1 + a·(½ − ½·tanh(S·cos 2πft)) (gsi `HEAT_*`, §1.6, B.2).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Heating {
+    /// (t1, t2) during which the size cycles, s.
+    pub window_s: Window,
+    /// a, the relative size change; must exceed −1. Default 0.01.
+    #[serde(default = "defaults::heat_amplitude")]
+    pub amplitude: f64,
+    /// f, Hz. Default 1.
+    #[serde(default = "defaults::one")]
+    pub frequency_hz: f64,
+    /// S, the steepness of the switch between cold and hot. Default 4.
+    #[serde(default = "defaults::heat_slope")]
+    pub slope: f64,
+}
+
+/// A named material. gc2d has one contact law per scene, so E, γ, μ and k_coh must be equal across materials for
+/// now; only the density may differ.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    /// The name particles, blocks and sources refer to.
+    pub name: String,
+    /// Area density ρ, kg/m². Default 5000 (the thesis's value, eq. 3.5).
+    #[serde(default = "defaults::density")]
+    pub density_kg_m2: f64,
+    /// Young's modulus E (2D), N/m. Default 1e7.
+    #[serde(default = "defaults::youngs_modulus")]
+    pub youngs_modulus_n_m: f64,
+    /// Normal damping γ, dimensionless. Default 0.5.
+    #[serde(default = "defaults::gamma")]
+    pub gamma: f64,
+    /// Friction coefficient μ (gsi `MUE_STATISCH`). Default 0.6.
+    #[serde(default = "defaults::mu")]
+    pub mu: f64,
+    /// Cohesion k_coh, N/m. Default 0.
+    #[serde(default)]
+    pub cohesion_n_m: f64,
+}
+
+impl Material {
+    /// A material with the default values.
+    pub fn named(name: &str) -> Self {
+        Self {
+            name: name.to_owned(),
+            density_kg_m2: defaults::density(),
+            youngs_modulus_n_m: defaults::youngs_modulus(),
+            gamma: defaults::gamma(),
+            mu: defaults::mu(),
+            cohesion_n_m: 0.0,
+        }
+    }
+}
+
+/// Default values of omitted fields (serde's `default = "…"` needs functions).
+pub(crate) mod defaults {
+    /// g, m/s².
+    pub const GRAVITY: f64 = 9.81;
+    /// The name of the implicit material of a scene that declares none.
+    pub const MATERIAL: &str = "default";
+
+    pub fn end_time() -> f64 {
+        1.0
+    }
+    pub fn frames_per_second() -> f64 {
+        100.0
+    }
+    pub fn max_overlap_fraction() -> f64 {
+        0.05
+    }
+    pub fn max_energy_gain_fraction() -> f64 {
+        0.25
+    }
+    pub fn gravity_steps() -> u32 {
+        5
+    }
+    pub fn ramp_fraction() -> f64 {
+        0.5
+    }
+    pub fn heat_amplitude() -> f64 {
+        0.01
+    }
+    pub fn heat_slope() -> f64 {
+        4.0
+    }
+    pub fn one() -> f64 {
+        1.0
+    }
+    pub fn density() -> f64 {
+        5000.0
+    }
+    pub fn youngs_modulus() -> f64 {
+        1e7
+    }
+    pub fn gamma() -> f64 {
+        0.5
+    }
+    pub fn mu() -> f64 {
+        0.6
+    }
+    pub fn half_pi() -> f64 {
+        std::f64::consts::FRAC_PI_2
+    }
+    pub fn open_window() -> super::Window {
+        [0.0, f64::INFINITY]
+    }
+    pub fn unit_window() -> super::Window {
+        [0.0, 1.0]
+    }
+    pub fn full_turn() -> [f64; 2] {
+        [0.0, std::f64::consts::TAU]
+    }
+    pub fn corners() -> usize {
+        6
+    }
+    pub fn drag_stiffness() -> f64 {
+        100.0
+    }
+    pub fn drag_speed() -> f64 {
+        0.1
+    }
+    pub fn source_interval() -> f64 {
+        0.1
+    }
+}

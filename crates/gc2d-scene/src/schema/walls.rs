@@ -1,0 +1,163 @@
+//! Walls: single polygons with a surface velocity and a motion (gsi `WALL`, §9.6), and the wall-builder macros that
+//! make many walls at once (drum, D.7; funnel, §8.3; silo, §7.1; closed box).
+
+use super::defaults;
+use super::shapes::Shape;
+use serde::{Deserialize, Serialize};
+
+/// One entry of the scene's `walls` list.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum WallItem {
+    /// A single wall polygon.
+    Wall(Wall),
+    /// A rotating drum: a ring of wall segments with a tangential surface speed.
+    Drum(Drum),
+    /// A funnel: two sloped slabs with an opening between their lower ends.
+    Funnel(Funnel),
+    /// A silo: floor and two side walls, open at the top.
+    Silo(Silo),
+    /// A closed box: floor, side walls and lid.
+    #[serde(rename = "Box")]
+    Enclosure(Enclosure),
+}
+
+/// An immovable polygon (gsi `WALL`). It interacts with particles through the scene's contact law.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Wall {
+    /// The outline.
+    pub shape: Shape,
+    /// Where the centroid goes, m. Default: a `Polygon` stays where its corners are written; other shapes sit at
+    /// the origin.
+    #[serde(default)]
+    pub position_m: Option<[f64; 2]>,
+    /// Rotation about the centroid, radians CCW. Default 0.
+    #[serde(default)]
+    pub angle_rad: f64,
+    /// Virtual surface velocity, m/s: the wall stays put but its surface drags particles like a conveyor belt;
+    /// only the tangential part acts (gsi `VELOCITY`, §2.11). Default (0, 0).
+    #[serde(default)]
+    pub surface_velocity_m_s: [f64; 2],
+    /// How the wall moves. Default `Static`.
+    #[serde(default)]
+    pub motion: Motion,
+}
+
+/// How a wall moves (§2.11). One motion per wall: gc2d forbids a vibrating piston.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Motion {
+    /// Never moves.
+    #[default]
+    Static,
+    /// Periodic displacement along a direction (gsi `VIB_*`).
+    Vibration {
+        /// Width W of the displacement, m (`VIB_WIDTH`).
+        amplitude_m: f64,
+        /// f, Hz (`VIB_FREQUENCE`).
+        frequency_hz: f64,
+        /// Direction of the displacement, radians CCW from +x (`VIB_ANGLE`). Default π/2 (vertical).
+        #[serde(default = "defaults::half_pi")]
+        direction_rad: f64,
+        /// The waveform (`VIB_TYPE`). Default `Cosine`.
+        #[serde(default)]
+        waveform: Waveform,
+        /// (t1, t2) during which the wall moves, s (`VIB_TIME`). Default (0, inf).
+        #[serde(default = "defaults::open_window")]
+        window_s: [f64; 2],
+    },
+    /// Rotation about a fixed pivot at constant angular velocity (mill rotors; not in gc2d).
+    Rotation {
+        /// The pivot, m.
+        pivot_m: [f64; 2],
+        /// ω, rad/s, CCW positive.
+        angular_velocity_rad_s: f64,
+        /// (t1, t2) during which the wall turns, s. Default (0, inf).
+        #[serde(default = "defaults::open_window")]
+        window_s: [f64; 2],
+    },
+    /// A force-controlled stamp (gsi `PISTON_*`).
+    Piston {
+        /// Direction in which it pushes, radians CCW from +x (`PISTON_ANGLE`). Default 0.
+        #[serde(default)]
+        direction_rad: f64,
+        /// Force to exert, N per unit thickness (`PISTON_FORCE`).
+        force_n: f64,
+        /// Speed limit, m/s (`PISTON_V_MAX`). Default 1.
+        #[serde(default = "defaults::one")]
+        max_speed_m_s: f64,
+    },
+}
+
+/// The periodic shape of a vibration (gsi `VIB_TYPE`, §2.11).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Waveform {
+    /// `COSINUS`: W·½(1 − cos 2πft).
+    #[default]
+    Cosine,
+    /// `SAWTOOTH`: W·(t mod 1/f)·f.
+    Sawtooth,
+    /// `TAPPING`: W·sin(2πft)^30, two taps per period.
+    Tapping,
+    /// `TRIANGLE`: up to W at half period and back.
+    Triangle,
+}
+
+/// A rotating drum after gc2d's `gc2d_drum` (D.7): `segments` trapezoidal walls between radius r and r + d around
+/// the centre. The walls do not move; each carries the tangential surface velocity `surface_speed_m_s` along its
+/// inner face, counter-clockwise for positive speeds, like a fixed drum lined with a conveyor belt.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Drum {
+    /// Centre, m.
+    pub centre_m: [f64; 2],
+    /// Inner radius r (the corners of the inner faces lie on it), m.
+    pub inner_radius_m: f64,
+    /// Wall thickness d, m.
+    pub thickness_m: f64,
+    /// Tangential surface speed v on the inside, m/s, CCW positive.
+    pub surface_speed_m_s: f64,
+    /// Number of wall segments N, 3 to 10 000.
+    pub segments: usize,
+}
+
+/// A funnel: two straight slabs that rise symmetrically from the edges of an opening (the point source of the
+/// poured piles, §8.3).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Funnel {
+    /// Centre of the opening, m (the lower inner corners of the slabs are at x ± opening/2 on this height).
+    pub outlet_m: [f64; 2],
+    /// Width of the opening, m.
+    pub opening_m: f64,
+    /// Slope of each slab against the horizontal, radians, in (0, π/2].
+    pub slope_rad: f64,
+    /// Length of each slab along its slope, m.
+    pub length_m: f64,
+    /// Thickness of each slab, m (added outside the funnel).
+    pub thickness_m: f64,
+}
+
+/// A silo outline (§7.1): a floor and two side walls around the inner rectangle, open at the top.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Silo {
+    /// Inner x range (x_min, x_max), m.
+    pub x_range_m: [f64; 2],
+    /// Inner y range (floor top, wall top), m.
+    pub y_range_m: [f64; 2],
+    /// Wall thickness, m (added outside the inner rectangle).
+    pub thickness_m: f64,
+}
+
+/// A closed box: a floor, two side walls and a lid around the inner rectangle.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Enclosure {
+    /// Inner x range (x_min, x_max), m.
+    pub x_range_m: [f64; 2],
+    /// Inner y range (floor top, lid bottom), m.
+    pub y_range_m: [f64; 2],
+    /// Wall thickness, m (added outside the inner rectangle).
+    pub thickness_m: f64,
+}
