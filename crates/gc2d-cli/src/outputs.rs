@@ -40,6 +40,12 @@ impl TimeSeriesWriter {
         Ok(Self { file })
     }
 
+    /// Opens an existing `path` to continue it (a resumed run), without writing the header again.
+    pub fn append_to(path: &Path) -> io::Result<Self> {
+        let file = std::fs::OpenOptions::new().append(true).open(path)?;
+        Ok(Self { file: BufWriter::new(file) })
+    }
+
     /// Writes the World's current row and flushes it to disk.
     pub fn append(&mut self, world: &World) -> io::Result<()> {
         let l = world.ledger();
