@@ -161,7 +161,7 @@ fn report_outcome(status: &RunStatus, world: &World, out: &Path, wall_time: f64)
     match status {
         RunStatus::Completed => {
             eprintln!(
-                "Finished at t = {:.6} s after {} steps in {:.1} s: {} particles, {} contacts. Results in {}.",
+                "Finished at t = {:.6} s after {} steps in {:.2} s: {} particles, {} contacts. Results in {}.",
                 world.time(),
                 world.steps(),
                 wall_time,
