@@ -1,0 +1,174 @@
+//! What a run leaves in its output directory: `timeseries.csv` (one row per output tick, flushed as written, so an
+//! interrupted run leaves a readable file) and `summary.json` (written at the end, whatever the outcome).
+
+use gc2d_engine::World;
+use serde::Serialize;
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
+
+/// Column names of `timeseries.csv`, in order. Energies in J per unit thickness (per metre of depth).
+pub const TIME_SERIES_COLUMNS: [&str; 15] = [
+    "time_s",
+    "particles",
+    "contacts",
+    "max_overlap_fraction",
+    "kinetic_translational_j",
+    "kinetic_rotational_j",
+    "potential_j",
+    "contact_stored_j",
+    "drag_stored_j",
+    "dissipated_normal_damping_j",
+    "dissipated_tangential_damping_j",
+    "dissipated_sliding_j",
+    "work_in_j",
+    "opening_residual_j",
+    "balance_error_j",
+];
+
+/// Appends one row per call to `timeseries.csv`.
+pub struct TimeSeriesWriter {
+    file: BufWriter<File>,
+}
+
+impl TimeSeriesWriter {
+    /// Creates `path` (truncating it) and writes the header line.
+    pub fn create(path: &Path) -> io::Result<Self> {
+        let mut file = BufWriter::new(File::create(path)?);
+        writeln!(file, "{}", TIME_SERIES_COLUMNS.join(","))?;
+        file.flush()?;
+        Ok(Self { file })
+    }
+
+    /// Opens an existing `path` to continue it (a resumed run), without writing the header again.
+    pub fn append_to(path: &Path) -> io::Result<Self> {
+        let file = std::fs::OpenOptions::new().append(true).open(path)?;
+        Ok(Self { file: BufWriter::new(file) })
+    }
+
+    /// Writes the World's current row and flushes it to disk.
+    pub fn append(&mut self, world: &World) -> io::Result<()> {
+        let l = world.ledger();
+        let s = world.stats();
+        let particles = world.bodies().particles().count();
+        writeln!(
+            self.file,
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            world.time(),
+            particles,
+            s.contacts,
+            s.max_overlap_fraction,
+            l.kinetic_translational,
+            l.kinetic_rotational,
+            l.potential,
+            l.contact_stored,
+            l.drag_stored,
+            l.dissipated_normal_damping,
+            l.dissipated_tangential_damping,
+            l.dissipated_sliding,
+            l.work_in(),
+            l.opening_residual,
+            l.balance_error(),
+        )?;
+        self.file.flush()
+    }
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+#[serde(rename_all = "snake_case", tag = "status", content = "message")]
+pub enum RunStatus {
+    /// Reached the end time.
+    Completed,
+    /// Stopped by Ctrl-C; outputs are complete up to the last step.
+    Interrupted,
+    /// Stopped by an error (blow-up, I/O); the message explains it.
+    Failed(String),
+}
+
+/// The content of `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// gc2d-rs version that made the run.
+    pub program_version: &'static str,
+    /// The scene file.
+    pub scene: String,
+    /// How the run ended.
+    pub outcome: RunStatus,
+    /// Simulated time at the end, s.
+    pub time_s: f64,
+    /// Steps taken (in this process, plus those before a resumed checkpoint).
+    pub steps: u64,
+    /// Δt, s.
+    pub time_step_s: f64,
+    /// The stable bound (π/10)·sqrt(m/E) of the particles at the end, s.
+    pub stable_time_step_s: Option<f64>,
+    /// Wall-clock time of this process's run, s.
+    pub wall_time_s: f64,
+    /// Particles in the World at the end.
+    pub particles: usize,
+    /// Particles inserted by sources.
+    pub particles_inserted: u64,
+    /// Insertions skipped because no free spot was found.
+    pub insertions_skipped: u64,
+    /// Particles removed for leaving the domain.
+    pub particles_removed: u64,
+    /// Touching pairs at the end.
+    pub contacts: usize,
+    /// Energy ledger at the end, J per unit thickness.
+    pub energy: EnergySummary,
+}
+
+/// The ledger's columns in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct EnergySummary {
+    /// Kinetic energy (translational + rotational).
+    pub kinetic_j: f64,
+    /// Potential energy m g y.
+    pub potential_j: f64,
+    /// Energy stored in contacts.
+    pub contact_stored_j: f64,
+    /// Energy dissipated by damping and sliding since the start.
+    pub dissipated_j: f64,
+    /// Work done from outside (walls, drag springs, g changes, insertions − removals).
+    pub work_in_j: f64,
+    /// (E_now − E_0) − (W_in − D): the bookkeeping error.
+    pub balance_error_j: f64,
+}
+
+impl Summary {
+    /// Gathers the summary of `world` after a run.
+    pub fn of(world: &World, scene: &Path, outcome: RunStatus, wall_time_s: f64) -> Self {
+        let l = world.ledger();
+        let s = world.stats();
+        Self {
+            program_version: env!("CARGO_PKG_VERSION"),
+            scene: scene.display().to_string(),
+            outcome,
+            time_s: world.time(),
+            steps: world.steps(),
+            time_step_s: world.time_step(),
+            stable_time_step_s: world.stable_time_step(),
+            wall_time_s,
+            particles: world.bodies().particles().count(),
+            particles_inserted: s.inserted,
+            insertions_skipped: s.insertions_skipped,
+            particles_removed: s.removed,
+            contacts: s.contacts,
+            energy: EnergySummary {
+                kinetic_j: l.kinetic(),
+                potential_j: l.potential,
+                contact_stored_j: l.contact_stored,
+                dissipated_j: l.dissipated(),
+                work_in_j: l.work_in(),
+                balance_error_j: l.balance_error(),
+            },
+        }
+    }
+
+    /// Writes the summary as pretty JSON to `path`.
+    pub fn write(&self, path: &Path) -> io::Result<()> {
+        let file = BufWriter::new(File::create(path)?);
+        serde_json::to_writer_pretty(file, self).map_err(io::Error::other)
+    }
+}

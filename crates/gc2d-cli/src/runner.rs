@@ -1,0 +1,128 @@
+//! The run loop: steps a World to its end time, writing time-series rows, recording frames and checkpoints on their
+//! cadences, showing progress, and stopping cleanly on Ctrl-C or on an error.
+
+use crate::outputs::{RunStatus, TimeSeriesWriter};
+use gc2d_engine::World;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// Something that receives the World on a cadence of simulated time (recordings, checkpoints, pictures).
+pub trait FrameSink {
+    /// Simulated time between two calls, s.
+    fn interval(&self) -> f64;
+    /// Takes the World as it is now; an error stops the run with that message.
+    fn take(&mut self, world: &World) -> Result<(), String>;
+}
+
+/// Calls a sink whenever its next tick has been reached.
+struct Cadence<'a> {
+    sink: &'a mut dyn FrameSink,
+    next: f64,
+}
+
+impl Cadence<'_> {
+    fn poll(&mut self, world: &World) -> Result<(), String> {
+        // Half a step of slack so that a tick at exactly k·interval is not missed by round-off.
+        if world.time() + 0.5 * world.time_step() >= self.next {
+            self.sink.take(world)?;
+            let interval = self.sink.interval();
+            while self.next <= world.time() + 0.5 * world.time_step() {
+                self.next += interval;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Steps `world` until `end_time`, appending a row to `series` every `series_interval` of simulated time and
+/// feeding each sink on its cadence. Returns how the run ended; the outputs are flushed in every case.
+pub fn run_to(
+    world: &mut World,
+    end_time: f64,
+    series: &mut TimeSeriesWriter,
+    series_interval: f64,
+    sinks: &mut [&mut dyn FrameSink],
+    stop: &AtomicBool,
+    show_progress: bool,
+) -> RunStatus {
+    let progress = Progress::new(world, end_time, show_progress);
+    let start = world.time();
+    let mut next_row = start;
+    let mut cadences: Vec<Cadence> = sinks.iter_mut().map(|sink| Cadence { sink: &mut **sink, next: start }).collect();
+    let status = loop {
+        if world.time() + 0.5 * world.time_step() >= next_row {
+            if let Err(e) = series.append(world) {
+                break RunStatus::Failed(format!("could not write the time series: {e}"));
+            }
+            next_row += series_interval;
+        }
+        if let Some(message) = cadences.iter_mut().find_map(|c| c.poll(world).err()) {
+            break RunStatus::Failed(message);
+        }
+        if world.time() + 0.5 * world.time_step() >= end_time {
+            break RunStatus::Completed;
+        }
+        if stop.load(Ordering::Relaxed) {
+            break RunStatus::Interrupted;
+        }
+        if let Err(e) = world.step() {
+            break RunStatus::Failed(e.to_string());
+        }
+        progress.update(world);
+    };
+    if status != RunStatus::Completed && series.append(world).is_err() {
+        return RunStatus::Failed("could not write the last row of the time series".into());
+    }
+    progress.finish(&status);
+    status
+}
+
+/// The progress bar: simulated time, steps/s, contacts and ETA; hidden when stderr is not a terminal.
+struct Progress {
+    bar: ProgressBar,
+    start_time: f64,
+    started: Instant,
+    start_steps: u64,
+}
+
+impl Progress {
+    /// Steps between two updates of the bar (it redraws at most a few times a second anyway).
+    const EVERY: u64 = 256;
+
+    fn new(world: &World, end_time: f64, visible: bool) -> Self {
+        let total_us = ((end_time - world.time()).max(0.0) * 1e6).round() as u64;
+        let target = if visible { ProgressDrawTarget::stderr() } else { ProgressDrawTarget::hidden() };
+        let bar = ProgressBar::with_draw_target(Some(total_us), target);
+        bar.set_style(
+            ProgressStyle::with_template("{bar:32.cyan/blue} {percent:>3}%  {msg}  ETA {eta}")
+                .expect("the template is a valid indicatif template")
+                .progress_chars("=> "),
+        );
+        bar.enable_steady_tick(Duration::from_millis(500));
+        Self { bar, start_time: world.time(), started: Instant::now(), start_steps: world.steps() }
+    }
+
+    fn update(&self, world: &World) {
+        if world.steps() % Self::EVERY != 0 || self.bar.is_hidden() {
+            return;
+        }
+        let elapsed = self.started.elapsed().as_secs_f64().max(1e-9);
+        let steps_per_s = (world.steps() - self.start_steps) as f64 / elapsed;
+        self.bar.set_position(((world.time() - self.start_time) * 1e6).round() as u64);
+        self.bar.set_message(format!(
+            "t = {:.4} s  {:.0} steps/s  {} particles  {} contacts",
+            world.time(),
+            steps_per_s,
+            world.bodies().particles().count(),
+            world.stats().contacts
+        ));
+    }
+
+    fn finish(&self, status: &RunStatus) {
+        match status {
+            RunStatus::Completed => self.bar.finish_with_message("done"),
+            _ => self.bar.abandon(),
+        }
+    }
+}

@@ -1,0 +1,131 @@
+//! The `gc2d-rs` binary as a user meets it: check, run, outputs, resume, interruption and bad input.
+
+use assert_cmd::Command;
+use predicates::str::contains;
+use std::path::{Path, PathBuf};
+
+fn scene(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes").join(name)
+}
+
+fn gc2d() -> Command {
+    Command::cargo_bin("gc2d-rs").unwrap()
+}
+
+#[test]
+fn check_prints_what_the_scene_contains() {
+    gc2d()
+        .args(["check", scene("tiny_pile.ron").to_str().unwrap()])
+        .assert()
+        .success()
+        .stdout(contains("sources: 1"))
+        .stdout(contains("stable bound"));
+}
+
+#[test]
+fn run_writes_summary_series_and_final_checkpoint() {
+    let out = tempfile::tempdir().unwrap();
+    gc2d()
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--out"])
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("Finished at t = 0.0"));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["outcome"]["status"], "completed");
+    assert!(summary["particles_inserted"].as_u64().unwrap() > 10);
+    assert_eq!(summary["particles_removed"], 0);
+    let series = std::fs::read_to_string(out.path().join("timeseries.csv")).unwrap();
+    // A row every 1/100 s from 0 to 0.08.
+    assert_eq!(series.lines().count(), 1 + 9);
+    assert!(out.path().join("final.ckpt").exists());
+}
+
+#[test]
+fn a_run_split_by_resume_ends_bitwise_identical() {
+    let whole = tempfile::tempdir().unwrap();
+    let split = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    gc2d().args(["run", path.to_str().unwrap(), "--quiet", "--out"]).arg(whole.path()).assert().success();
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.025", "--out"])
+        .arg(split.path())
+        .assert()
+        .success();
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
+        .arg(split.path().join("final.ckpt"))
+        .arg("--out")
+        .arg(split.path())
+        .assert()
+        .success();
+    let a = std::fs::read(whole.path().join("final.ckpt")).unwrap();
+    let b = std::fs::read(split.path().join("final.ckpt")).unwrap();
+    assert!(a == b, "the resumed run's final state differs from the unsplit run's");
+    // The resumed run continued the time series instead of starting a new one.
+    let series = std::fs::read_to_string(split.path().join("timeseries.csv")).unwrap();
+    assert_eq!(series.lines().filter(|l| l.starts_with("time_s")).count(), 1);
+}
+
+#[test]
+fn thread_count_does_not_change_the_result() {
+    let one = tempfile::tempdir().unwrap();
+    let two = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    for (dir, threads) in [(&one, "1"), (&two, "2")] {
+        gc2d()
+            .args(["run", path.to_str().unwrap(), "--quiet", "--threads", threads, "--out"])
+            .arg(dir.path())
+            .assert()
+            .success();
+    }
+    assert!(
+        std::fs::read(one.path().join("final.ckpt")).unwrap() == std::fs::read(two.path().join("final.ckpt")).unwrap()
+    );
+}
+
+#[test]
+fn ctrl_c_stops_cleanly_with_readable_outputs() {
+    let out = tempfile::tempdir().unwrap();
+    let bin = assert_cmd::cargo::cargo_bin("gc2d-rs");
+    let mut child = std::process::Command::new(bin)
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--until", "1000", "--out"])
+        .arg(out.path())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait until the run has written its first rows, then interrupt it.
+    let series = out.path().join("timeseries.csv");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while std::fs::read_to_string(&series).map_or(0, |s| s.lines().count()) < 3 {
+        assert!(std::time::Instant::now() < deadline, "the run wrote no rows");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let killed = std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(killed.success());
+    let output = child.wait_with_output().unwrap();
+    assert_eq!(output.status.code(), Some(130));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("Interrupted at t ="));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["outcome"]["status"], "interrupted");
+    let text = std::fs::read_to_string(&series).unwrap();
+    let columns = text.lines().next().unwrap().split(',').count();
+    assert!(text.lines().all(|l| l.split(',').count() == columns), "every row is complete");
+    assert!(out.path().join("final.ckpt").exists());
+}
+
+#[test]
+fn a_missing_scene_file_is_an_input_error() {
+    gc2d().args(["check", "no/such/scene.ron"]).assert().code(2).stderr(contains("no/such/scene.ron"));
+}
+
+#[test]
+fn zero_threads_is_refused() {
+    gc2d()
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--threads", "0"])
+        .assert()
+        .code(2)
+        .stderr(contains("--threads must be at least 1"));
+}
