@@ -121,7 +121,10 @@ mod tests {
         // 9.638e-3 in the first ten periods and 9.633e-3 in the last ten (bound (ωΔt)²/4 = 9.638e-3).
         let (_, first, last) = oscillator(32, 1000);
         let bound = (2.0 * PI / 32.0_f64).powi(2) / 4.0;
-        assert!(first <= bound * (1.0 + 1e-9) && last <= bound * (1.0 + 1e-9), "energy error {first:e} then {last:e}, bound {bound:e}");
+        assert!(
+            first <= bound * (1.0 + 1e-9) && last <= bound * (1.0 + 1e-9),
+            "energy error {first:e} then {last:e}, bound {bound:e}"
+        );
         assert!((last / first - 1.0).abs() < 1e-2, "energy error grows: {first:e} → {last:e}");
     }
 
