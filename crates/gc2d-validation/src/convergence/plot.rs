@@ -67,23 +67,19 @@ fn draw(path: &Path, report: &ProblemReport, m: usize) -> Result<(), String> {
     let errors = decade_range(series.iter().flat_map(|(_, p)| p.iter().map(|q| q.2)));
     let fractions = decade_range(series.iter().flat_map(|(_, p)| p.iter().map(|q| q.0)));
     let times = decade_range(series.iter().flat_map(|(_, p)| p.iter().map(|q| q.1)));
-    panel(&left, "error against Δt / bound", "Δt / (π/10)·sqrt(m/E)", fractions, errors.clone(), &series, |q| q.0)?;
-    panel(
-        &right,
-        "work-precision: error against run time",
-        "wall-clock time per run (s)",
-        times,
-        errors,
-        &series,
-        |q| q.1,
-    )?;
+    // Errors grow with Δt and fall with run time, so the emptiest corners are lower right and upper right.
+    let by_dt = ("error against Δt / bound", "Δt / (π/10)·sqrt(m/E)", SeriesLabelPosition::LowerRight);
+    let by_time =
+        ("work-precision: error against run time", "wall-clock time per run (s)", SeriesLabelPosition::UpperRight);
+    panel(&left, by_dt, fractions, errors.clone(), &series, |q| q.0)?;
+    panel(&right, by_time, times, errors, &series, |q| q.1)?;
     root.present().map_err(|e| e.to_string())
 }
 
+/// One log-log panel; `labels` is (caption, x-axis description, legend position).
 fn panel(
     area: &DrawingArea<SVGBackend, plotters::coord::Shift>,
-    caption: &str,
-    x_label: &str,
+    (caption, x_label, legend): (&str, &str, SeriesLabelPosition),
     x_range: std::ops::Range<f64>,
     y_range: std::ops::Range<f64>,
     series: &[Series],
@@ -117,7 +113,7 @@ fn panel(
         .configure_series_labels()
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
-        .position(SeriesLabelPosition::LowerRight)
+        .position(legend)
         .draw()
         .map_err(|e| e.to_string())
 }
