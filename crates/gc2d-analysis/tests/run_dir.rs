@@ -19,7 +19,7 @@ fn world() -> World {
     };
     let config = WorldConfig {
         time_step: 3e-5,
-        corrector: Default::default(),
+        integrator: Default::default(),
         contact_law,
         gravity: GravitySchedule::constant(G),
         heating: None,

@@ -89,7 +89,7 @@ fn thread_count_does_not_change_the_result() {
 fn ctrl_c_stops_cleanly_with_readable_outputs() {
     let out = tempfile::tempdir().unwrap();
     let bin = assert_cmd::cargo::cargo_bin("gc2d-rs");
-    let mut child = std::process::Command::new(bin)
+    let child = std::process::Command::new(bin)
         .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--until", "1000", "--out"])
         .arg(out.path())
         .stderr(std::process::Stdio::piped())

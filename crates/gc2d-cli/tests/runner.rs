@@ -11,7 +11,7 @@ use std::sync::atomic::AtomicBool;
 fn small_world() -> World {
     let config = WorldConfig {
         time_step: 1e-5,
-        corrector: Default::default(),
+        integrator: Default::default(),
         contact_law: ContactLaw::elastic(1e7),
         gravity: GravitySchedule::constant(9.81),
         heating: None,

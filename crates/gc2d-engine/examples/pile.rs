@@ -17,7 +17,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let config = WorldConfig {
         time_step: 2e-6,
-        corrector: Default::default(),
+        integrator: Default::default(),
         contact_law,
         gravity: GravitySchedule::constant(9.81),
         heating: None,

@@ -16,12 +16,19 @@
 //! other selection. Nothing here allocates.
 //!
 //! Rotation is a scalar angle, counter-clockwise positive, integrated by exactly the same scheme as x and y (§3.5).
+//!
+//! [`VelocityVerlet`] is a second-order baseline with the same predict/correct interface and the same state column;
+//! [`Integrator`] chooses between the schemes in the World's configuration and [`BodyIntegrator`] runs the choice.
 
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::ops::{Add, Mul, Sub};
 use thiserror::Error;
+
+mod verlet;
+
+pub use verlet::VelocityVerlet;
 
 /// Number of values per coordinate: the coordinate and its first five derivatives.
 pub const GEAR_ORDER: usize = 6;
@@ -307,6 +314,72 @@ where
     let mismatch = corrected_r2 - r[2];
     for (value, &c) in r.iter_mut().zip(coefficients) {
         *value = *value + mismatch * c;
+    }
+}
+
+/// Which scheme integrates the particles: the 6-value Gear predictor-corrector of the thesis (§3) with its c₀, or
+/// velocity Verlet, a second-order baseline for comparison (see `docs/validation.md`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Integrator {
+    /// 6-value Gear predictor-corrector with the given c₀.
+    Gear6(GearC0),
+    /// Velocity Verlet (kick–drift–kick) with forces evaluated at the half-kicked velocity ([`VelocityVerlet`]).
+    VelocityVerlet,
+}
+
+impl Default for Integrator {
+    /// Gear with c₀ = 3/16, the thesis's integrator with the coefficient for velocity-dependent forces (D4).
+    fn default() -> Self {
+        Integrator::Gear6(GearC0::default())
+    }
+}
+
+/// A configured [`Integrator`] with its time step: the per-body predict and correct calls the engine makes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum BodyIntegrator {
+    /// The Gear predictor-corrector.
+    Gear6(Gear6),
+    /// Velocity Verlet.
+    VelocityVerlet(VelocityVerlet),
+}
+
+impl BodyIntegrator {
+    /// The scheme `integrator` with time step `time_step`.
+    pub fn new(integrator: Integrator, time_step: TimeStep) -> Self {
+        match integrator {
+            Integrator::Gear6(c0) => BodyIntegrator::Gear6(Gear6::new(time_step, c0)),
+            Integrator::VelocityVerlet => BodyIntegrator::VelocityVerlet(VelocityVerlet::new(time_step)),
+        }
+    }
+
+    /// The time step the states are scaled with.
+    #[inline]
+    pub fn time_step(&self) -> &TimeStep {
+        match self {
+            BodyIntegrator::Gear6(gear) => gear.time_step(),
+            BodyIntegrator::VelocityVerlet(verlet) => verlet.time_step(),
+        }
+    }
+
+    /// Advances one body to t + Δt before the force evaluation (Gear predictor, or Verlet half kick and drift).
+    #[inline]
+    pub fn predict_body(&self, state: &mut GearState) {
+        match self {
+            BodyIntegrator::Gear6(gear) => gear.predict_body(state),
+            BodyIntegrator::VelocityVerlet(verlet) => verlet.predict_body(state),
+        }
+    }
+
+    /// Completes the step of one body with the accelerations evaluated after [`Self::predict_body`] (Gear corrector,
+    /// or Verlet's second half kick).
+    #[inline]
+    pub fn correct_body(&self, state: &mut GearState, linear_acceleration: DVec2, angular_acceleration: f64) {
+        match self {
+            BodyIntegrator::Gear6(gear) => gear.correct_body(state, linear_acceleration, angular_acceleration),
+            BodyIntegrator::VelocityVerlet(verlet) => {
+                verlet.correct_body(state, linear_acceleration, angular_acceleration)
+            }
+        }
     }
 }
 

@@ -3,8 +3,8 @@
 //! A [`World`] holds particles and walls ([`bodies`]), the persistent pair list of the sort-and-sweep
 //! [`broadphase`] with each pair's contact history ([`narrowphase`]), the drivers that move walls and pull
 //! particles ([`motion`], [`schedules`], [`sources`]), and the [`ledger`] that accounts for every joule. Particles
-//! are integrated by the 6-value Gear predictor-corrector ([`integrator`]); [`safety`] refuses unstable time steps
-//! and stops runs that blow up. A World saves and restores its complete state as a [`checkpoint`].
+//! are integrated by the 6-value Gear predictor-corrector or, for comparison, velocity Verlet ([`integrator`]);
+//! [`safety`] refuses unstable time steps and stops runs that blow up. A World saves and restores its complete state as a [`checkpoint`].
 //!
 //! The engine knows nothing about scene files, recordings or the command line; those crates build and observe a
 //! World through the types exported here.
@@ -24,7 +24,7 @@ pub mod world;
 
 pub use bodies::{Bodies, BodyId, BodyKind};
 pub use checkpoint::CheckpointError;
-pub use integrator::GearC0;
+pub use integrator::{GearC0, Integrator};
 pub use ledger::EnergyLedger;
 pub use motion::WallMotion;
 pub use narrowphase::PairContact;

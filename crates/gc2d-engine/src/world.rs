@@ -7,7 +7,7 @@
 
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
-use crate::integrator::{Gear6, GearC0, GearState, IntegratorError, TimeStep};
+use crate::integrator::{BodyIntegrator, GearState, Integrator, IntegratorError, TimeStep};
 use crate::ledger::EnergyLedger;
 use crate::motion::WallMotion;
 use crate::narrowphase::{PairContact, PairContext};
@@ -27,8 +27,9 @@ use thiserror::Error;
 pub struct WorldConfig {
     /// Δt, s.
     pub time_step: f64,
-    /// Gear corrector coefficient c0 (default 3/16, velocity-dependent forces).
-    pub corrector: GearC0,
+    /// The integration scheme: Gear with c₀ = 3/16 by default (velocity-dependent forces), Gear with 3/20, or
+    /// velocity Verlet as a second-order baseline.
+    pub integrator: Integrator,
     /// The contact law shared by all contacts (gc2d's material parameters are global).
     pub contact_law: ContactLaw,
     /// g(t); gravity points along −y.
@@ -104,7 +105,7 @@ struct Stages {
 #[derive(Serialize, Deserialize)]
 pub struct World {
     config: WorldConfig,
-    gear: Gear6,
+    integrator: BodyIntegrator,
     time: f64,
     steps: u64,
     bodies: Bodies,
@@ -131,7 +132,7 @@ impl World {
             ..Stages::default()
         };
         Ok(Self {
-            gear: Gear6::new(time_step, config.corrector),
+            integrator: BodyIntegrator::new(config.integrator, time_step),
             rng: ChaCha8Rng::seed_from_u64(config.seed),
             config,
             time: 0.0,
@@ -182,7 +183,7 @@ impl World {
             pose.angle,
             angular_velocity,
             0.0,
-            self.gear.time_step(),
+            self.integrator.time_step(),
         );
         self.insert_into_broadphase(id, broadphase::BodyKind::Dynamic);
         Ok(id)
@@ -306,7 +307,9 @@ impl World {
     pub fn step(&mut self) -> Result<(), WorldError> {
         if !self.started {
             self.check_time_step()?;
-            if let Some((a, b, fraction)) = safety::deepest_initial_overlap(&self.bodies) {
+            if let Some((a, b, fraction)) =
+                safety::deepest_initial_overlap(&self.bodies, self.config.safety.max_initial_overlap_fraction)
+            {
                 return Err(SafetyError::InitialOverlap { a: a.0, b: b.0, percent: 100.0 * fraction }.into());
             }
             self.started = true;
@@ -350,9 +353,10 @@ impl World {
         Ok(())
     }
 
-    /// Gear predictor for particles, prescribed poses for moving walls, s(t) for everyone.
+    /// Integrator's predict (Gear predictor or Verlet kick and drift) for particles, prescribed poses for moving
+    /// walls, s(t) for everyone.
     fn predict(&mut self, t_next: f64) {
-        let gear = &self.gear;
+        let gear = &self.integrator;
         let time_step = *gear.time_step();
         let b = &mut self.bodies;
         let predict = |(state, pose, velocity, angular_velocity, kind, alive): KinematicsRow| {
@@ -474,9 +478,9 @@ impl World {
         }
     }
 
-    /// Gear corrector for particles with a = F/m, α = τ/I.
+    /// Integrator's correct (Gear corrector or Verlet's second kick) for particles with a = F/m, α = τ/I.
     fn correct(&mut self) {
-        let gear = &self.gear;
+        let gear = &self.integrator;
         let time_step = *gear.time_step();
         let b = &mut self.bodies;
         let (force, torque, inverse_mass, inverse_inertia) = (&b.force, &b.torque, &b.inverse_mass, &b.inverse_inertia);

@@ -6,7 +6,8 @@ use gc2d_engine::checkpoint::{CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MAGIC, PROGR
 use gc2d_engine::motion::{Piston, Vibration, Waveform};
 use gc2d_engine::schedules::{DragSpring, GravityProfile, GravitySchedule, HeatingSchedule};
 use gc2d_engine::{
-    CheckpointError, DropHeight, DropSource, GearC0, SafetyLimits, TimeWindow, WallMotion, World, WorldConfig,
+    CheckpointError, DropHeight, DropSource, GearC0, Integrator, SafetyLimits, TimeWindow, WallMotion, World,
+    WorldConfig,
 };
 use gc2d_geometry::{Aabb, AngleMode, DVec2, Pose, Randomization, ShapeRecipe, rectangle, regular_polygon, square};
 
@@ -20,7 +21,7 @@ const STEPS: u64 = 3000;
 fn scene() -> World {
     let config = WorldConfig {
         time_step: DT,
-        corrector: GearC0::VelocityDependent,
+        integrator: Integrator::Gear6(GearC0::VelocityDependent),
         contact_law: ContactLaw {
             elastic: NormalElastic { e_modulus: 1e5 },
             damping: Some(NormalDamping { gamma: 0.3 }),
@@ -328,7 +329,7 @@ fn checkpoint_layout_is_pinned() {
     run(&mut world, 1);
     let payload = checkpoint_bytes(&world).len() - payload_offset();
     assert_eq!(
-        payload, 19882,
+        payload, 19892,
         "the checkpoint layout changed: bump CHECKPOINT_FORMAT_VERSION (now {CHECKPOINT_FORMAT_VERSION}) and pin the \
          new payload length"
     );

@@ -20,8 +20,8 @@
 mod build;
 mod checks;
 pub mod error;
-mod load;
 pub mod gsi;
+mod load;
 pub mod schema;
 pub mod source;
 pub mod spans;

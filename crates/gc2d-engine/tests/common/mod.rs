@@ -5,7 +5,7 @@
 
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{BodyId, GearC0, SafetyLimits, World, WorldConfig, WorldError};
+use gc2d_engine::{BodyId, Integrator, SafetyLimits, World, WorldConfig, WorldError};
 use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose, contact_geometry, rectangle};
 
 /// Young's modulus of almost all of the thesis's production runs, N/m (reference §2.14).
@@ -31,7 +31,7 @@ pub fn law(e: f64, gamma: f64, mu: f64) -> ContactLaw {
 pub fn config(dt: f64, contact_law: ContactLaw, g: f64) -> WorldConfig {
     WorldConfig {
         time_step: dt,
-        corrector: GearC0::default(),
+        integrator: Integrator::default(),
         contact_law,
         gravity: GravitySchedule::constant(g),
         heating: None,

@@ -4,7 +4,7 @@
 
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping};
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{DropHeight, DropSource, GearC0, SafetyLimits, TimeWindow, WallMotion, World, WorldConfig};
+use gc2d_engine::{DropHeight, DropSource, SafetyLimits, TimeWindow, WallMotion, World, WorldConfig};
 use gc2d_geometry::{AngleMode, DVec2, Pose, Randomization, ShapeRecipe, rectangle, regular_polygon};
 
 /// Circumradius of the test particles, m.
@@ -29,7 +29,7 @@ pub fn contact_law() -> ContactLaw {
 pub fn empty_world() -> World {
     World::new(WorldConfig {
         time_step: TIME_STEP,
-        corrector: GearC0::default(),
+        integrator: Default::default(),
         contact_law: contact_law(),
         gravity: GravitySchedule::default(),
         heating: None,

@@ -19,7 +19,7 @@ use blocks::Lattice;
 use gc2d_engine::schedules::{
     DragSpring as EngineDragSpring, GravityProfile as EngineProfile, GravitySchedule, HeatingSchedule,
 };
-use gc2d_engine::{DropSource, GearC0, SafetyLimits, TimeWindow, World, WorldConfig, WorldError};
+use gc2d_engine::{DropSource, GearC0, Integrator, SafetyLimits, TimeWindow, World, WorldConfig, WorldError};
 use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -115,10 +115,10 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
 
     let config = WorldConfig {
         time_step,
-        corrector: match scene.run.corrector {
+        integrator: Integrator::Gear6(match scene.run.corrector {
             Corrector::VelocityDependent => GearC0::VelocityDependent,
             Corrector::PositionDependent => GearC0::PositionDependent,
-        },
+        }),
         contact_law: law,
         gravity: gravity(&scene.gravity),
         heating: scene.heating.map(|h| HeatingSchedule {
