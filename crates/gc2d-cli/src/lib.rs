@@ -3,3 +3,4 @@
 
 pub mod outputs;
 pub mod runner;
+pub mod sinks;

@@ -1,12 +1,16 @@
-//! `gc2d-rs`: run, check and import gc2d-rs scenes.
+//! `gc2d-rs`: run, check, draw and analyse gc2d-rs scenes.
 //!
 //! Exit codes: 0 success, 1 the run failed (blow-up, I/O), 2 the input is invalid, 130 interrupted by Ctrl-C.
 
 use clap::{Parser, Subcommand};
+use gc2d_analysis::{AnalyzeOptions, SceneKind, analyze_run};
 use gc2d_cli::outputs::{RunStatus, Summary, TimeSeriesWriter};
 use gc2d_cli::runner::{FrameSink, run_to};
+use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording};
 use gc2d_engine::World;
+use gc2d_record::{ColourBy, PngOptions, RecordOptions, Recorder, RunInfo, SceneFile, render_png};
 use gc2d_scene::Scene;
+use gc2d_validation::{ConvergenceOptions, run_convergence};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -29,6 +33,81 @@ enum Command {
         /// The scene file (.ron).
         scene: PathBuf,
     },
+    /// Draw a PNG picture of a run's final state (or of any checkpoint), for people without Foxglove.
+    Snapshot {
+        /// A run directory (its final.ckpt is drawn) or a checkpoint file.
+        run: PathBuf,
+        /// The picture [default: <run dir>/snapshot.png].
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Picture width in pixels.
+        #[arg(long, default_value_t = 1200)]
+        width: u32,
+        /// What the particle colours show.
+        #[arg(long, value_enum, default_value_t = Colour::Speed)]
+        colour_by: Colour,
+        /// Draw the force network (lines from each centroid to its contact points, width ∝ force).
+        #[arg(long)]
+        forces: bool,
+    },
+    /// Analyse a finished run: pressure profiles, angle of repose, density, coordination, stress, Janssen fit.
+    Analyze {
+        /// The run directory (written by `gc2d-rs run`).
+        run: PathBuf,
+        /// What the run is: a pile, a silo, or decide from the wall forces.
+        #[arg(long, value_enum, default_value_t = Kind::Auto)]
+        kind: Kind,
+        /// Half-width of the pressure window, m [default: about 15 contacts per window].
+        #[arg(long)]
+        window: Option<f64>,
+        /// Cell size of the density and stress grids, m [default: about 150 particles per cell].
+        #[arg(long)]
+        grid: Option<f64>,
+    },
+    /// Error against run time of the integrators on reference problems (docs/validation.md).
+    Convergence {
+        /// Output directory for the tables and figures.
+        #[arg(long, default_value = "out/convergence")]
+        out: PathBuf,
+        /// A coarse sweep that takes seconds instead of the full study.
+        #[arg(long)]
+        quick: bool,
+    },
+}
+
+/// Particle colourings for pictures and recordings.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Colour {
+    /// Speed of the centroid.
+    Speed,
+    /// Contact pressure: the sum of contact forces per perimeter.
+    Pressure,
+    /// Insertion order.
+    Age,
+    /// Area density.
+    Material,
+}
+
+impl From<Colour> for ColourBy {
+    fn from(c: Colour) -> Self {
+        match c {
+            Colour::Speed => ColourBy::Speed,
+            Colour::Pressure => ColourBy::Pressure,
+            Colour::Age => ColourBy::Age,
+            Colour::Material => ColourBy::Material,
+        }
+    }
+}
+
+/// Scene kinds for the analysis.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Kind {
+    /// Decide from the wall forces.
+    Auto,
+    /// A free heap on a floor.
+    Pile,
+    /// A column between side walls.
+    Silo,
 }
 
 #[derive(clap::Args)]
@@ -53,6 +132,15 @@ struct RunArgs {
     /// Continue from a checkpoint written by an earlier run of the same scene.
     #[arg(long)]
     resume: Option<PathBuf>,
+    /// Record the run for Foxglove into this MCAP file (frames at the scene's frames_per_second).
+    #[arg(long)]
+    record: Option<PathBuf>,
+    /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/).
+    #[arg(long)]
+    png_every: Option<f64>,
+    /// What the particle colours show in recordings and pictures.
+    #[arg(long, value_enum, default_value_t = Colour::Speed)]
+    colour_by: Colour,
 }
 
 /// A failure and the exit code it maps to.
@@ -72,6 +160,9 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Run(args) => run(args),
         Command::Check { scene } => check(&scene),
+        Command::Snapshot { run, output, width, colour_by, forces } => snapshot(&run, output, width, colour_by, forces),
+        Command::Analyze { run, kind, window, grid } => analyze(&run, kind, window, grid),
+        Command::Convergence { out, quick } => convergence(out, quick),
     };
     match result {
         Ok(code) => ExitCode::from(code),
@@ -136,13 +227,34 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
 
     let checkpoint_interval = args.checkpoint_every.or(scene.run.checkpoint_interval_s);
     let mut checkpoints = checkpoint_interval.map(|interval| Checkpoints { dir: out.join("checkpoints"), interval });
+    let frame_interval = 1.0 / scene.run.frames_per_second;
+    let mut recording = match &args.record {
+        Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
+        None => None,
+    };
+    let mut pictures = args.png_every.map(|interval| PngFrames {
+        dir: out.join("frames"),
+        interval,
+        options: PngOptions { colour_by: args.colour_by.into(), ..PngOptions::default() },
+        written: 0,
+    });
     let mut sinks: Vec<&mut dyn FrameSink> = Vec::new();
     if let Some(c) = checkpoints.as_mut() {
         sinks.push(c);
     }
-    let series_interval = 1.0 / scene.run.frames_per_second;
+    if let Some(r) = recording.as_mut() {
+        sinks.push(r);
+    }
+    if let Some(p) = pictures.as_mut() {
+        sinks.push(p);
+    }
     let started = Instant::now();
-    let status = run_to(&mut world, end_time, &mut series, series_interval, &mut sinks, &stop, !args.quiet);
+    let status = run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet);
+    drop(sinks);
+    let status = match (status, recording.and_then(|r| r.recorder).map(Recorder::finish)) {
+        (RunStatus::Completed, Some(Err(e))) => RunStatus::Failed(format!("could not finish the recording: {e}")),
+        (status, _) => status,
+    };
     let wall_time = started.elapsed().as_secs_f64();
     let final_checkpoint = out.join("final.ckpt");
     let status = match (status, world.save_checkpoint_file(&final_checkpoint)) {
@@ -153,6 +265,70 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         .write(&out.join("summary.json"))
         .map_err(|e| Failure { code: 1, report: format!("could not write the summary: {e}") })?;
     report_outcome(&status, &world, &out, wall_time)
+}
+
+/// Opens the MCAP recording with the scene file attached and the run's metadata.
+fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) -> Result<Recording, Failure> {
+    let info = RunInfo {
+        program_version: env!("CARGO_PKG_VERSION").into(),
+        seed: scene.run.seed,
+        command_line: std::env::args().collect(),
+        scene: std::fs::read(&args.scene).ok().map(|data| SceneFile {
+            name: args.scene.display().to_string(),
+            media_type: "text/plain".into(),
+            data,
+        }),
+    };
+    let options = RecordOptions {
+        frames_per_second: scene.run.frames_per_second,
+        colour_by: args.colour_by.into(),
+        ..RecordOptions::default()
+    };
+    let recorder = Recorder::create(path, options, &info)
+        .map_err(|e| Failure::input(format!("cannot record to {}: {e}", path.display())))?;
+    Ok(Recording { recorder: Some(recorder), interval })
+}
+
+/// `snapshot`: draws a checkpoint (a run directory's final.ckpt, or the given file).
+fn snapshot(run: &Path, output: Option<PathBuf>, width: u32, colour_by: Colour, forces: bool) -> Result<u8, Failure> {
+    let checkpoint = if run.is_dir() { run.join("final.ckpt") } else { run.to_path_buf() };
+    let world = World::load_checkpoint_file(&checkpoint)
+        .map_err(|e| Failure::input(format!("cannot read {}: {e}", checkpoint.display())))?;
+    let output = output.unwrap_or_else(|| checkpoint.with_file_name("snapshot.png"));
+    let options = PngOptions { width, colour_by: colour_by.into(), force_network: forces, ..PngOptions::default() };
+    render_png(&world, &output, &options)
+        .map_err(|e| Failure { code: 1, report: format!("cannot draw {}: {e}", output.display()) })?;
+    eprintln!(
+        "Wrote {} (t = {:.6} s, {} particles).",
+        output.display(),
+        world.time(),
+        world.bodies().particles().count()
+    );
+    Ok(0)
+}
+
+/// `analyze`: runs the analysis of a finished run and says where the tables and figures are.
+fn analyze(run: &Path, kind: Kind, window: Option<f64>, grid: Option<f64>) -> Result<u8, Failure> {
+    let scene = match kind {
+        Kind::Auto => SceneKind::Auto,
+        Kind::Pile => SceneKind::Pile,
+        Kind::Silo => SceneKind::Silo,
+    };
+    let options = AnalyzeOptions { scene, window_half_width: window, grid_cell: grid };
+    let report =
+        analyze_run(run, &options).map_err(|e| Failure::input(format!("cannot analyse {}: {e}", run.display())))?;
+    let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
+    println!("{json}");
+    eprintln!("Tables and figures in {}.", run.join("analysis").display());
+    Ok(0)
+}
+
+/// `convergence`: the work-precision study of the integrators.
+fn convergence(out: PathBuf, quick: bool) -> Result<u8, Failure> {
+    let report = run_convergence(&ConvergenceOptions { out_dir: out.clone(), quick })
+        .map_err(|e| Failure { code: 1, report: format!("the convergence study failed: {e}") })?;
+    eprintln!("{} problems; tables and figures in {}.", report.problems.len(), out.display());
+    Ok(0)
 }
 
 /// Prints the one-paragraph outcome and maps it to the exit code.
@@ -199,22 +375,4 @@ fn report_outcome(status: &RunStatus, world: &World, out: &Path, wall_time: f64)
 fn default_out_dir(scene: &Path) -> PathBuf {
     let stem = scene.file_stem().map_or_else(|| "run".into(), |s| s.to_string_lossy().into_owned());
     PathBuf::from("out").join(stem)
-}
-
-/// Writes `<dir>/checkpoint-<step>.ckpt` on its cadence.
-struct Checkpoints {
-    dir: PathBuf,
-    interval: f64,
-}
-
-impl FrameSink for Checkpoints {
-    fn interval(&self) -> f64 {
-        self.interval
-    }
-
-    fn take(&mut self, world: &World) -> Result<(), String> {
-        std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
-        let path = self.dir.join(format!("checkpoint-{:010}.ckpt", world.steps()));
-        world.save_checkpoint_file(&path).map_err(|e| format!("cannot write {}: {e}", path.display()))
-    }
 }

@@ -129,3 +129,37 @@ fn zero_threads_is_refused() {
         .code(2)
         .stderr(contains("--threads must be at least 1"));
 }
+
+#[test]
+fn record_pictures_snapshot_and_analysis_of_a_run() {
+    let out = tempfile::tempdir().unwrap();
+    let recording = out.path().join("run.mcap");
+    gc2d()
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--png-every", "0.04", "--record"])
+        .arg(&recording)
+        .arg("--out")
+        .arg(out.path())
+        .assert()
+        .success();
+    // An MCAP file starts and ends with its magic; a finished recording has both.
+    let bytes = std::fs::read(&recording).unwrap();
+    let magic = b"\x89MCAP0\r\n";
+    assert!(bytes.starts_with(magic) && bytes.ends_with(magic), "the recording is a finished MCAP file");
+    // Pictures at t = 0, 0.04 and 0.08.
+    let frames = std::fs::read_dir(out.path().join("frames")).unwrap().count();
+    assert_eq!(frames, 3);
+    gc2d().arg("snapshot").arg(out.path()).arg("--forces").assert().success().stderr(contains("snapshot.png"));
+    let png = std::fs::read(out.path().join("snapshot.png")).unwrap();
+    assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"));
+    let analysed = gc2d().arg("analyze").arg(out.path()).assert().success().get_output().stdout.clone();
+    let report: serde_json::Value = serde_json::from_slice(&analysed).unwrap();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap();
+    assert_eq!(report["particles"], summary["particles"]);
+    assert!(out.path().join("analysis/analysis.json").exists());
+}
+
+#[test]
+fn snapshot_of_a_missing_run_is_an_input_error() {
+    gc2d().args(["snapshot", "no/such/run"]).assert().code(2).stderr(contains("no/such/run"));
+}

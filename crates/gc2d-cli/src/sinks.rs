@@ -1,0 +1,73 @@
+//! The run loop's frame sinks: an MCAP recording for Foxglove, PNG pictures and restartable checkpoints.
+
+use crate::runner::FrameSink;
+use gc2d_engine::World;
+use gc2d_record::{PngOptions, Recorder, render_png};
+use std::path::PathBuf;
+
+/// Feeds an MCAP [`Recorder`] one frame per tick.
+pub struct Recording {
+    /// The recorder; `None` once finished.
+    pub recorder: Option<Recorder>,
+    /// Simulated time between frames, s.
+    pub interval: f64,
+}
+
+impl FrameSink for Recording {
+    fn interval(&self) -> f64 {
+        self.interval
+    }
+
+    fn take(&mut self, world: &World) -> Result<(), String> {
+        match self.recorder.as_mut() {
+            Some(recorder) => recorder.record_frame(world).map(|_| ()).map_err(|e| format!("recording: {e}")),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Writes `<dir>/frame-<n>.png` on its cadence.
+pub struct PngFrames {
+    /// Output directory.
+    pub dir: PathBuf,
+    /// Simulated time between pictures, s.
+    pub interval: f64,
+    /// How the pictures look.
+    pub options: PngOptions,
+    /// Pictures written so far.
+    pub written: u32,
+}
+
+impl FrameSink for PngFrames {
+    fn interval(&self) -> f64 {
+        self.interval
+    }
+
+    fn take(&mut self, world: &World) -> Result<(), String> {
+        std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
+        let path = self.dir.join(format!("frame-{:05}.png", self.written));
+        render_png(world, &path, &self.options).map_err(|e| format!("picture {}: {e}", path.display()))?;
+        self.written += 1;
+        Ok(())
+    }
+}
+
+/// Writes `<dir>/checkpoint-<step>.ckpt` on its cadence.
+pub struct Checkpoints {
+    /// Output directory.
+    pub dir: PathBuf,
+    /// Simulated time between checkpoints, s.
+    pub interval: f64,
+}
+
+impl FrameSink for Checkpoints {
+    fn interval(&self) -> f64 {
+        self.interval
+    }
+
+    fn take(&mut self, world: &World) -> Result<(), String> {
+        std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
+        let path = self.dir.join(format!("checkpoint-{:010}.ckpt", world.steps()));
+        world.save_checkpoint_file(&path).map_err(|e| format!("cannot write {}: {e}", path.display()))
+    }
+}
