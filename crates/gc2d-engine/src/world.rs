@@ -186,6 +186,13 @@ impl World {
             self.integrator.time_step(),
         );
         self.insert_into_broadphase(id, broadphase::BodyKind::Dynamic);
+        if self.started {
+            // A particle added during the run brings its energy in from outside; before the start it is part of E_0.
+            let g = self.config.gravity.magnitude(self.time);
+            self.ledger.work_insertions += 0.5 * mass.mass * velocity.length_squared()
+                + 0.5 * mass.inertia * pose.scale * pose.scale * angular_velocity * angular_velocity
+                + mass.mass * g * pose.position.y;
+        }
         Ok(id)
     }
 
@@ -559,11 +566,8 @@ impl World {
             while self.sources[s].take_due(t) {
                 let source = self.sources[s].source.clone();
                 match self.insert_from_source(&source) {
-                    Some(id) => {
+                    Some(_) => {
                         self.stats.inserted += 1;
-                        let i = id.index();
-                        let g = self.config.gravity.magnitude(t);
-                        self.ledger.work_insertions += self.bodies.mass[i] * g * self.bodies.pose[i].position.y;
                         self.check_time_step()?;
                     }
                     None => self.stats.insertions_skipped += 1,

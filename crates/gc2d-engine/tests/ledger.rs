@@ -87,3 +87,27 @@ fn dissipation_only_grows_and_the_balance_holds_with_damping_and_friction() {
     let columns = [at_end.dissipated_normal_damping, at_end.dissipated_tangential_damping, at_end.dissipated_sliding];
     assert!(columns.iter().all(|&d| d > 0.0), "every dissipation mechanism must have acted: {columns:?}");
 }
+
+#[test]
+fn a_particle_added_during_the_run_is_booked_as_energy_brought_in() {
+    use gc2d_geometry::{DVec2, Pose, regular_polygon};
+    let mut world = world(config(1e-5, law(E_THESIS, 0.0, 0.0), G));
+    let grain = regular_polygon(12, 0.005).unwrap();
+    world.add_particle(&grain, Pose::new(DVec2::new(0.0, 0.1), 0.0), RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+    for _ in 0..100 {
+        world.step().unwrap();
+    }
+    // A second particle, thrown and spinning, joins mid-flight.
+    world.add_particle(&grain, Pose::new(DVec2::new(0.5, 0.2), 0.0), RHO_THESIS, DVec2::new(1.0, 2.0), 30.0).unwrap();
+    for _ in 0..1000 {
+        world.step().unwrap();
+    }
+    let ledger = world.ledger();
+    assert!(ledger.work_insertions > 0.0);
+    assert!(
+        ledger.balance_error().abs() < 1e-6 * ledger.energy_scale(),
+        "balance error {:e} of scale {:e}",
+        ledger.balance_error(),
+        ledger.energy_scale()
+    );
+}
