@@ -4,12 +4,12 @@
 
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use gc2d_contact::{BodyMotion, ContactLaw, ContactState, EnergyTerms};
-use gc2d_geometry::{DVec2, FeaturePair, closest_features, contact_geometry};
+use gc2d_geometry::{ContactGeometry, DVec2, FeaturePair, closest_features, contact_geometry};
 
 /// Everything the World keeps about one pair of bodies whose boxes touch: the contact history and this step's result.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PairContact {
-    /// Closest features of the last step, the warm start of the next query.
+    /// Closest features of the last closest-feature query, the warm start of the next one.
     pub warm_start: Option<FeaturePair>,
     /// The contact law's history (old area, tangential spring, frozen l, m⊥, m∥).
     pub state: ContactState,
@@ -29,8 +29,28 @@ pub struct PairContact {
     pub energy: EnergyTerms,
     /// Work the real motion of a wall did on the particle this step, J.
     pub wall_work: f64,
-    /// Passes the closest-feature walk needed this step.
+    /// Passes the closest-feature walk needed this step; 0 when the pair was still touching and no query ran.
     pub passes: u32,
+}
+
+/// The overlap of polygons `i` and `j` this step, or `None`.
+///
+/// A pair that touched in the last step almost always still touches, so the overlap computation itself decides; a
+/// closest-feature query first would only repeat its answer. Every other pair (approaching, or just separated) asks
+/// the warm-started closest-feature walk first (reference §4.3), which settles the common "apart" case without
+/// building an overlap polygon, and keeps the warm start fresh for the step the pair comes into contact.
+#[inline]
+fn overlap_of(vertices_i: &[DVec2], vertices_j: &[DVec2], contact: &mut PairContact) -> Option<ContactGeometry> {
+    if contact.touching
+        && let Some(overlap) = contact_geometry(vertices_i, vertices_j)
+    {
+        contact.passes = 0;
+        return Some(overlap);
+    }
+    let separation = closest_features(vertices_i, vertices_j, contact.warm_start);
+    contact.warm_start = Some(separation.features);
+    contact.passes = separation.passes;
+    if separation.distance > 0.0 || contact.touching { None } else { contact_geometry(vertices_i, vertices_j) }
 }
 
 /// What a pair evaluation reads: the body store as it is after the predictor.
@@ -63,10 +83,7 @@ impl PairContext<'_> {
         let wall_first = bodies.kind[a as usize] == BodyKind::Wall;
         let (i, j) = if wall_first { (BodyId(b), BodyId(a)) } else { (BodyId(a), BodyId(b)) };
         let (vertices_i, vertices_j) = (bodies.world_vertices_of(i), bodies.world_vertices_of(j));
-        let separation = closest_features(vertices_i, vertices_j, contact.warm_start);
-        contact.warm_start = Some(separation.features);
-        contact.passes = separation.passes;
-        let overlap = if separation.distance > 0.0 { None } else { contact_geometry(vertices_i, vertices_j) };
+        let overlap = overlap_of(vertices_i, vertices_j, contact);
         let (position_i, position_j) = (bodies.pose[i.index()].position, bodies.pose[j.index()].position);
         let geometry = overlap.map_or(gc2d_contact::ContactGeometry::SEPARATED, |g| gc2d_contact::ContactGeometry {
             area: g.area,

@@ -270,6 +270,17 @@ impl World {
         self.config.gravity.magnitude(self.time)
     }
 
+    /// Heap memory held by the World, in bytes, counted from the capacities of its buffers: the body columns, the
+    /// broadphase with its pair list and every pair's contact record, and the drivers' lists. Divided by the number
+    /// of particles it is the memory per particle including its share of the contacts.
+    pub fn heap_bytes(&self) -> usize {
+        self.bodies.heap_bytes()
+            + self.broadphase.heap_bytes()
+            + crate::bodies::vec_bytes(&self.moving_walls)
+            + crate::bodies::vec_bytes(&self.drag_springs)
+            + crate::bodies::vec_bytes(&self.sources)
+    }
+
     /// Every pair of bodies whose boxes touch, with its contact record (`a < b`).
     pub fn pairs(&self) -> impl Iterator<Item = (BodyId, BodyId, &PairContact)> {
         self.broadphase.pairs().iter().map(|p| (BodyId(p.a()), BodyId(p.b()), &p.payload))

@@ -3,6 +3,7 @@
 //! Boxes are kept per axis as compact (lower, upper) intervals, so the sort, which reads one axis of bodies in
 //! scattered order, touches 16 bytes per body rather than a whole record.
 
+use crate::bodies::vec_bytes;
 use gc2d_geometry::Aabb;
 
 /// Whether a body moves. Two static bodies (walls) are never paired: their contact would exert no force.
@@ -71,6 +72,11 @@ impl Bodies {
     #[inline]
     pub(super) fn len(&self) -> usize {
         self.flags.len()
+    }
+
+    /// Heap bytes of the flags and the current and previous intervals, from their capacities.
+    pub(super) fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.flags) + self.current.iter().chain(&self.previous).map(vec_bytes).sum::<usize>()
     }
 
     /// The state of `body`; ids beyond the table are absent.

@@ -32,6 +32,8 @@ impl<T> PairEntry<T> {
     }
 }
 
+use crate::bodies::vec_bytes;
+
 /// Marks an unused slot of the index table.
 const EMPTY: u32 = u32::MAX;
 
@@ -81,6 +83,11 @@ impl<T: Default> PairSet<T> {
     #[inline]
     pub(crate) fn entries_mut(&mut self) -> &mut [PairEntry<T>] {
         &mut self.entries
+    }
+
+    /// Heap bytes of the entries and the index table, from their capacities.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.entries) + vec_bytes(&self.slots)
     }
 
     /// The entry of the pair {a, b}, if present.
