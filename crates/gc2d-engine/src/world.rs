@@ -616,7 +616,7 @@ impl World {
     }
 
     /// Recomputes the kinetic, potential and drag-spring energies of the ledger from the state, in one pass over the
-    /// bodies that also checks that every living body's position, angle and velocity are finite numbers (returned).
+    /// bodies that also checks that every living body passes [`state_is_finite`] (returned: false when one may not).
     /// The contact energy is summed where the pairs are visited anyway, in [`Self::accumulate_contact_forces`].
     fn refresh_stored_energies(&mut self) -> bool {
         let g = self.config.gravity.magnitude(self.time);
@@ -628,7 +628,10 @@ impl World {
                 continue;
             }
             let (pose, velocity) = (&b.pose[i], b.velocity[i]);
-            finite &= pose.position.is_finite() & pose.angle.is_finite() & velocity.is_finite();
+            finite &= pose.position.is_finite()
+                & pose.angle.is_finite()
+                & velocity.is_finite()
+                & b.angular_velocity[i].is_finite();
             if b.kind[i] == BodyKind::Particle {
                 translational += 0.5 * b.mass[i] * velocity.length_squared();
                 rotational += 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i];
@@ -646,7 +649,8 @@ impl World {
         l.kinetic_rotational = rotational;
         l.potential = potential;
         l.drag_stored = drag_stored;
-        finite
+        // A finite velocity can still overflow ½mv²: that poisons the ledger, so it counts as not finite.
+        finite && (translational + rotational).is_finite()
     }
 
     /// Energy stored in the contacts of the current pair list, J.
@@ -661,12 +665,7 @@ impl World {
         let limits = &self.config.safety;
         let suggested = || safety::suggested_time_step(self.config.time_step, self.stable_time_step());
         let b = &self.bodies;
-        if !finite
-            && let Some(i) = (0..b.len()).find(|&i| {
-                b.alive[i]
-                    && !(b.pose[i].position.is_finite() && b.velocity[i].is_finite() && b.pose[i].angle.is_finite())
-            })
-        {
+        if !finite && let Some(i) = (0..b.len()).find(|&i| b.alive[i] && !state_is_finite(b, i)) {
             return Err(SafetyError::NotFinite {
                 time: self.time,
                 step: self.steps,
@@ -692,7 +691,8 @@ impl World {
         }
         let gain = self.ledger.balance_error();
         let scale = self.ledger.energy_scale();
-        if gain > limits.max_energy_gain_fraction * scale {
+        // A NaN gain fails every comparison, so it is caught explicitly: a NaN never passes silently.
+        if !gain.is_finite() || gain > limits.max_energy_gain_fraction * scale {
             return Err(SafetyError::EnergyJump {
                 time: self.time,
                 step: self.steps,
@@ -709,6 +709,20 @@ impl World {
 /// Worlds with fewer bodies than this step on the calling thread: below it, handing work to the thread pool costs
 /// more than it saves. Results are bitwise the same either way (every parallel task writes only its own data).
 const PARALLEL_MIN_BODIES: usize = 512;
+
+/// True when body `i`'s pose and velocities are finite and, for a particle, so is its kinetic energy (a finite
+/// velocity can still overflow ½mv², which would poison the ledger).
+fn state_is_finite(b: &Bodies, i: usize) -> bool {
+    let kinematics_finite = b.pose[i].position.is_finite()
+        && b.pose[i].angle.is_finite()
+        && b.velocity[i].is_finite()
+        && b.angular_velocity[i].is_finite();
+    let energy_finite = b.kind[i] == BodyKind::Wall
+        || (0.5 * b.mass[i] * b.velocity[i].length_squared()
+            + 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i])
+            .is_finite();
+    kinematics_finite && energy_finite
+}
 
 /// The kinematic columns of one body that the predictor and corrector update.
 type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
