@@ -1,5 +1,5 @@
-//! The narrowphase: for one broadphase pair, closest features (warm-started), then the overlap and its contact
-//! chord, then the contact law (reference §2.15). Each pair writes only its own record, so all pairs run in parallel;
+//! The narrowphase: for one broadphase pair, closest features (warm-started; skipped while the pair keeps touching),
+//! then the overlap and its contact chord, then the contact law (reference §2.15). Each pair writes only its own record, so all pairs run in parallel;
 //! the engine adds the forces to the bodies afterwards in pair order, which keeps results independent of threads.
 
 use crate::bodies::{Bodies, BodyId, BodyKind};
@@ -123,5 +123,50 @@ impl PairContext<'_> {
             if b.kind[k] == BodyKind::Particle { b.area[k] * b.pose[k].scale * b.pose[k].scale } else { f64::INFINITY }
         };
         area(i).min(area(j))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gc2d_geometry::{Pose, square};
+
+    /// Two unit squares, the second `gap` above the first (negative: overlapping).
+    fn stacked(gap: f64) -> Bodies {
+        let mut bodies = Bodies::default();
+        let shape = square(1.0).unwrap();
+        for y in [0.0, 1.0 + gap] {
+            bodies.push(BodyKind::Particle, &shape, Pose::new(DVec2::new(0.0, y), 0.0), 1.0, 1.0 / 6.0);
+        }
+        bodies.update_world_vertices();
+        bodies
+    }
+
+    /// The closest-feature query runs for pairs apart or just meeting, and is skipped while a pair keeps touching:
+    /// then the overlap alone decides (`passes` = 0), with the same geometry the query would have led to.
+    #[test]
+    fn a_touching_pair_skips_the_closest_feature_query() {
+        let law = ContactLaw::elastic(1e7);
+        let mut contact = PairContact::default();
+        let apart = stacked(0.1);
+        PairContext { bodies: &apart, law: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        assert!(!contact.touching);
+        assert!(contact.passes >= 1 && contact.warm_start.is_some());
+
+        let overlapping = stacked(-0.01);
+        PairContext { bodies: &overlapping, law: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        assert!(contact.touching && contact.passes >= 1);
+        let first_force = contact.force_on_a;
+
+        PairContext { bodies: &overlapping, law: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        assert!(contact.touching);
+        assert_eq!(contact.passes, 0);
+        assert_eq!(contact.force_on_a, first_force, "same overlap, same elastic force");
+        assert!(contact.point.x == 0.0 && (0.49..=0.5).contains(&contact.point.y), "{:?}", contact.point);
+        assert!((contact.overlap_fraction - 0.01).abs() < 1e-12);
+
+        PairContext { bodies: &apart, law: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        assert!(!contact.touching && contact.passes >= 1, "a pair that separated asks the query again");
+        assert_eq!(contact.force_on_a, DVec2::ZERO);
     }
 }

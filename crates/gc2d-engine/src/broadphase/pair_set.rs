@@ -115,6 +115,11 @@ impl<T: Default> PairSet<T> {
             Ok(_) => false,
             Err(empty) => {
                 self.slots[empty] = self.entries.len() as u32;
+                if self.entries.len() == self.entries.capacity() {
+                    // Grow by a quarter rather than the doubling of `Vec::push`: the entries carry the contact
+                    // records and are most of a World's memory, and a quarter keeps insertion amortised O(1).
+                    self.entries.reserve_exact(self.entries.capacity() / 4 + MIN_SLOTS);
+                }
                 self.entries.push(PairEntry { a, b, payload: T::default() });
                 true
             }
