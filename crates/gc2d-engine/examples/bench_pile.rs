@@ -9,10 +9,11 @@
 //! Two tables. **Dense piles** (2,000 and 10,000 grains, twice as wide as high) are deposited (see
 //! `support/deposition.rs`), settled for `DENSE_SETTLE_TIME` on two threads, and stepped on a rayon pool of 1 and of
 //! 2 threads. **Layers** 1 cm deep (1,000, 10,000 and 100,000 grains, the same local packing at every size) settle
-//! for `LAYER_SETTLE_TIME` and are stepped on 1 thread: their time per particle-step shows how the step scales.
+//! for `LAYER_SETTLE_TIME` and are stepped on 1 thread for `LAYER_STEPS` steps, the same stretch of simulated time
+//! at every size: their time per particle-step shows how the step scales.
 //!
 //! After `WARM_STEPS` untimed steps, the wall-clock time and the CPU time of all threads of the next steps are
-//! measured (about `PARTICLE_STEPS_PER_RUN` particle-steps). Printed per run: particle-steps and contact evaluations
+//! measured (for dense piles about `PARTICLE_STEPS_PER_RUN` particle-steps). Printed per run: particle-steps and contact evaluations
 //! (touching pairs) per wall-clock second, ns per particle-step (wall and CPU), box pairs and contacts per grain,
 //! and memory per grain: `World::heap_bytes` (the capacities of all body columns, the broadphase axes and boxes, the
 //! pair list with its index table and contact records, and the scratch buffers) divided by the number of grains, and
@@ -36,10 +37,10 @@ const LAYER_SETTLE_TIME: f64 = 0.005;
 const LAYER_DEPTH: f64 = 0.01;
 /// Untimed steps before each measurement (fills the caches, lets the thread pool spin up).
 const WARM_STEPS: u64 = 20;
-/// Particle-steps per measurement: the step count is this divided by the particle count (at least `MIN_STEPS`).
+/// Particle-steps per measurement of a dense pile: the step count is this divided by the particle count.
 const PARTICLE_STEPS_PER_RUN: u64 = 20_000_000;
-/// The fewest steps a measurement takes.
-const MIN_STEPS: u64 = 100;
+/// Steps per measurement of a layer: the same stretch of simulated time (2 ms) at every size.
+const LAYER_STEPS: u64 = 1_000;
 /// Seed of the piles.
 const SEED: u64 = 2000;
 
@@ -120,9 +121,8 @@ fn process_cpu_seconds() -> Option<f64> {
     Some(nanoseconds as f64 * 1e-9)
 }
 
-/// Steps `world` on a pool of `threads` threads and times it.
-fn measure(world: &mut World, threads: usize, particles: usize) -> Measurement {
-    let steps = (PARTICLE_STEPS_PER_RUN / particles as u64).max(MIN_STEPS);
+/// Steps `world` `steps` times on a pool of `threads` threads and times it.
+fn measure(world: &mut World, threads: usize, particles: usize, steps: u64) -> Measurement {
     pool(threads).install(|| {
         for _ in 0..WARM_STEPS {
             world.step().expect("no blow-up");
@@ -168,7 +168,7 @@ fn main() {
         for particles in sizes_or(&[2_000, 10_000]) {
             let mut world = settled_pile(particles, PileShape::TwiceAsWideAsHigh, DENSE_SETTLE_TIME);
             for threads in [1, 2] {
-                measure(&mut world, threads, particles).print();
+                measure(&mut world, threads, particles, PARTICLE_STEPS_PER_RUN / particles as u64).print();
             }
         }
     }
@@ -177,7 +177,7 @@ fn main() {
         print_header();
         for particles in sizes_or(&[1_000, 10_000, 100_000]) {
             let mut world = settled_pile(particles, PileShape::Layer(LAYER_DEPTH), LAYER_SETTLE_TIME);
-            measure(&mut world, 1, particles).print();
+            measure(&mut world, 1, particles, LAYER_STEPS).print();
         }
     }
     println!("\nload average after: {}", load_average());
