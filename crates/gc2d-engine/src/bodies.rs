@@ -134,6 +134,30 @@ impl Bodies {
         id
     }
 
+    /// Heap memory held by the columns, in bytes, counted from their capacities (not their lengths), so it is what
+    /// the store really occupies, spare room of the growing `Vec`s included.
+    pub fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.kind)
+            + vec_bytes(&self.alive)
+            + vec_bytes(&self.vertices)
+            + vec_bytes(&self.body_vertices)
+            + vec_bytes(&self.world_vertices)
+            + vec_bytes(&self.pose)
+            + vec_bytes(&self.velocity)
+            + vec_bytes(&self.angular_velocity)
+            + vec_bytes(&self.gear)
+            + vec_bytes(&self.mass)
+            + vec_bytes(&self.inertia)
+            + vec_bytes(&self.inverse_mass)
+            + vec_bytes(&self.inverse_inertia)
+            + vec_bytes(&self.area)
+            + vec_bytes(&self.inscribed_radius)
+            + vec_bytes(&self.surface_velocity)
+            + vec_bytes(&self.aabb)
+            + vec_bytes(&self.force)
+            + vec_bytes(&self.torque)
+    }
+
     /// World-frame vertices of one body.
     #[inline]
     pub fn world_vertices_of(&self, id: BodyId) -> &[DVec2] {
@@ -167,6 +191,11 @@ impl Bodies {
             &mut self.aabb,
         );
     }
+}
+
+/// Heap bytes of a `Vec`'s buffer: capacity times element size.
+pub(crate) fn vec_bytes<T>(v: &Vec<T>) -> usize {
+    v.capacity() * std::mem::size_of::<T>()
 }
 
 /// Bodies below this many per task are transformed sequentially.

@@ -30,6 +30,7 @@ mod pair_set;
 pub use bodies::BodyKind;
 pub use pair_set::PairEntry;
 
+use crate::bodies::vec_bytes;
 use bodies::{Bodies, SlotState};
 use gc2d_geometry::Aabb;
 use pair_set::PairSet;
@@ -253,6 +254,20 @@ impl<T: Default> SortAndSweep<T> {
     /// Counters of the last update.
     pub fn stats(&self) -> &BroadphaseStats {
         &self.stats
+    }
+
+    /// Heap memory held by the broadphase, in bytes, counted from the capacities of its buffers: the sorted axes,
+    /// the per-body boxes and flags, the pair list with its index table and payloads, and the scratch buffers.
+    pub fn heap_bytes(&self) -> usize {
+        self.axes.iter().map(vec_bytes).sum::<usize>()
+            + vec_bytes(&self.pending)
+            + self.bodies.heap_bytes()
+            + self.pairs.heap_bytes()
+            + vec_bytes(&self.ended)
+            + vec_bytes(&self.merge_buffer)
+            + vec_bytes(&self.sweep.open)
+            + vec_bytes(&self.sweep.open_fresh)
+            + vec_bytes(&self.sweep.position)
     }
 
     /// True if `body` is in the broadphase (active or waiting for the next update).

@@ -284,6 +284,17 @@ impl World {
         self.config.gravity.magnitude(self.time)
     }
 
+    /// Heap memory held by the World, in bytes, counted from the capacities of its buffers: the body columns, the
+    /// broadphase with its pair list and every pair's contact record, and the drivers' lists. Divided by the number
+    /// of particles it is the memory per particle including its share of the contacts.
+    pub fn heap_bytes(&self) -> usize {
+        self.bodies.heap_bytes()
+            + self.broadphase.heap_bytes()
+            + crate::bodies::vec_bytes(&self.moving_walls)
+            + crate::bodies::vec_bytes(&self.drag_springs)
+            + crate::bodies::vec_bytes(&self.sources)
+    }
+
     /// Every pair of bodies whose boxes touch, with its contact record (`a < b`).
     pub fn pairs(&self) -> impl Iterator<Item = (BodyId, BodyId, &PairContact)> {
         self.broadphase.pairs().iter().map(|p| (BodyId(p.a()), BodyId(p.b()), &p.payload))
@@ -320,6 +331,7 @@ impl World {
                 return Err(SafetyError::InitialOverlap { a: a.0, b: b.0, percent: 100.0 * fraction }.into());
             }
             self.started = true;
+            self.ledger.contact_stored = self.contact_stored_energy();
             self.refresh_stored_energies();
             self.ledger.initial_total = self.ledger.total();
         }
@@ -348,8 +360,8 @@ impl World {
         if self.stages.sources {
             self.run_sources()?;
         }
-        self.refresh_stored_energies();
-        self.check_blow_up()
+        let finite = self.refresh_stored_energies();
+        self.check_blow_up(finite)
     }
 
     /// Steps until the time reaches `t_end` (within half a step).
@@ -427,8 +439,9 @@ impl World {
         }
     }
 
-    /// Adds the contact forces to the bodies in pair order (independent of the thread count) and books the
-    /// contacts' energy terms.
+    /// Adds the contact forces to the bodies in pair order (independent of the thread count), books the contacts'
+    /// energy terms and sums the energy they store (kept by the ledger until the next step: pairs of particles removed
+    /// later in this step still hold it, and their ending books it as opening residual then).
     fn accumulate_contact_forces(&mut self) {
         let b = &mut self.bodies;
         b.force.iter_mut().for_each(|f| *f = DVec2::ZERO);
@@ -438,8 +451,11 @@ impl World {
         stats.max_overlap_fraction = 0.0;
         stats.multi_pass_queries = 0;
         let ledger = &mut self.ledger;
+        let law = &self.config.contact_law;
+        let mut contact_stored = 0.0;
         for pair in self.broadphase.pairs() {
             let c = &pair.payload;
+            contact_stored += law.stored_energy(&c.state);
             stats.multi_pass_queries += usize::from(c.passes > 1);
             let energy = &c.energy;
             ledger.dissipated_normal_damping += energy.normal_damping;
@@ -458,6 +474,7 @@ impl World {
             b.torque[a] += c.torque_on_a;
             b.torque[bb] += c.torque_on_b;
         }
+        ledger.contact_stored = contact_stored;
         self.stats = stats;
     }
 
@@ -619,19 +636,29 @@ impl World {
         })
     }
 
-    /// Recomputes the stored energies of the ledger from the state.
-    fn refresh_stored_energies(&mut self) {
+    /// Recomputes the kinetic, potential and drag-spring energies of the ledger from the state, in one pass over the
+    /// bodies that also checks that every living body passes [`state_is_finite`] (returned: false when one may not).
+    /// The contact energy is summed where the pairs are visited anyway, in [`Self::accumulate_contact_forces`].
+    fn refresh_stored_energies(&mut self) -> bool {
         let g = self.config.gravity.magnitude(self.time);
         let b = &self.bodies;
         let (mut translational, mut rotational, mut potential) = (0.0, 0.0, 0.0);
-        for id in b.particles() {
-            let i = id.index();
-            translational += 0.5 * b.mass[i] * b.velocity[i].length_squared();
-            rotational += 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i];
-            potential += b.mass[i] * g * b.pose[i].position.y;
+        let mut finite = true;
+        for i in 0..b.len() {
+            if !b.alive[i] {
+                continue;
+            }
+            let (pose, velocity) = (&b.pose[i], b.velocity[i]);
+            finite &= pose.position.is_finite()
+                & pose.angle.is_finite()
+                & velocity.is_finite()
+                & b.angular_velocity[i].is_finite();
+            if b.kind[i] == BodyKind::Particle {
+                translational += 0.5 * b.mass[i] * velocity.length_squared();
+                rotational += 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i];
+                potential += b.mass[i] * g * pose.position.y;
+            }
         }
-        let law = &self.config.contact_law;
-        let contact_stored: f64 = self.broadphase.pairs().iter().map(|p| law.stored_energy(&p.payload.state)).sum();
         let drag_stored: f64 = self
             .drag_springs
             .iter()
@@ -642,21 +669,29 @@ impl World {
         l.kinetic_translational = translational;
         l.kinetic_rotational = rotational;
         l.potential = potential;
-        l.contact_stored = contact_stored;
         l.drag_stored = drag_stored;
+        // A finite velocity can still overflow ½mv²: that poisons the ledger, so it counts as not finite.
+        finite && (translational + rotational).is_finite()
     }
 
-    /// Stops the run on NaN, on a tunnelling overlap, or on an energy gain the ledger cannot explain.
-    fn check_blow_up(&self) -> Result<(), WorldError> {
+    /// Energy stored in the contacts of the current pair list, J.
+    fn contact_stored_energy(&self) -> f64 {
+        let law = &self.config.contact_law;
+        self.broadphase.pairs().iter().map(|p| law.stored_energy(&p.payload.state)).sum()
+    }
+
+    /// Stops the run on NaN (`finite` is false when some living body's state is not finite), on a tunnelling
+    /// overlap, or on an energy gain the ledger cannot explain.
+    fn check_blow_up(&self, finite: bool) -> Result<(), WorldError> {
         let limits = &self.config.safety;
-        let suggested = safety::suggested_time_step(self.config.time_step, self.stable_time_step());
+        let suggested = || safety::suggested_time_step(self.config.time_step, self.stable_time_step());
         let b = &self.bodies;
-        if let Some(i) = (0..b.len()).find(|&i| b.alive[i] && !state_is_finite(b, i)) {
+        if !finite && let Some(i) = (0..b.len()).find(|&i| b.alive[i] && !state_is_finite(b, i)) {
             return Err(SafetyError::NotFinite {
                 time: self.time,
                 step: self.steps,
                 body: i as u32,
-                suggested_dt: suggested,
+                suggested_dt: suggested(),
             }
             .into());
         }
@@ -671,7 +706,7 @@ impl World {
                 b: bb.0,
                 percent: 100.0 * c.overlap_fraction,
                 limit_percent: 100.0 * limits.max_overlap_fraction,
-                suggested_dt: suggested,
+                suggested_dt: suggested(),
             }
             .into());
         }
@@ -687,7 +722,7 @@ impl World {
                 step: self.steps,
                 gain,
                 percent: 100.0 * gain / scale,
-                suggested_dt: suggested,
+                suggested_dt: suggested(),
             }
             .into());
         }
@@ -696,7 +731,8 @@ impl World {
 
     /// The first particle that moved further in the last step than the travel limit allows (reference §3.6
     /// failure mode 2: a particle that jumps right across a thin wall is never seen overlapping it).
-    fn excessive_travel(&self, suggested_dt: f64) -> Option<SafetyError> {
+    /// `suggested_dt` is only evaluated when the limit is exceeded (it costs a pass over the particles).
+    fn excessive_travel(&self, suggested_dt: impl Fn() -> f64) -> Option<SafetyError> {
         let fraction = self.config.safety.max_travel_fraction;
         let dt = self.config.time_step;
         let b = &self.bodies;
@@ -711,7 +747,7 @@ impl World {
                 travel,
                 inscribed_radius,
                 limit_percent: 100.0 * fraction,
-                suggested_dt: suggested_dt.min(0.5 * dt * fraction * inscribed_radius / travel),
+                suggested_dt: suggested_dt().min(0.5 * dt * fraction * inscribed_radius / travel),
             })
         })
     }

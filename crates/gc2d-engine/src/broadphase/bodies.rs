@@ -3,6 +3,7 @@
 //! Boxes are kept per axis as compact (lower, upper) intervals, so the sort, which reads one axis of bodies in
 //! scattered order, touches 16 bytes per body rather than a whole record.
 
+use crate::bodies::vec_bytes;
 use gc2d_geometry::Aabb;
 use serde::{Deserialize, Serialize};
 
@@ -72,6 +73,11 @@ impl Bodies {
     #[inline]
     pub(super) fn len(&self) -> usize {
         self.flags.len()
+    }
+
+    /// Heap bytes of the flags and the current and previous intervals, from their capacities.
+    pub(super) fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.flags) + self.current.iter().chain(&self.previous).map(vec_bytes).sum::<usize>()
     }
 
     /// The state of `body`; ids beyond the table are absent.

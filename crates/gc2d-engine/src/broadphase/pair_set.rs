@@ -34,6 +34,8 @@ impl<T> PairEntry<T> {
     }
 }
 
+use crate::bodies::vec_bytes;
+
 /// Marks an unused slot of the index table.
 const EMPTY: u32 = u32::MAX;
 
@@ -85,6 +87,11 @@ impl<T: Default> PairSet<T> {
         &mut self.entries
     }
 
+    /// Heap bytes of the entries and the index table, from their capacities.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.entries) + vec_bytes(&self.slots)
+    }
+
     /// The entry of the pair {a, b}, if present.
     pub(crate) fn get(&self, a: u32, b: u32) -> Option<&PairEntry<T>> {
         let (a, b) = ordered(a, b)?;
@@ -110,6 +117,11 @@ impl<T: Default> PairSet<T> {
             Ok(_) => false,
             Err(empty) => {
                 self.slots[empty] = self.entries.len() as u32;
+                if self.entries.len() == self.entries.capacity() {
+                    // Grow by a quarter rather than the doubling of `Vec::push`: the entries carry the contact
+                    // records and are most of a World's memory, and a quarter keeps insertion amortised O(1).
+                    self.entries.reserve_exact(self.entries.capacity() / 4 + MIN_SLOTS);
+                }
                 self.entries.push(PairEntry { a, b, payload: T::default() });
                 true
             }

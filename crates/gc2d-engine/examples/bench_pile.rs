@@ -1,0 +1,184 @@
+//! Throughput of `World::step` on settled piles of the thesis's particles (reference §8.3, §10.5).
+//!
+//! ```sh
+//! cargo run --release -p gc2d-engine --example bench_pile                 # both tables (about 15 minutes)
+//! cargo run --release -p gc2d-engine --example bench_pile -- dense 2000   # dense piles of the given sizes only
+//! cargo run --release -p gc2d-engine --example bench_pile -- layer 1000   # layers of the given sizes only
+//! ```
+//!
+//! Two tables. **Dense piles** (2,000 and 10,000 grains, twice as wide as high) are deposited (see
+//! `support/deposition.rs`), settled for `DENSE_SETTLE_TIME` on two threads, and stepped on a rayon pool of 1 and of
+//! 2 threads. **Layers** 1 cm deep (1,000, 10,000 and 100,000 grains, the same local packing at every size) settle
+//! for `LAYER_SETTLE_TIME` and are stepped on 1 thread for `LAYER_STEPS` steps, the same stretch of simulated time
+//! at every size: their time per particle-step shows how the step scales.
+//!
+//! After `WARM_STEPS` untimed steps, the wall-clock time and the CPU time of all threads of the next steps are
+//! measured (for dense piles about `PARTICLE_STEPS_PER_RUN` particle-steps). Printed per run: particle-steps and contact evaluations
+//! (touching pairs) per wall-clock second, ns per particle-step (wall and CPU), box pairs and contacts per grain,
+//! and memory per grain: `World::heap_bytes` (the capacities of all body columns, the broadphase axes and boxes, the
+//! pair list with its index table and contact records, and the scratch buffers) divided by the number of grains, and
+//! the part of it held by the body columns (`Bodies::heap_bytes`).
+//! Nothing is cached on disk.
+
+#[path = "support/deposition.rs"]
+mod deposition;
+#[path = "support/thesis_material.rs"]
+mod thesis_material;
+
+use deposition::PileShape;
+use gc2d_engine::World;
+use std::time::Instant;
+
+/// Simulated time a dense pile settles before it is measured, s (its kinetic energy has peaked and decayed).
+const DENSE_SETTLE_TIME: f64 = 0.06;
+/// Simulated time a layer settles before it is measured, s.
+const LAYER_SETTLE_TIME: f64 = 0.005;
+/// Depth of the layers, m.
+const LAYER_DEPTH: f64 = 0.01;
+/// Untimed steps before each measurement (fills the caches, lets the thread pool spin up).
+const WARM_STEPS: u64 = 20;
+/// Particle-steps per measurement of a dense pile: the step count is this divided by the particle count.
+const PARTICLE_STEPS_PER_RUN: u64 = 20_000_000;
+/// Steps per measurement of a layer: the same stretch of simulated time (2 ms) at every size.
+const LAYER_STEPS: u64 = 1_000;
+/// Seed of the piles.
+const SEED: u64 = 2000;
+
+/// One timed run.
+struct Measurement {
+    particles: usize,
+    threads: usize,
+    steps: u64,
+    seconds: f64,
+    cpu_seconds: f64,
+    contacts: u64,
+    box_pairs: u64,
+    heap_bytes: usize,
+    body_heap_bytes: usize,
+}
+
+impl Measurement {
+    fn particle_steps_per_second(&self) -> f64 {
+        self.particles as f64 * self.steps as f64 / self.seconds
+    }
+
+    fn print(&self) {
+        let per_step = |x: u64| x as f64 / self.steps as f64 / self.particles as f64;
+        println!(
+            "| {:>7} | {:>7} | {:>6} | {:>8.3} | {:>8.3} | {:>10.2} | {:>10.2} | {:>6.1} | {:>8.1} | {:>8.2} | {:>8.2} | {:>7} | {:>7} |",
+            self.particles,
+            self.threads,
+            self.steps,
+            self.seconds,
+            self.cpu_seconds,
+            self.particle_steps_per_second() / 1e6,
+            self.contacts as f64 / self.seconds / 1e6,
+            1e9 / self.particle_steps_per_second(),
+            1e9 * self.cpu_seconds / (self.particles as f64 * self.steps as f64),
+            per_step(self.box_pairs),
+            per_step(self.contacts),
+            self.heap_bytes / self.particles,
+            self.body_heap_bytes / self.particles,
+        );
+    }
+}
+
+fn print_header() {
+    println!(
+        "| grains | threads | steps | wall s | CPU s | M p-steps/s | M contacts/s | wall ns/p-step | CPU ns/p-step \
+         | box pairs/grain | contacts/grain | heap B/grain | of it bodies |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+}
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool")
+}
+
+/// A deposited pile of `particles` grains after `settle_time` on two threads.
+fn settled_pile(particles: usize, shape: PileShape, settle_time: f64) -> World {
+    let started = Instant::now();
+    let mut world = deposition::deposited_pile(particles, shape, SEED);
+    pool(2).install(|| world.run_until(settle_time)).expect("the pile settles without blowing up");
+    let stats = world.stats();
+    eprintln!(
+        "built and settled {particles} grains in {:.1} s: {} contacts, kinetic energy {:.3e} J",
+        started.elapsed().as_secs_f64(),
+        stats.contacts,
+        world.ledger().kinetic()
+    );
+    world
+}
+
+/// CPU time used by all threads of this process so far, s (the sum of `/proc/self/task/*/schedstat`), or `None`
+/// where that is not available. On a shared machine it is the better measure of the work a run needs.
+fn process_cpu_seconds() -> Option<f64> {
+    let mut nanoseconds = 0u64;
+    for task in std::fs::read_dir("/proc/self/task").ok()? {
+        let stat = std::fs::read_to_string(task.ok()?.path().join("schedstat")).ok()?;
+        nanoseconds += stat.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(nanoseconds as f64 * 1e-9)
+}
+
+/// Steps `world` `steps` times on a pool of `threads` threads and times it.
+fn measure(world: &mut World, threads: usize, particles: usize, steps: u64) -> Measurement {
+    pool(threads).install(|| {
+        for _ in 0..WARM_STEPS {
+            world.step().expect("no blow-up");
+        }
+        let (mut contacts, mut box_pairs) = (0, 0);
+        let cpu_before = process_cpu_seconds();
+        let started = Instant::now();
+        for _ in 0..steps {
+            world.step().expect("no blow-up");
+            contacts += world.stats().contacts as u64;
+            box_pairs += world.stats().box_pairs as u64;
+        }
+        let seconds = started.elapsed().as_secs_f64();
+        let cpu_seconds = process_cpu_seconds().zip(cpu_before).map_or(f64::NAN, |(after, before)| after - before);
+        let (heap_bytes, body_heap_bytes) = (world.heap_bytes(), world.bodies().heap_bytes());
+        Measurement {
+            particles,
+            threads,
+            steps,
+            seconds,
+            cpu_seconds,
+            contacts,
+            box_pairs,
+            heap_bytes,
+            body_heap_bytes,
+        }
+    })
+}
+
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg").map_or_else(|_| "unknown".into(), |s| s.trim().to_string())
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let sizes: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
+    let only = |table: &str| args.is_empty() || args.iter().any(|a| a == table);
+    let sizes_or = |default: &[usize]| if sizes.is_empty() { default.to_vec() } else { sizes.clone() };
+    println!("load average before: {}", load_average());
+    if only("dense") {
+        println!("\ndense piles (twice as wide as high), settled {DENSE_SETTLE_TIME} s\n");
+        print_header();
+        for particles in sizes_or(&[2_000, 10_000]) {
+            let mut world = settled_pile(particles, PileShape::TwiceAsWideAsHigh, DENSE_SETTLE_TIME);
+            for threads in [1, 2] {
+                measure(&mut world, threads, particles, PARTICLE_STEPS_PER_RUN / particles as u64).print();
+            }
+        }
+    }
+    if only("layer") {
+        println!("\nlayers {LAYER_DEPTH} m deep, settled {LAYER_SETTLE_TIME} s\n");
+        print_header();
+        for particles in sizes_or(&[1_000, 10_000, 100_000]) {
+            let mut world = settled_pile(particles, PileShape::Layer(LAYER_DEPTH), LAYER_SETTLE_TIME);
+            measure(&mut world, 1, particles, LAYER_STEPS).print();
+        }
+    }
+    println!("\nload average after: {}", load_average());
+}
