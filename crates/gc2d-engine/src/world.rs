@@ -384,19 +384,15 @@ impl World {
                 sync_kinematics(state, &time_step, pose, velocity, angular_velocity);
             }
         };
-        let rows = (&mut b.gear, &mut b.pose, &mut b.velocity, &mut b.angular_velocity, &b.kind, &b.alive);
-        if b.kind.len() >= PARALLEL_MIN_BODIES {
-            rows.into_par_iter().for_each(predict);
-        } else {
-            let (g, p, v, w, k, a) = rows;
-            g.iter_mut()
-                .zip(p)
-                .zip(v)
-                .zip(w)
-                .zip(k)
-                .zip(a)
-                .for_each(|(((((g, p), v), w), k), a)| predict((g, p, v, w, k, a)));
-        }
+        let rows = (
+            &mut b.gear[..],
+            &mut b.pose[..],
+            &mut b.velocity[..],
+            &mut b.angular_velocity[..],
+            &b.kind[..],
+            &b.alive[..],
+        );
+        for_each_kinematics_row(rows, |_, row| predict(row));
         if self.stages.moving_walls {
             for wall in &self.moving_walls {
                 let kinematics = wall.motion.kinematics(t_next);
@@ -514,20 +510,15 @@ impl World {
                 sync_kinematics(state, &time_step, pose, velocity, angular_velocity);
             }
         };
-        let rows = (&mut b.gear, &mut b.pose, &mut b.velocity, &mut b.angular_velocity, &b.kind, &b.alive);
-        if b.kind.len() >= PARALLEL_MIN_BODIES {
-            rows.into_par_iter().enumerate().for_each(|(i, row)| correct(i, row));
-        } else {
-            let (g, p, v, w, k, a) = rows;
-            g.iter_mut()
-                .zip(p)
-                .zip(v)
-                .zip(w)
-                .zip(k)
-                .zip(a)
-                .enumerate()
-                .for_each(|(i, (((((g, p), v), w), k), a))| correct(i, (g, p, v, w, k, a)));
-        }
+        let rows = (
+            &mut b.gear[..],
+            &mut b.pose[..],
+            &mut b.velocity[..],
+            &mut b.angular_velocity[..],
+            &b.kind[..],
+            &b.alive[..],
+        );
+        for_each_kinematics_row(rows, correct);
     }
 
     /// Force-controlled pistons react to the force the particles exerted on them this step.
@@ -773,6 +764,27 @@ fn state_is_finite(b: &Bodies, i: usize) -> bool {
 
 /// The kinematic columns of one body that the predictor and corrector update.
 type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
+
+/// The kinematic columns of all bodies, as `for_each_kinematics_row` takes them.
+type KinematicsColumns<'a> =
+    (&'a mut [GearState], &'a mut [Pose], &'a mut [DVec2], &'a mut [f64], &'a [BodyKind], &'a [bool]);
+
+/// Calls `f(index, row)` for every body: in parallel for large worlds, on the calling thread for small ones.
+fn for_each_kinematics_row(columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
+    if columns.0.len() >= PARALLEL_MIN_BODIES {
+        columns.into_par_iter().enumerate().for_each(|(i, row)| f(i, row));
+    } else {
+        let (g, p, v, w, k, a) = columns;
+        g.iter_mut()
+            .zip(p)
+            .zip(v)
+            .zip(w)
+            .zip(k)
+            .zip(a)
+            .enumerate()
+            .for_each(|(i, (((((g, p), v), w), k), a))| f(i, (g, p, v, w, k, a)));
+    }
+}
 
 /// Copies position, angle and velocities out of a particle's Gear state.
 #[inline]
