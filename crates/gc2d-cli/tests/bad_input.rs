@@ -1,0 +1,43 @@
+//! Each class of scene error reaches the user of `gc2d-rs check` and `gc2d-rs run` as one diagnostic naming file,
+//! line, column and field path, with exit code 2. The rendered diagnostics are snapshots (tests/snapshots/).
+
+use assert_cmd::Command;
+use std::path::Path;
+
+/// Runs `gc2d-rs <command> <file>` from the directory of the bad scenes, so that the messages name relative paths.
+fn diagnostic(command: &str, file: &str) -> String {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/bad");
+    let output = Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .args([command, file, "--quiet"].iter().take(if command == "run" { 3 } else { 2 }))
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2), "{file}: exit code");
+    assert!(output.stdout.is_empty(), "{file}: nothing on stdout");
+    String::from_utf8(output.stderr).unwrap()
+}
+
+#[test]
+fn every_error_class_is_located_and_exits_with_2() {
+    for (file, location) in [
+        ("syntax.ron", "syntax.ron:2:30"),
+        ("unknown_field.ron", "unknown_field.ron:2:32"),
+        ("wrong_type.ron", "wrong_type.ron:2:36"),
+        ("negative_mu.ron", "negative_mu.ron:2:36"),
+        ("zero_e.ron", "zero_e.ron:2:52"),
+        ("non_convex.ron", "non_convex.ron:3:57"),
+        ("overlap.ron", "overlap.ron:4:9"),
+        ("unsafe_time_step.ron", "unsafe_time_step.ron:2:24"),
+    ] {
+        let message = diagnostic("check", file);
+        assert!(message.contains(location), "{file}: expected {location} in\n{message}");
+        insta::assert_snapshot!(file.trim_end_matches(".ron"), message);
+    }
+}
+
+#[test]
+fn run_refuses_a_bad_scene_the_same_way() {
+    assert_eq!(diagnostic("run", "unknown_field.ron"), diagnostic("check", "unknown_field.ron"));
+}
