@@ -88,8 +88,7 @@ fn all_wall_support(snapshot: &Snapshot) -> f64 {
             _ => 0.0,
         })
         .map(|fy| -fy)
-        .sum::<f64>()
-        * -1.0
+        .sum()
 }
 
 fn print(name: &str, m: &SiloMeasurement, seconds: f64) {
