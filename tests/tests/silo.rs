@@ -47,7 +47,8 @@ fn measure(world: &World) -> SiloMeasurement {
     let b = 2.0 * auto_half_width(&both, diameter);
     let profile_options = ProfileOptions { half_width: b, step: 0.5 * b, moving_average: 1 };
     let range = Some((report.floor_level + b, report.fill_surface - b));
-    let (pl, pr) = (pressure_profile(&left, &profile_options, range), pressure_profile(&right, &profile_options, range));
+    let (pl, pr) =
+        (pressure_profile(&left, &profile_options, range), pressure_profile(&right, &profile_options, range));
     let sigma_xx: Vec<(f64, f64)> = pl
         .positions
         .iter()
@@ -63,7 +64,12 @@ fn measure(world: &World) -> SiloMeasurement {
     // The particles drag the side walls down (force_on_wall.y < 0): the walls carry −Σ F_y of the column.
     let friction: f64 = both.iter().map(|f| -f.force_on_wall.y).sum();
     let floor_force: f64 = floor.iter().map(|f| f.normal_force).sum();
-    eprintln!("floor {:.5} W, wall friction {:.5} W, all wall contacts {:.5} W", floor_force / weight, friction / weight, all_wall_support(&snapshot) / weight);
+    eprintln!(
+        "floor {:.5} W, wall friction {:.5} W, all wall contacts {:.5} W",
+        floor_force / weight,
+        friction / weight,
+        all_wall_support(&snapshot) / weight
+    );
     SiloMeasurement {
         particles: snapshot.particles.len(),
         removed: world.stats().removed,
@@ -119,9 +125,37 @@ fn print(name: &str, m: &SiloMeasurement, seconds: f64) {
     }
 }
 
+/// The CI-sized column (§10.3 item 13 with r_p = 2 mm, ~300 particles). Asserted: rest, no losses, k and ρ_rel in
+/// broad bands around the thesis's. Measured but NOT met (reported in docs/validation.md, not asserted): σ_xx does
+/// not yet saturate in a 10 cm fill (the Janssen fit runs to its lower bound μ_j = 1e-4), and the walls carry
+/// 1.13 W instead of W ± 2 %.
 #[test]
 fn ci_silo() {
     let (world, elapsed) = run_scene("silo.ron");
     let m = measure(&world);
     print("silo", &m, elapsed.as_secs_f64());
+    assert!(m.particles > 250, "only {} particles were filled in", m.particles);
+    assert_eq!(m.removed, 0, "particles left the domain");
+    assert!(m.kinetic_ratio < 1e-3, "not at rest: KE/(M g d) = {:.3e}", m.kinetic_ratio);
+    assert!((0.4..=1.0).contains(&m.report.k), "k = {}", m.report.k);
+    assert!((0.70..=0.90).contains(&m.report.packing_fraction), "ρ_rel = {}", m.report.packing_fraction);
+    let mu_j = m.report.janssen.map_or(f64::NAN, |f| f.mu_j);
+    assert!(mu_j.is_finite(), "no Janssen fit: {:?}", m.report.janssen_error);
+}
+
+/// The thesis-sized column (§7.1): 10,000 particles of r = 1 mm; k = 0.64 ± 0.19, ρ_rel = 0.78 ± 0.03,
+/// μ_j = 0.33 ± 0.1, saturation and the force balance within 2 %. Not run to completion yet (hours on two cores).
+#[test]
+#[ignore = "thesis-sized: 10,000 particles, hours of run time"]
+fn thesis_silo() {
+    let (world, elapsed) = run_scene("silo_thesis.ron");
+    let m = measure(&world);
+    print("silo_thesis", &m, elapsed.as_secs_f64());
+    assert_eq!(m.removed, 0, "particles left the domain");
+    assert!((m.report.k - 0.64).abs() <= 0.19, "k = {}", m.report.k);
+    assert!((m.report.packing_fraction - 0.78).abs() <= 0.03, "ρ_rel = {}", m.report.packing_fraction);
+    let mu_j = m.report.janssen.map_or(f64::NAN, |f| f.mu_j);
+    assert!((mu_j - 0.33).abs() <= 0.1, "μ_j = {mu_j}");
+    assert!(m.last_quarter_variation < 0.2, "σ_xx varies by {} over the last quarter", m.last_quarter_variation);
+    assert!((m.support_over_weight - 1.0).abs() < 0.02, "support / W = {}", m.support_over_weight);
 }
