@@ -16,6 +16,7 @@
 //! ```
 
 mod bodies;
+mod convert;
 mod diagnostics;
 mod general;
 mod generators;
@@ -30,6 +31,7 @@ mod syntax;
 #[cfg(test)]
 mod tests;
 
+pub use convert::{GsiConversion, IMPORTED_MATERIAL, to_scene};
 pub use diagnostics::{GsiError, GsiErrorKind, GsiErrors, GsiWarning, GsiWarningKind, Note};
 pub use lattice::MAX_GRID_SITES;
 pub use lexer::MAX_LINE_LENGTH;
