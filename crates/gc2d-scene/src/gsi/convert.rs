@@ -124,7 +124,7 @@ impl Converter {
                 .steps_checkpoint
                 .origin
                 .is_written()
-                .then(|| general.steps_checkpoint.value as f64 * time_step),
+                .then_some(general.steps_checkpoint.value as f64 * time_step),
             seed,
             ..Run::default()
         }
