@@ -29,6 +29,17 @@ enum Command {
         /// The scene file (.ron).
         scene: PathBuf,
     },
+    /// Convert a legacy gc2d input file (.gsi) into a RON scene; prints its `$` comments and every warning.
+    ImportGsi {
+        /// The gc2d input file (.gsi).
+        gsi: PathBuf,
+        /// The scene file to write [default: the input with the extension .ron].
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// How PART_SIZE is read: as the ellipse's semi-axes, its full axes, or decided per file (auto).
+        #[arg(long, value_enum, default_value_t)]
+        part_size: gc2d_cli::import::PartSizeOption,
+    },
 }
 
 #[derive(clap::Args)]
@@ -72,6 +83,11 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Run(args) => run(args),
         Command::Check { scene } => check(&scene),
+        Command::ImportGsi { gsi, output, part_size } => {
+            gc2d_cli::import::import_gsi(&gsi, output.as_deref(), part_size)
+                .map(|_| 0)
+                .map_err(|e| Failure { code: e.code, report: e.report })
+        }
     };
     match result {
         Ok(code) => ExitCode::from(code),
