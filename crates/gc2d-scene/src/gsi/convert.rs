@@ -111,9 +111,10 @@ impl Converter {
         self.not_converted(&general.next_data_file_number, "NEXT_DATA_FILENUMBER", restart_state);
         self.not_converted(&general.next_setup_file_number, "NEXT_SETUP_FILENUMBER", restart_state);
         self.not_converted(
-            &general.steps_setup,
-            "STEPS_SETUP",
-            "gc2d-rs numbers every checkpoint it writes, at the interval STEPS_CHECKPOINT gives",
+            &general.steps_checkpoint,
+            "STEPS_CHECKPOINT",
+            "gc2d-rs keeps no overwritten rolling checkpoint; `gc2d-rs run` writes final.ckpt when the run ends or is \
+             interrupted, and numbered checkpoints at STEPS_SETUP or `--checkpoint-every`",
         );
         self.not_converted(&general.steps_dumpline, "STEPS_DUMPLINE", "gc2d-rs writes no trajectory lines (gpl)");
         Run {
@@ -121,10 +122,10 @@ impl Converter {
             end_time_s: time.end,
             frames_per_second: 1.0 / (time_step * general.steps_data.value as f64),
             checkpoint_interval_s: general
-                .steps_checkpoint
+                .steps_setup
                 .origin
                 .is_written()
-                .then_some(general.steps_checkpoint.value as f64 * time_step),
+                .then_some(general.steps_setup.value as f64 * time_step),
             seed,
             ..Run::default()
         }

@@ -73,9 +73,11 @@ fn the_piston_general_display_and_block_map_to_run_material_view_and_block() {
     assert_eq!(scene.gravity, Gravity::Constant(0.0));
     assert_eq!(scene.heating, None);
     assert_eq!(scene.run.end_time_s, 0.2);
-    // STEPS_DATA 1000 and STEPS_CHECKPOINT 100 of Δt = 1.5e-5 s keep their simulated-time cadence.
+    // STEPS_DATA 1000 of Δt = 1.5e-5 s keeps its simulated-time cadence; STEPS_CHECKPOINT (gc2d's overwritten
+    // restart file) has no counterpart, and without STEPS_SETUP there are no numbered checkpoints.
     assert!((scene.run.frames_per_second - 1.0 / 0.015).abs() < 1e-9);
-    assert!((scene.run.checkpoint_interval_s.unwrap() - 1.5e-3).abs() < 1e-15);
+    assert_eq!(scene.run.checkpoint_interval_s, None);
+    assert_eq!(not_converted_lines(&conversion, "STEPS_CHECKPOINT"), [9]);
     assert_eq!(scene.run.seed, 0);
     let material = &scene.materials[..];
     assert_eq!(material.len(), 1);
@@ -228,7 +230,6 @@ fn what_the_scene_cannot_say_is_warned_at_its_line() {
     let conversion = convert(&text);
     for (keyword, line) in [
         ("TIME", 3),
-        ("STEPS_SETUP", 4),
         ("STEPS_DUMPLINE", 5),
         ("NEXT_DATA_FILENUMBER", 6),
         ("SEED", 7),
@@ -239,8 +240,11 @@ fn what_the_scene_cannot_say_is_warned_at_its_line() {
     ] {
         assert_eq!(not_converted_lines(&conversion, keyword), [line], "{keyword}");
     }
-    // The run keeps absolute times: it ends at TIME's end.
+    // The run keeps absolute times: it ends at TIME's end. STEPS_SETUP 10 of the default Δt 1e-4 s: numbered
+    // checkpoints every 1 ms.
     assert_eq!(conversion.scene.run.end_time_s, 1.0);
+    assert!(not_converted_lines(&conversion, "STEPS_SETUP").is_empty());
+    assert!((conversion.scene.run.checkpoint_interval_s.unwrap() - 1e-3).abs() < 1e-18);
 }
 
 #[test]
