@@ -84,3 +84,15 @@ fn a_broken_gsi_file_exits_with_2_and_names_each_bad_line() {
     assert!(lines[1].contains("broken.gsi:66: GRID_TYPE"), "{stderr}");
     assert!(!dir.path().join("broken.ron").exists());
 }
+
+#[test]
+fn dollar_comments_are_printed_with_their_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let gsi = dir.path().join("note.gsi");
+    let text = "PARAMETER v1.4\nA box\n$ compressing, please wait\nDelta_T 1e-5\nWALL\nCorners\n0 0\n1 0\n1 1\nEND\nEND_OF_FILE\n";
+    std::fs::write(&gsi, text).unwrap();
+    gc2d().arg("import-gsi").arg(&gsi).assert().success().stdout(contains("note.gsi:3: $ compressing, please wait"));
+    let scene = Scene::from_path(dir.path().join("note.ron")).unwrap();
+    assert_eq!(scene.description, "A box (imported from a gc2d gsi file)");
+    assert_eq!(scene.run.time_step_s, Some(1e-5));
+}

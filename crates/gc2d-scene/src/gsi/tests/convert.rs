@@ -265,3 +265,10 @@ fn a_gravity_step_count_that_is_not_whole_is_an_error_at_its_line() {
     assert_eq!(errors.0[0].line, 5);
     assert!(matches!(errors.0[0].kind, GsiErrorKind::NotConvertible { keyword: "G_PARAMETER", .. }));
 }
+
+#[test]
+fn a_second_g_value_under_constant_gravity_is_warned_and_g1_kept() {
+    let conversion = convert(&file("G 9.81 3"));
+    assert_eq!(conversion.scene.gravity, Gravity::Constant(9.81));
+    assert_eq!(not_converted_lines(&conversion, "G (second value)"), [3]);
+}
