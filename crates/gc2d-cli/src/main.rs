@@ -64,6 +64,17 @@ enum Command {
         #[arg(long)]
         grid: Option<f64>,
     },
+    /// Convert a legacy gc2d input file (.gsi) into a RON scene; prints its `$` comments and every warning.
+    ImportGsi {
+        /// The gc2d input file (.gsi).
+        gsi: PathBuf,
+        /// The scene file to write [default: the input with the extension .ron].
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// How PART_SIZE is read: as the ellipse's semi-axes, its full axes, or decided per file (auto).
+        #[arg(long, value_enum, default_value_t)]
+        part_size: gc2d_cli::import::PartSizeOption,
+    },
     /// Error against run time of the integrators on reference problems (docs/validation.md).
     Convergence {
         /// Output directory for the tables and figures.
@@ -163,6 +174,11 @@ fn main() -> ExitCode {
         Command::Snapshot { run, output, width, colour_by, forces } => snapshot(&run, output, width, colour_by, forces),
         Command::Analyze { run, kind, window, grid } => analyze(&run, kind, window, grid),
         Command::Convergence { out, quick } => convergence(out, quick),
+        Command::ImportGsi { gsi, output, part_size } => {
+            gc2d_cli::import::import_gsi(&gsi, output.as_deref(), part_size)
+                .map(|_| 0)
+                .map_err(|e| Failure { code: e.code, report: e.report })
+        }
     };
     match result {
         Ok(code) => ExitCode::from(code),

@@ -18,7 +18,7 @@ fn scene_files() -> Vec<PathBuf> {
 fn every_scene_file_loads_builds_and_runs() {
     let files = scene_files();
     let names: Vec<String> = files.iter().map(|p| p.file_stem().unwrap().to_string_lossy().into_owned()).collect();
-    for expected in ["drum", "pile", "silo"] {
+    for expected in ["drum", "pile", "piston", "silo"] {
         assert!(names.iter().any(|n| n == expected), "scenes/{expected}.ron is missing");
     }
     for file in &files {
@@ -48,7 +48,9 @@ fn the_bundled_scenes_contain_what_their_headers_say() {
     assert_eq!((silo.wall_polygons, silo.sources), (3, 1));
     let drum = load("drum");
     assert_eq!((drum.wall_polygons, drum.sources, drum.particles), (40, 0, 100));
-    for summary in [&pile, &silo, &drum] {
+    let piston = load("piston");
+    assert_eq!((piston.wall_polygons, piston.moving_walls, piston.sources, piston.particles), (4, 1, 0, 1251));
+    for summary in [&pile, &silo, &drum, &piston] {
         assert!(summary.time_step_is_automatic);
         assert!(summary.time_step_s <= 0.25 * summary.stable_time_step_s.unwrap());
     }

@@ -160,6 +160,14 @@ pub enum GsiErrorKind {
         /// What is wrong with the grid.
         reason: String,
     },
+    /// A value the scene format has no meaning for (found while converting to a scene).
+    #[error("{keyword} cannot be converted to a scene: {reason}")]
+    NotConvertible {
+        /// The command.
+        keyword: &'static str,
+        /// Why.
+        reason: String,
+    },
 }
 
 fn suggestion_text(suggestion: &Option<&'static str>) -> String {
@@ -288,6 +296,14 @@ pub enum GsiWarningKind {
         spacing: f64,
         /// How PART_SIZE was read.
         reading: PartSizeReading,
+    },
+    /// A command written in the file that the RON scene cannot express, so the converter leaves it out.
+    #[error("{keyword} is not converted: {consequence}")]
+    NotConverted {
+        /// The command.
+        keyword: &'static str,
+        /// What leaving it out means for the run.
+        consequence: String,
     },
 }
 

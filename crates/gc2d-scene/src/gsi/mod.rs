@@ -4,7 +4,8 @@
 //! comments, END_OF_FILE); `syntax` groups them into objects using the vocabulary in `keywords`; the object
 //! modules (`general`, `bodies`, `generators`) turn each object into typed values with gc2d's defaults and gc2d-rs
 //! conventions (SI units, counter-clockwise angles); `part_size` settles how PART_SIZE is read. Every value keeps
-//! the line it came from ([`Sourced`]), so the converter that builds a World can name `file:line` in its errors.
+//! the line it came from ([`Sourced`]), so later stages can name `file:line`. `convert` ([`to_scene`]) turns the
+//! result into a RON [`crate::Scene`], warning about every written command the scene cannot hold.
 //!
 //! ```
 //! use gc2d_scene::gsi::{ImportOptions, parse_gsi};
@@ -16,6 +17,7 @@
 //! ```
 
 mod bodies;
+mod convert;
 mod diagnostics;
 mod general;
 mod generators;
@@ -30,6 +32,7 @@ mod syntax;
 #[cfg(test)]
 mod tests;
 
+pub use convert::{GsiConversion, IMPORTED_MATERIAL, to_scene};
 pub use diagnostics::{GsiError, GsiErrorKind, GsiErrors, GsiWarning, GsiWarningKind, Note};
 pub use lattice::MAX_GRID_SITES;
 pub use lexer::MAX_LINE_LENGTH;

@@ -76,7 +76,7 @@ pub struct Run {
     /// Recorded frames per simulated second (gsi `STEPS_DATA` = 1/(Δt·frames_per_second)). Default 100.
     #[serde(default = "defaults::frames_per_second")]
     pub frames_per_second: f64,
-    /// Simulated time between two checkpoints, s (gsi `STEPS_CHECKPOINT`·Δt). Default: no checkpoints.
+    /// Simulated time between two numbered checkpoints, s (gsi `STEPS_SETUP`·Δt). Default: no checkpoints.
     #[serde(default)]
     pub checkpoint_interval_s: Option<f64>,
     /// Seed of every random draw (random shapes, block scatter, sources). Default 0.

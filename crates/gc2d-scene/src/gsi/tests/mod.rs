@@ -3,6 +3,7 @@
 
 mod completeness;
 mod conventions;
+mod convert;
 mod errors;
 mod language;
 mod mutations;

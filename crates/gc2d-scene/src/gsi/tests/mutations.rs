@@ -95,6 +95,14 @@ proptest! {
         let text = edits.iter().fold(PISTON.to_string(), |text, edit| apply(&text, edit));
         let part_size = if semi { PartSizeConvention::SemiAxes } else { PartSizeConvention::Auto };
         if let Ok(import) = parse_gsi(&text, &ImportOptions { part_size }) {
+            // The converter (which builds the scene once to check Δt) and the RON round trip must not panic either;
+            // files with huge grids are left out to keep the test fast.
+            if import.scene.blocks.iter().map(|block| block.site_count()).sum::<usize>() <= 2000 {
+                if let Ok(conversion) = crate::gsi::to_scene(&import, "mutated") {
+                    let text = conversion.scene.to_ron_string().expect("a converted scene serialises");
+                    let _ = crate::Scene::from_str(&text, "mutated.ron").map(|scene| scene.summary());
+                }
+            }
             let scene = import.scene;
             prop_assert!(!scene.general.time_step.value.is_nan());
             for wall in &scene.walls {
