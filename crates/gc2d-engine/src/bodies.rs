@@ -170,6 +170,16 @@ impl Bodies {
         &self.body_vertices[self.vertices[id.index()].range()]
     }
 
+    /// The columns the integrator writes (state, pose, velocities; with kind and liveness to read) and, beside them,
+    /// the ones the corrector reads (force, torque, inverse mass and inertia), borrowed apart so both can be used at
+    /// once.
+    pub(crate) fn split_for_integration(&mut self) -> (KinematicsColumns<'_>, ForceColumns<'_>) {
+        (
+            (&mut self.gear, &mut self.pose, &mut self.velocity, &mut self.angular_velocity, &self.kind, &self.alive),
+            (&self.force, &self.torque, &self.inverse_mass, &self.inverse_inertia),
+        )
+    }
+
     /// Ids of the living particles, in slot order.
     pub fn particles(&self) -> impl Iterator<Item = BodyId> + '_ {
         (0..self.len()).filter(|&i| self.alive[i] && self.kind[i] == BodyKind::Particle).map(|i| BodyId(i as u32))
@@ -197,6 +207,14 @@ impl Bodies {
 pub(crate) fn vec_bytes<T>(v: &Vec<T>) -> usize {
     v.capacity() * std::mem::size_of::<T>()
 }
+
+/// Per-body columns the predictor and corrector update: Gear state, pose, velocity, angular velocity, and (read)
+/// kind and liveness.
+pub(crate) type KinematicsColumns<'a> =
+    (&'a mut [GearState], &'a mut [Pose], &'a mut [DVec2], &'a mut [f64], &'a [BodyKind], &'a [bool]);
+
+/// Per-body columns the corrector reads: force, torque, inverse mass, inverse inertia.
+pub(crate) type ForceColumns<'a> = (&'a [DVec2], &'a [f64], &'a [f64], &'a [f64]);
 
 /// Bodies below this many per task are transformed sequentially.
 const TRANSFORM_GRAIN: usize = 512;

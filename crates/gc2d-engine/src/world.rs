@@ -5,7 +5,7 @@
 //! correct → walls, sources, g(t), s(t) → ledger and safety checks. Stages a scene does not use are skipped by a
 //! flag test, so a plain pile pays nothing for drag springs, moving walls, heating or sources.
 
-use crate::bodies::{Bodies, BodyId, BodyKind};
+use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::integrator::{BodyIntegrator, GearState, Integrator, IntegratorError, TimeStep};
 use crate::ledger::EnergyLedger;
@@ -377,22 +377,15 @@ impl World {
     fn predict(&mut self, t_next: f64) {
         let gear = &self.integrator;
         let time_step = *gear.time_step();
-        let b = &mut self.bodies;
+        let (rows, _) = self.bodies.split_for_integration();
         let predict = |(state, pose, velocity, angular_velocity, kind, alive): KinematicsRow| {
             if *kind == BodyKind::Particle && *alive {
                 gear.predict_body(state);
                 sync_kinematics(state, &time_step, pose, velocity, angular_velocity);
             }
         };
-        let rows = (
-            &mut b.gear[..],
-            &mut b.pose[..],
-            &mut b.velocity[..],
-            &mut b.angular_velocity[..],
-            &b.kind[..],
-            &b.alive[..],
-        );
         for_each_kinematics_row(rows, |_, row| predict(row));
+        let b = &mut self.bodies;
         if self.stages.moving_walls {
             for wall in &self.moving_walls {
                 let kinematics = wall.motion.kinematics(t_next);
@@ -502,22 +495,13 @@ impl World {
     fn correct(&mut self) {
         let gear = &self.integrator;
         let time_step = *gear.time_step();
-        let b = &mut self.bodies;
-        let (force, torque, inverse_mass, inverse_inertia) = (&b.force, &b.torque, &b.inverse_mass, &b.inverse_inertia);
+        let (rows, (force, torque, inverse_mass, inverse_inertia)) = self.bodies.split_for_integration();
         let correct = |i: usize, (state, pose, velocity, angular_velocity, kind, alive): KinematicsRow| {
             if *kind == BodyKind::Particle && *alive {
                 gear.correct_body(state, force[i] * inverse_mass[i], torque[i] * inverse_inertia[i]);
                 sync_kinematics(state, &time_step, pose, velocity, angular_velocity);
             }
         };
-        let rows = (
-            &mut b.gear[..],
-            &mut b.pose[..],
-            &mut b.velocity[..],
-            &mut b.angular_velocity[..],
-            &b.kind[..],
-            &b.alive[..],
-        );
         for_each_kinematics_row(rows, correct);
     }
 
@@ -764,10 +748,6 @@ fn state_is_finite(b: &Bodies, i: usize) -> bool {
 
 /// The kinematic columns of one body that the predictor and corrector update.
 type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
-
-/// The kinematic columns of all bodies, as `for_each_kinematics_row` takes them.
-type KinematicsColumns<'a> =
-    (&'a mut [GearState], &'a mut [Pose], &'a mut [DVec2], &'a mut [f64], &'a [BodyKind], &'a [bool]);
 
 /// Calls `f(index, row)` for every body: in parallel for large worlds, on the calling thread for small ones.
 fn for_each_kinematics_row(columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
