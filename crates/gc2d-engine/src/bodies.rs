@@ -180,6 +180,15 @@ impl Bodies {
         )
     }
 
+    /// Area of body `i` at its current scale for overlap fractions: a particle's area, infinite for a wall (an overlap
+    /// is judged against the smaller particle, and a wall never is the smaller one).
+    pub fn overlap_reference_area(&self, i: usize) -> f64 {
+        match self.kind[i] {
+            BodyKind::Particle => self.area[i] * self.pose[i].scale * self.pose[i].scale,
+            BodyKind::Wall => f64::INFINITY,
+        }
+    }
+
     /// Ids of the living particles, in slot order.
     pub fn particles(&self) -> impl Iterator<Item = BodyId> + '_ {
         (0..self.len()).filter(|&i| self.alive[i] && self.kind[i] == BodyKind::Particle).map(|i| BodyId(i as u32))

@@ -118,12 +118,7 @@ impl PairContext<'_> {
 
     /// Area of the smaller particle of the pair at its current scale (walls do not count).
     fn smaller_particle_area(&self, i: BodyId, j: BodyId) -> f64 {
-        let b = self.bodies;
-        let area = |id: BodyId| {
-            let k = id.index();
-            if b.kind[k] == BodyKind::Particle { b.area[k] * b.pose[k].scale * b.pose[k].scale } else { f64::INFINITY }
-        };
-        area(i).min(area(j))
+        self.bodies.overlap_reference_area(i.index()).min(self.bodies.overlap_reference_area(j.index()))
     }
 }
 

@@ -202,15 +202,12 @@ pub fn check_time_step(bodies: &Bodies, e_modulus: f64, dt: f64, limits: &Safety
 pub const INITIAL_OVERLAP_TOLERANCE: f64 = 1e-12;
 
 /// The deepest overlap between living bodies at their current poses, as (a, b, overlap over the smaller particle's
-/// area), if it exceeds `tolerance` (see [`SafetyLimits::max_initial_overlap_fraction`]). Walls are not paired with walls. Meant to run once before the
-/// first step: a sweep along x over the boxes sorted by their lower x bound, so it allocates.
+/// area), if it exceeds `tolerance` (see [`SafetyLimits::max_initial_overlap_fraction`]). Walls are not paired with
+/// walls. Meant to run once before the first step: a sweep along x over the boxes sorted by their lower x bound, so it
+/// allocates.
 pub fn deepest_initial_overlap(bodies: &Bodies, tolerance: f64) -> Option<(BodyId, BodyId, f64)> {
     let mut order: Vec<usize> = (0..bodies.len()).filter(|&i| bodies.alive[i]).collect();
     order.sort_by(|&i, &j| bodies.aabb[i].min.x.total_cmp(&bodies.aabb[j].min.x));
-    let area = |i: usize| match bodies.kind[i] {
-        BodyKind::Particle => bodies.area[i] * bodies.pose[i].scale * bodies.pose[i].scale,
-        BodyKind::Wall => f64::INFINITY,
-    };
     let mut deepest: Option<(BodyId, BodyId, f64)> = None;
     for (k, &i) in order.iter().enumerate() {
         for &j in order[k + 1..].iter().take_while(|&&j| bodies.aabb[j].min.x <= bodies.aabb[i].max.x) {
@@ -222,7 +219,7 @@ pub fn deepest_initial_overlap(bodies: &Bodies, tolerance: f64) -> Option<(BodyI
             let Some(geometry) = contact_geometry(bodies.world_vertices_of(a), bodies.world_vertices_of(b)) else {
                 continue;
             };
-            let fraction = geometry.area / area(i).min(area(j));
+            let fraction = geometry.area / bodies.overlap_reference_area(i).min(bodies.overlap_reference_area(j));
             if fraction > tolerance && deepest.is_none_or(|d| fraction > d.2) {
                 deepest = Some((a, b, fraction));
             }
