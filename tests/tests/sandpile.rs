@@ -1,13 +1,13 @@
 //! Poured polydisperse dip pile (reference §8.3, §10.3 item 19): RAND1 7-gons, r = 1.75 mm ± 25 %, E = 1e7 N/m,
 //! γ = 0.75, μ = 0.6, poured through a funnel onto a floor of the same material.
 //!
-//! The CI-sized pile (about 260 particles) asserts rest, no losses, both flank angles in a band around the thesis
+//! The CI-sized pile (about 250 particles) asserts rest, no losses, both flank angles in a band around the thesis
 //! value and the floor pressure integrating to the pile's weight. The thesis-sized pile (about 2500 particles) is
 //! `#[ignore]`d: it asserts the thesis's 26.8° ± 2.0° and takes far too long for CI.
 
 mod common;
 
-use common::{particle_weight, run_scene};
+use common::{particle_weight, run_or_load_scene, run_scene};
 use gc2d_analysis::scene_pile::auto_half_width;
 use gc2d_analysis::{
     Facing, FlankOptions, ProfileOptions, Repose, Snapshot, WallSelection, angle_of_repose, pressure_profile,
@@ -80,12 +80,14 @@ fn flank(fit: &Option<gc2d_analysis::FlankFit>) -> f64 {
     fit.as_ref().map_or(f64::NAN, |f| f.angle_degrees)
 }
 
-/// The CI-sized pile (§10.3 item 19 at 1/10 of the particles). A pile of ~250 particles is 7–8 grains high, so the
+/// The CI-sized pile (§10.3 item 19 at 1/10 of the particles). A pile of ~250 particles is 8 grains high, so the
 /// flank fit (20 % top and 10 % foot left out) rests on a few points per flank and a single avalanche shifts it by
-/// several degrees; and the grains falling from the funnel carry more energy per grain of pile than in the thesis,
-/// flattening a small pile. The band is therefore wider than the thesis's 26.8° ± 2.0° on the low side: the mean of
-/// both flanks must lie in 18°–35° (35° ≈ a little above arctan μ = 31°, the steepest a cohesionless Coulomb slope
-/// holds), and each flank in 14°–35°.
+/// several degrees, and the grains falling from the funnel carry more energy per grain of pile than in the thesis,
+/// flattening a small pile (docs/validation.md: 15°–23° per flank over seeds and funnel heights, against 21°–25° for
+/// the thesis-sized pile while it was still being poured). The band is therefore wider than the thesis's
+/// 26.8° ± 2.0° on the low side: the mean of both flanks must lie in 18°–35° (35° ≈ a little above arctan μ = 31°,
+/// the steepest a cohesionless Coulomb slope holds), and each flank in 14°–35°. The thesis value itself is asserted
+/// by `thesis_sandpile`.
 #[test]
 fn ci_sandpile() {
     let (world, elapsed) = run_scene("sandpile.ron");
@@ -93,8 +95,7 @@ fn ci_sandpile() {
     report("sandpile", &m, elapsed.as_secs_f64());
     assert!(m.particles > 200, "only {} particles were poured", m.particles);
     assert!(m.kinetic_ratio < REST_KINETIC_RATIO, "not at rest: KE/(M g d) = {:.3e}", m.kinetic_ratio);
-    // Measured: 1 of ~250 particles leaves the domain (not 0, see docs/validation.md); at most 1 % may.
-    assert!(m.removed as f64 <= 0.01 * m.particles as f64, "{} particles left the domain", m.removed);
+    assert_eq!(m.removed, 0, "particles left the domain");
     let (left, right) = (flank(&m.repose.left), flank(&m.repose.right));
     let mean = 0.5 * (left + right);
     assert!((18.0..=35.0).contains(&mean), "mean flank angle {mean:.2}° outside 18°–35°");
@@ -106,11 +107,13 @@ fn ci_sandpile() {
 }
 
 /// The thesis-sized pile (§8.3 dip-pile ensemble, one seed of nine): ~2500 particles, 26.8° ± 2.0°. Run with
-/// `cargo test --release -p gc2d-regression -- --ignored`; not run to completion yet (hours on two cores).
+/// `cargo test --release -p gc2d-regression -- --ignored` or as tests/README.md describes. Measured on the former 1 m
+/// floor (1 h 38 min on one thread): mean flank 24.8°, height 9.8 cm, width 0.419 m, ∫p dx / W = 0.99986, and 4
+/// early grains rolled off the floor, hence the 2 m floor now (docs/validation.md).
 #[test]
 #[ignore = "thesis-sized: about 2500 particles, hours of run time"]
 fn thesis_sandpile() {
-    let (world, elapsed) = run_scene("sandpile_thesis.ron");
+    let (world, elapsed) = run_or_load_scene("sandpile_thesis.ron");
     let m = measure(&world);
     report("sandpile_thesis", &m, elapsed.as_secs_f64());
     assert!(m.kinetic_ratio < REST_KINETIC_RATIO, "not at rest: KE/(M g d) = {:.3e}", m.kinetic_ratio);

@@ -2,6 +2,7 @@
 //! everything the scene format cannot say reported as a warning at its line (see `docs/model.md`, "Legacy gsi
 //! import (§9)", subsection "Conversion").
 
+use crate::AUTOMATIC_TIME_STEP_FRACTION;
 use gc2d_engine::motion::Waveform as EngineWaveform;
 use gc2d_engine::schedules::GravityProfile as EngineGravityProfile;
 use gc2d_engine::{DropHeight as EngineDropHeight, TimeWindow};
@@ -132,7 +133,7 @@ impl Converter {
     }
 
     /// Keeps `DELTA_T` unless it is above the stable bound of the scene's particles, which the scene refuses; then
-    /// the scene leaves Δt automatic (a quarter of the bound) and a warning gives both numbers. A scene that does
+    /// the scene leaves Δt automatic (`AUTOMATIC_TIME_STEP_FRACTION` of the bound) and a warning gives both numbers. A scene that does
     /// not build for other reasons keeps `DELTA_T`: loading it reports those reasons.
     fn fit_time_step(&mut self, scene: &mut Scene, time_step: &Sourced<f64>) {
         let automatic = Scene { run: Run { time_step_s: None, ..scene.run.clone() }, ..scene.clone() };
@@ -141,8 +142,8 @@ impl Converter {
         if time_step.value > bound {
             let consequence = format!(
                 "DELTA_T = {:e} s is above the stable bound {bound:.3e} s = (pi/10)*sqrt(m/E) of the lightest \
-                 particle, so the scene leaves the time step automatic: {:e} s, a quarter of the bound",
-                time_step.value, summary.time_step_s
+                 particle, so the scene leaves the time step automatic: {:e} s, {} of the bound",
+                time_step.value, summary.time_step_s, AUTOMATIC_TIME_STEP_FRACTION
             );
             let kind = GsiWarningKind::NotConverted { keyword: "DELTA_T", consequence };
             self.warnings.push(GsiWarning { line: time_step.line(), kind });

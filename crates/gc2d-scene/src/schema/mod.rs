@@ -66,7 +66,7 @@ pub struct Scene {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Run {
-    /// Δt in s. Default (omitted): a quarter of the stable bound (π/10)·sqrt(m/E) of the lightest particle, rounded down
+    /// Δt in s. Default (omitted): 0.15 of the stable bound (π/10)·sqrt(m/E) of the lightest particle, rounded down
     /// to two significant digits, or 1e-4 s when the scene has no particles.
     #[serde(default)]
     pub time_step_s: Option<f64>,
