@@ -11,6 +11,11 @@ pub fn scene_path(file: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes").join(file)
 }
 
+/// Reads a scene of this crate's `scenes/` directory, panicking with the diagnostic if it does not load.
+fn load_scene(file: &str) -> Scene {
+    Scene::from_path(scene_path(file)).unwrap_or_else(|e| panic!("cannot load {file}: {e:?}"))
+}
+
 /// Environment variable naming a directory of finished `gc2d-rs run` outputs: with it, [`run_or_load_scene`] reads
 /// `<dir>/<scene stem>/final.ckpt` instead of running the scene again.
 pub const RUN_DIR_VARIABLE: &str = "GC2D_REGRESSION_RUN_DIR";
@@ -20,7 +25,7 @@ pub const RUN_DIR_VARIABLE: &str = "GC2D_REGRESSION_RUN_DIR";
 /// scene's end time (the returned duration is zero); otherwise runs the scene like [`run_scene`].
 pub fn run_or_load_scene(file: &str) -> (World, Duration) {
     let Some(dir) = std::env::var_os(RUN_DIR_VARIABLE) else { return run_scene(file) };
-    let scene = Scene::from_path(scene_path(file)).unwrap_or_else(|e| panic!("cannot load {file}: {e:?}"));
+    let scene = load_scene(file);
     let stem = Path::new(file).file_stem().expect("a scene file name");
     let checkpoint = PathBuf::from(dir).join(stem).join("final.ckpt");
     let world = World::load_checkpoint_file(&checkpoint)
@@ -37,7 +42,7 @@ pub fn run_or_load_scene(file: &str) -> (World, Duration) {
 
 /// Builds the scene and runs it to its `run.end_time_s`; returns the World and the wall-clock time of the run.
 pub fn run_scene(file: &str) -> (World, Duration) {
-    let scene = Scene::from_path(scene_path(file)).unwrap_or_else(|e| panic!("cannot load {file}: {e:?}"));
+    let scene = load_scene(file);
     let mut world = scene.build().unwrap_or_else(|e| panic!("cannot build {file}: {e:?}"));
     let start = Instant::now();
     world.run_until(scene.run.end_time_s).unwrap_or_else(|e| panic!("{file} stopped: {e:?}"));
