@@ -207,15 +207,16 @@ fn check(path: &Path) -> Result<u8, Failure> {
 
 fn run(args: RunArgs) -> Result<u8, Failure> {
     let scene = load(&args.scene)?;
-    if let Some(threads) = args.threads {
-        if threads == 0 {
-            return Err(Failure::input("--threads must be at least 1"));
-        }
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build_global()
-            .map_err(|e| Failure::input(format!("could not start {threads} threads: {e}")))?;
+    if args.threads == Some(0) {
+        return Err(Failure::input("--threads must be at least 1"));
     }
+    // The whole run loop executes on a worker of this pool: the engine's parallel sections then start from inside
+    // the pool instead of handing every section over from the main thread and sleeping until it is done (which cost
+    // about 15 % of a 1,900-grain silo's step on one thread).
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+        .map_err(|e| Failure::input(format!("could not start the worker threads: {e}")))?;
     let end_time = args.until.unwrap_or(scene.run.end_time_s);
     if !(end_time.is_finite() && end_time >= 0.0) {
         return Err(Failure::input(format!("--until must be a non-negative time in seconds, got {end_time}")));
@@ -265,7 +266,8 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         sinks.push(p);
     }
     let started = Instant::now();
-    let status = run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet);
+    let status =
+        pool.install(|| run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet));
     drop(sinks);
     let status = match (status, recording.and_then(|r| r.recorder).map(Recorder::finish)) {
         (RunStatus::Completed, Some(Err(e))) => RunStatus::Failed(format!("could not finish the recording: {e}")),

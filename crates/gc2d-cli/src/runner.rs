@@ -7,8 +7,9 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-/// Something that receives the World on a cadence of simulated time (recordings, checkpoints, pictures).
-pub trait FrameSink {
+/// Something that receives the World on a cadence of simulated time (recordings, checkpoints, pictures). `Send`
+/// because the run loop executes on a worker of the run's thread pool.
+pub trait FrameSink: Send {
     /// Simulated time between two calls, s.
     fn interval(&self) -> f64;
     /// Takes the World as it is now; an error stops the run with that message.

@@ -365,11 +365,18 @@ impl World {
     }
 
     /// Steps until the time reaches `t_end` (within half a step).
+    ///
+    /// The loop runs on a worker of the current rayon pool, so each step's parallel sections start inside the pool
+    /// instead of being handed over from the calling thread, which then sleeps until they finish (that hand-over cost
+    /// about 15 % of a 1,900-grain silo's step on one thread). A loop that calls [`step`](Self::step) itself gains the
+    /// same by running inside `ThreadPool::install`.
     pub fn run_until(&mut self, t_end: f64) -> Result<(), WorldError> {
-        while self.time + 0.5 * self.config.time_step < t_end {
-            self.step()?;
-        }
-        Ok(())
+        rayon::scope(|_| {
+            while self.time + 0.5 * self.config.time_step < t_end {
+                self.step()?;
+            }
+            Ok(())
+        })
     }
 
     /// Integrator's predict (Gear predictor or Verlet kick and drift) for particles, prescribed poses for moving
