@@ -210,6 +210,13 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     if args.threads == Some(0) {
         return Err(Failure::input("--threads must be at least 1"));
     }
+    for (flag, interval) in [("--checkpoint-every", args.checkpoint_every), ("--png-every", args.png_every)] {
+        if let Some(interval) = interval
+            && !(interval.is_finite() && interval > 0.0)
+        {
+            return Err(Failure::input(format!("{flag} must be a positive time in seconds, got {interval}")));
+        }
+    }
     // The whole run loop executes on a worker of this pool: the engine's parallel sections then start from inside
     // the pool instead of handing every section over from the main thread and sleeping until it is done (which cost
     // about 15 % of a 1,900-grain silo's step on one thread).
@@ -231,7 +238,7 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         .map_err(|e| Failure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
     let series_path = out.join("timeseries.csv");
     let mut series = if args.resume.is_some() && series_path.exists() {
-        TimeSeriesWriter::append_to(&series_path)
+        TimeSeriesWriter::continue_at(&series_path, world.time(), 0.5 * world.time_step())
     } else {
         TimeSeriesWriter::create(&series_path)
     }

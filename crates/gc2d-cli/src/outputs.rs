@@ -40,8 +40,28 @@ impl TimeSeriesWriter {
         Ok(Self { file })
     }
 
-    /// Opens an existing `path` to continue it (a resumed run), without writing the header again.
-    pub fn append_to(path: &Path) -> io::Result<Self> {
+    /// Continues an existing `path` for a run resumed at simulated time `resumed_at`: rows from `resumed_at` on
+    /// (written by the earlier run after its checkpoint, when it went on before it was stopped) and any line that is
+    /// not a whole row (a run killed mid-write) are dropped, so that the resumed run's rows follow on without
+    /// repeating a time. Rows are compared with half a time step of slack, `slack`.
+    pub fn continue_at(path: &Path, resumed_at: f64, slack: f64) -> io::Result<Self> {
+        let text = std::fs::read_to_string(path)?;
+        let mut lines = text.lines();
+        let header = lines.next().unwrap_or_default();
+        if header != TIME_SERIES_COLUMNS.join(",") {
+            return Err(io::Error::new(io::ErrorKind::InvalidData, "its first line is not the time-series header"));
+        }
+        let earlier = |line: &&str| {
+            let fields: Vec<&str> = line.split(',').collect();
+            let whole = fields.len() == TIME_SERIES_COLUMNS.len() && fields.iter().all(|f| f.parse::<f64>().is_ok());
+            whole && fields[0].parse::<f64>().is_ok_and(|t| t < resumed_at - slack)
+        };
+        let mut kept = String::with_capacity(text.len());
+        for line in std::iter::once(header).chain(lines.filter(earlier)) {
+            kept.push_str(line);
+            kept.push('\n');
+        }
+        std::fs::write(path, kept)?;
         let file = std::fs::OpenOptions::new().append(true).open(path)?;
         Ok(Self { file: BufWriter::new(file) })
     }

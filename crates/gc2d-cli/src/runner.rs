@@ -16,21 +16,45 @@ pub trait FrameSink: Send {
     fn take(&mut self, world: &World) -> Result<(), String>;
 }
 
+/// Ticks at whole multiples of an interval of simulated time (not counted from the start), so that a resumed run
+/// writes its rows, frames and checkpoints at the times the uninterrupted run would have.
+struct Ticks {
+    interval: f64,
+    next: u64,
+}
+
+impl Ticks {
+    /// The ticks from `time` on; a tick within half a step (`slack`) before `time` is still due.
+    fn from(interval: f64, time: f64, slack: f64) -> Self {
+        Self { interval, next: ((time - slack) / interval).ceil().max(0.0) as u64 }
+    }
+
+    /// True when the next tick has been reached at `time`, with half a step of slack so that a tick at exactly
+    /// k·interval is not missed by round-off.
+    fn due(&self, time: f64, slack: f64) -> bool {
+        time + slack >= self.next as f64 * self.interval
+    }
+
+    /// Moves past every tick reached at `time`.
+    fn advance(&mut self, time: f64, slack: f64) {
+        while self.due(time, slack) {
+            self.next += 1;
+        }
+    }
+}
+
 /// Calls a sink whenever its next tick has been reached.
 struct Cadence<'a> {
     sink: &'a mut dyn FrameSink,
-    next: f64,
+    ticks: Ticks,
 }
 
 impl Cadence<'_> {
     fn poll(&mut self, world: &World) -> Result<(), String> {
-        // Half a step of slack so that a tick at exactly k·interval is not missed by round-off.
-        if world.time() + 0.5 * world.time_step() >= self.next {
+        let slack = 0.5 * world.time_step();
+        if self.ticks.due(world.time(), slack) {
             self.sink.take(world)?;
-            let interval = self.sink.interval();
-            while self.next <= world.time() + 0.5 * world.time_step() {
-                self.next += interval;
-            }
+            self.ticks.advance(world.time(), slack);
         }
         Ok(())
     }
@@ -48,15 +72,21 @@ pub fn run_to(
     show_progress: bool,
 ) -> RunStatus {
     let progress = Progress::new(world, end_time, show_progress);
-    let start = world.time();
-    let mut next_row = start;
-    let mut cadences: Vec<Cadence> = sinks.iter_mut().map(|sink| Cadence { sink: &mut **sink, next: start }).collect();
+    let (start, slack) = (world.time(), 0.5 * world.time_step());
+    let mut rows = Ticks::from(series_interval, start, slack);
+    let mut cadences: Vec<Cadence> = sinks
+        .iter_mut()
+        .map(|sink| {
+            let ticks = Ticks::from(sink.interval(), start, slack);
+            Cadence { sink: &mut **sink, ticks }
+        })
+        .collect();
     let status = loop {
-        if world.time() + 0.5 * world.time_step() >= next_row {
+        if rows.due(world.time(), slack) {
             if let Err(e) = series.append(world) {
                 break RunStatus::Failed(format!("could not write the time series: {e}"));
             }
-            next_row += series_interval;
+            rows.advance(world.time(), slack);
         }
         if let Some(message) = cadences.iter_mut().find_map(|c| c.poll(world).err()) {
             break RunStatus::Failed(message);

@@ -69,6 +69,42 @@ fn a_run_split_by_resume_ends_bitwise_identical() {
 }
 
 #[test]
+fn resuming_from_an_earlier_checkpoint_rewrites_the_later_rows_of_the_series() {
+    // A run stopped at 0.045 s after checkpoints at 0.02 and 0.04 s, then resumed from the 0.02 s one (as after a
+    // crash whose newest checkpoint is damaged), with a half-written row at the end of its series: the series ends
+    // byte-identical to an unsplit run's, with no time written twice.
+    let whole = tempfile::tempdir().unwrap();
+    let split = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    gc2d().args(["run", path.to_str().unwrap(), "--quiet", "--out"]).arg(whole.path()).assert().success();
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.045", "--checkpoint-every", "0.02", "--out"])
+        .arg(split.path())
+        .assert()
+        .success();
+    let series_path = split.path().join("timeseries.csv");
+    let mut series = std::fs::read_to_string(&series_path).unwrap();
+    series.push_str("0.05,31,2");
+    std::fs::write(&series_path, series).unwrap();
+    let mut checkpoints: Vec<_> = std::fs::read_dir(split.path().join("checkpoints"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|p| p.file_name().unwrap().to_str().unwrap() != "checkpoint-0000000000.ckpt")
+        .collect();
+    checkpoints.sort();
+    assert_eq!(checkpoints.len(), 2, "{checkpoints:?}");
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
+        .arg(&checkpoints[0])
+        .arg("--out")
+        .arg(split.path())
+        .assert()
+        .success();
+    let expected = std::fs::read_to_string(whole.path().join("timeseries.csv")).unwrap();
+    assert_eq!(std::fs::read_to_string(&series_path).unwrap(), expected);
+}
+
+#[test]
 fn thread_count_does_not_change_the_result() {
     let one = tempfile::tempdir().unwrap();
     let two = tempfile::tempdir().unwrap();
@@ -128,6 +164,17 @@ fn zero_threads_is_refused() {
         .assert()
         .code(2)
         .stderr(contains("--threads must be at least 1"));
+}
+
+#[test]
+fn a_cadence_that_is_not_a_positive_time_is_refused() {
+    for (flag, value) in [("--checkpoint-every", "0"), ("--png-every", "nan"), ("--checkpoint-every", "inf")] {
+        gc2d()
+            .args(["run", scene("tiny_pile.ron").to_str().unwrap(), flag, value])
+            .assert()
+            .code(2)
+            .stderr(contains(format!("{flag} must be a positive time in seconds")));
+    }
 }
 
 #[test]
