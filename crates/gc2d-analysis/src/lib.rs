@@ -23,7 +23,7 @@ pub mod stress;
 pub use density::{Grid, LocalDensity, bulk_packing_fraction, density_grid, local_density};
 pub use error::AnalysisError;
 pub use geometry::{Rect, convex_hull, hull_area, polygon_area};
-pub use janssen::{JanssenFit, JanssenParameters, fit_janssen};
+pub use janssen::{JanssenFit, JanssenFreeKFit, JanssenParameters, fit_janssen, fit_janssen_free_k};
 pub use pressure::{
     Facing, PressureProfile, ProfileOptions, WallForce, WallSelection, face_length, mean_pressure, pressure_profile,
     wall_forces,

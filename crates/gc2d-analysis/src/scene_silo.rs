@@ -5,7 +5,7 @@ use crate::density::{Grid, bulk_packing_fraction, density_grid};
 use crate::error::AnalysisError;
 use crate::figures::{self, Labels, Mark, Series};
 use crate::geometry::Rect;
-use crate::janssen::{JanssenFit, JanssenParameters, fit_janssen};
+use crate::janssen::{JanssenFit, JanssenFreeKFit, JanssenParameters, fit_janssen, fit_janssen_free_k};
 use crate::output::OutputDir;
 use crate::pressure::{
     Facing, ProfileOptions, WallSelection, face_length, mean_pressure, pressure_profile, wall_forces,
@@ -15,7 +15,7 @@ use crate::run::AnalyzeOptions;
 use crate::scene_pile::{MOVING_AVERAGE_SAMPLES, auto_cell, auto_half_width, write_density, write_stress};
 use crate::snapshot::Snapshot;
 use crate::stress::{StressOptions, stress_grid};
-use plotters::style::{BLACK, BLUE, GREEN, RED};
+use plotters::style::{BLACK, BLUE, GREEN, MAGENTA, RED};
 use serde::Serialize;
 
 /// The numbers of a silo analysis.
@@ -61,6 +61,10 @@ pub struct SiloReport {
     pub janssen: Option<JanssenFit>,
     /// Why the fit was not done, otherwise.
     pub janssen_error: Option<String>,
+    /// The Janssen fit with k free as well, when it could be done.
+    pub janssen_free_k: Option<JanssenFreeKFit>,
+    /// Why the free-k fit was not done, otherwise.
+    pub janssen_free_k_error: Option<String>,
 }
 
 /// Runs the silo analyses and writes their tables and figures.
@@ -137,15 +141,23 @@ pub fn analyze_silo(
         Ok(fit) => (Some(fit), None),
         Err(error) => (None, Some(error.to_string())),
     };
+    let (janssen_free_k, janssen_free_k_error) =
+        match fit_janssen_free_k(&depth, &sigma, bulk_density, snapshot.gravity, half_width) {
+            Ok(fit) => (Some(fit), None),
+            Err(error) => (None, Some(error.to_string())),
+        };
     let fitted = |z: f64| janssen.map_or(f64::NAN, |f| parameters.sigma_xx(z, f.mu_j));
-    let table: Vec<Vec<f64>> = wall_rows.iter().map(|r| vec![r.0, r.1, r.2, r.3, r.4, fitted(r.0)]).collect();
+    let fitted_free_k = |z: f64| janssen_free_k.map_or(f64::NAN, |f| parameters.with_k(f.k).sigma_xx(z, f.mu_j));
+    let table: Vec<Vec<f64>> =
+        wall_rows.iter().map(|r| vec![r.0, r.1, r.2, r.3, r.4, fitted(r.0), fitted_free_k(r.0)]).collect();
     out.write_csv(
         "wall_pressure.csv",
-        &["depth", "y", "pressure_left", "pressure_right", "sigma_xx", "janssen_sigma_xx"],
+        &["depth", "y", "pressure_left", "pressure_right", "sigma_xx", "janssen_sigma_xx", "janssen_free_k_sigma_xx"],
         &table,
     )?;
     let measured: Vec<(f64, f64)> = table.iter().map(|r| (r[0], r[4])).collect();
     let theory: Vec<(f64, f64)> = table.iter().map(|r| (r[0], r[5])).collect();
+    let theory_free_k: Vec<(f64, f64)> = table.iter().map(|r| (r[0], r[6])).collect();
     let stress_xx: Vec<(f64, f64)> = rows.iter().map(|r| (r[0], r[2])).collect();
     let stress_zz: Vec<(f64, f64)> = rows.iter().map(|r| (r[0], r[3])).collect();
     figures::line_chart(
@@ -153,7 +165,8 @@ pub fn analyze_silo(
         Labels { title: "silo stresses against depth; Janssen fit (3.4)", x: "depth z / m", y: "σ / (N/m)" },
         &[
             Series { label: "σ_xx at the walls (2.40)", points: &measured, color: BLUE, mark: Mark::Line },
-            Series { label: "Janssen fit", points: &theory, color: RED, mark: Mark::Line },
+            Series { label: "Janssen fit, measured k", points: &theory, color: RED, mark: Mark::Line },
+            Series { label: "Janssen fit, k free", points: &theory_free_k, color: MAGENTA, mark: Mark::Line },
             Series { label: "σ_xx (2.52), rows", points: &stress_xx, color: GREEN, mark: Mark::Dots },
             Series { label: "σ_zz (2.52), rows", points: &stress_zz, color: BLACK, mark: Mark::Dots },
         ],
@@ -196,6 +209,8 @@ pub fn analyze_silo(
         bulk_density,
         janssen,
         janssen_error,
+        janssen_free_k,
+        janssen_free_k_error,
     })
 }
 

@@ -113,6 +113,10 @@ fn a_filled_silo_is_detected_and_fitted() {
     assert!(fit.points >= 10, "{fit:?}");
     assert!(fit.mu_j > 0.01 && fit.mu_j < 10.0, "{fit:?}");
     assert!(silo.k > 0.0 && silo.k.is_finite(), "{silo:?}");
+    // The free-k fit is either done or says why not.
+    assert_ne!(silo.janssen_free_k.is_some(), silo.janssen_free_k_error.is_some(), "{silo:?}");
+    let table = std::fs::read_to_string(dir.join("analysis").join("wall_pressure.csv")).unwrap();
+    assert!(table.lines().next().unwrap().ends_with("janssen_sigma_xx,janssen_free_k_sigma_xx"), "{table}");
     for file in ["wall_pressure.csv", "wall_pressure.svg", "silo_rows.csv", "k_profile.svg", "density_profile.svg"] {
         assert!(dir.join("analysis").join(file).is_file(), "{file} not written");
     }

@@ -134,3 +134,61 @@ fn janssen_fit_refuses_bad_input() {
     let fit = fit_janssen(&[0.1, 0.2, f64::NAN], &[f64::INFINITY, 50.0, 1.0], parameters);
     assert!(matches!(fit, Err(AnalysisError::NotEnoughData(_))));
 }
+
+#[test]
+fn free_k_fit_recovers_mu_j_and_k_from_a_noisy_profile() {
+    // The same thesis silo; the fit is told neither k nor μ_j.
+    let parameters = JanssenParameters { k: 0.64, rho: 0.78 * 5000.0, g: G, half_width: 0.05 };
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let noise = Normal::new(0.0, 0.03).unwrap();
+    let depth: Vec<f64> = (1..=80).map(|i| i as f64 * 0.005).collect();
+    let sigma: Vec<f64> =
+        depth.iter().map(|&z| parameters.sigma_xx(z, 0.33) * (1.0 + noise.sample(&mut rng))).collect();
+    let fit = fit_janssen_free_k(&depth, &sigma, parameters.rho, G, 0.05).expect("fit");
+    assert_relative_eq!(fit.mu_j, 0.33, max_relative = 0.05);
+    assert_relative_eq!(fit.k, 0.64, max_relative = 0.05);
+    assert_relative_eq!(fit.saturation_depth, 0.05 / (fit.k * fit.mu_j), max_relative = 1e-9);
+    assert!(fit.relative_rms_residual < 0.03, "{}", fit.relative_rms_residual);
+    let exact: Vec<f64> = depth.iter().map(|&z| parameters.sigma_xx(z, 0.33)).collect();
+    let fit = fit_janssen_free_k(&depth, &exact, parameters.rho, G, 0.05).expect("fit");
+    assert_relative_eq!(fit.mu_j, 0.33, max_relative = 1e-6);
+    assert_relative_eq!(fit.k, 0.64, max_relative = 1e-6);
+}
+
+#[test]
+fn free_k_fit_reads_mu_j_off_the_plateau_where_k_varies_with_depth() {
+    // k falls from 1.0 at the surface to 0.5 at depth, so the profile is not (3.4) with any one k; the free-k fit's
+    // asymptote still gives μ_j = ρ g r / plateau once the column reaches the plateau (here five saturation depths).
+    let (rho, r, mu_j) = (4000.0, 0.02, 0.33);
+    let depth: Vec<f64> = (1..=120).map(|i| i as f64 * 0.005).collect();
+    let mut sigma_zz = 0.0;
+    let dz = 1e-5;
+    let mut z = 0.0;
+    let mut sigma_xx = Vec::new();
+    for &target in &depth {
+        let k = |z: f64| 0.5 + 0.5 * (-z / 0.05).exp();
+        while z < target - 0.5 * dz {
+            sigma_zz += dz * (rho * G - mu_j * k(z) * sigma_zz / r);
+            z += dz;
+        }
+        sigma_xx.push(k(z) * sigma_zz);
+    }
+    let fit = fit_janssen_free_k(&depth, &sigma_xx, rho, G, r).expect("fit");
+    assert_relative_eq!(fit.mu_j, mu_j, max_relative = 0.05);
+}
+
+#[test]
+fn free_k_fit_refuses_a_profile_that_does_not_saturate() {
+    let depth = [0.05, 0.1, 0.15, 0.2];
+    let hydrostatic: Vec<f64> = depth.iter().map(|z| 3900.0 * G * z).collect();
+    let fit = fit_janssen_free_k(&depth, &hydrostatic, 3900.0, G, 0.05);
+    assert!(matches!(fit, Err(AnalysisError::NotEnoughData(ref m)) if m.contains("does not saturate")), "{fit:?}");
+    assert!(matches!(
+        fit_janssen_free_k(&[0.1, 0.2], &[1.0, 2.0], 3900.0, G, 0.05),
+        Err(AnalysisError::NotEnoughData(_))
+    ));
+    assert!(matches!(
+        fit_janssen_free_k(&[0.1, 0.2, 0.3], &[1.0, 2.0, 2.5], 3900.0, G, -0.05),
+        Err(AnalysisError::InvalidParameter(_))
+    ));
+}
