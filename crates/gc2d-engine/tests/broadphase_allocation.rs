@@ -1,45 +1,14 @@
 //! A warm broadphase update allocates nothing (preamble: the hot paths must not allocate).
 //!
-//! A counting global allocator lives in this test binary only; the count is per thread, so the test harness's own
-//! threads cannot disturb it.
+//! The counting allocator (`gc2d-alloc-count`) is installed in this test binary only; the count is per thread, so the
+//! test harness's own threads cannot disturb it.
 
+use gc2d_alloc_count::{CountingAllocator, thread_allocations};
 use gc2d_engine::broadphase::{BodyKind, SortAndSweep};
 use gc2d_geometry::{Aabb, DVec2};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-// SAFETY: every call is forwarded unchanged to the system allocator; only a thread-local counter is added.
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|count| count.set(count.get() + 1));
-        // SAFETY: the caller's contract for `alloc` is passed on unchanged.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: the caller's contract for `dealloc` is passed on unchanged.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.with(|count| count.set(count.get() + 1));
-        // SAFETY: the caller's contract for `realloc` is passed on unchanged.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
 
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
 
 /// A 30 × 30 lattice of unit boxes breathing in and out: pairs form and break every few steps.
 fn lattice(step: u32) -> Vec<Aabb> {
@@ -62,12 +31,12 @@ fn warm_updates_do_not_allocate() {
     for frame in frames.iter().cycle().take(16) {
         sweep.update(frame);
     }
-    let before = allocations();
+    let before = thread_allocations();
     let mut pairs_seen = 0;
     for frame in frames.iter().cycle().take(64) {
         sweep.update(frame);
         pairs_seen += sweep.pairs().len() + sweep.ended_pairs().len();
     }
-    assert_eq!(allocations() - before, 0);
+    assert_eq!(thread_allocations() - before, 0);
     assert!(pairs_seen > 0);
 }

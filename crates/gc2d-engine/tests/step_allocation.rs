@@ -1,67 +1,26 @@
 //! A warm `World::step` allocates nothing (preamble: the hot paths must not allocate), on the sequential path and on
 //! the rayon path.
 //!
-//! A counting global allocator lives in this test binary only. It counts on every thread, so that allocations made
-//! by rayon's workers count too; the file therefore holds a single test, which measures the two paths one after the
-//! other while no other test of this binary runs.
+//! The counting allocator (`gc2d-alloc-count`) is installed in this test binary only. Its process-wide count includes
+//! every thread, so that allocations made by rayon's workers count too; the file therefore holds a single test, which
+//! measures the two paths one after the other while no other test of this binary runs.
 
-use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
-use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{SafetyLimits, WallMotion, World, WorldConfig};
+use gc2d_alloc_count::{CountingAllocator, process_allocations};
+use gc2d_engine::{WallMotion, World};
 use gc2d_geometry::{DVec2, Pose, rectangle, square};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-struct CountingAllocator;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-// SAFETY: every call is forwarded unchanged to the system allocator; only a counter is added.
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        // SAFETY: the caller's contract for `alloc` is passed on unchanged.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: the caller's contract for `dealloc` is passed on unchanged.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        // SAFETY: the caller's contract for `realloc` is passed on unchanged.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+#[allow(dead_code)] // the test needs only the material, not the container and particle helpers
+#[path = "../examples/support/thesis_material.rs"]
+mod thesis_material;
 
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;
-
-fn allocations() -> usize {
-    ALLOCATIONS.load(Ordering::Relaxed)
-}
 
 /// `columns` × `rows` squares of 3.5 mm (the size of the thesis's pile particles) stacked like bricks in a box of
 /// floor and side walls, 1 µm apart and at rest, with the thesis's pile material: within a millisecond every square
 /// rests on the ones below, and the contacts persist.
 fn brick_stack(columns: usize, rows: usize) -> World {
-    let config = WorldConfig {
-        time_step: 2e-6,
-        integrator: Default::default(),
-        contact_law: ContactLaw {
-            elastic: NormalElastic { e_modulus: 1e7 },
-            damping: Some(NormalDamping { gamma: 0.75 }),
-            friction: Some(CundallStrack { mu: 0.6 }),
-            cohesion: None,
-        },
-        gravity: GravitySchedule::constant(9.81),
-        heating: None,
-        safety: SafetyLimits::default(),
-        domain: None,
-        seed: 1,
-    };
+    let config = thesis_material::thesis_config(1);
     let mut world = World::new(config).unwrap();
     let side = 3.5e-3;
     let gap = 1e-6;
@@ -92,11 +51,11 @@ fn allocations_of_warm_steps(world: &mut World) -> (usize, usize) {
         world.step().unwrap();
     }
     let contacts = world.stats().contacts;
-    let before = allocations();
+    let before = process_allocations();
     for _ in 0..200 {
         world.step().unwrap();
     }
-    (allocations() - before, contacts)
+    (process_allocations() - before, contacts)
 }
 
 #[test]

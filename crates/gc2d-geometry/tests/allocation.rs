@@ -2,46 +2,15 @@
 //! `overlap_polygon` and `closest_features`, cold and warm, for every admissible vertex count and for touching,
 //! overlapping, separated, contained and degenerate pairs.
 //!
-//! A counting global allocator lives in this test binary only; the count is per thread, so the test harness's own
-//! threads cannot disturb it.
+//! The counting allocator (`gc2d-alloc-count`) is installed in this test binary only; the count is per thread, so the
+//! test harness's own threads cannot disturb it.
 
+use gc2d_alloc_count::{CountingAllocator, thread_allocations};
 use gc2d_geometry::{DVec2, MAX_VERTICES, OverlapPolygon, closest_features, contact_geometry, overlap_polygon};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::f64::consts::TAU;
-
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-// SAFETY: every call is forwarded unchanged to the system allocator; only a thread-local counter is added.
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|count| count.set(count.get() + 1));
-        // SAFETY: the caller's contract for `alloc` is passed on unchanged.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: the caller's contract for `dealloc` is passed on unchanged.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.with(|count| count.set(count.get() + 1));
-        // SAFETY: the caller's contract for `realloc` is passed on unchanged.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
 
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
 
 /// A regular n-gon of circumradius `radius` around `center`, turned by `phase`.
 fn regular(n: usize, radius: f64, center: DVec2, phase: f64) -> Vec<DVec2> {
@@ -74,7 +43,7 @@ fn pairs() -> Vec<(Vec<DVec2>, Vec<DVec2>)> {
 fn contact_queries_allocate_nothing() {
     let pairs = pairs();
     let mut out = OverlapPolygon::new();
-    let before = allocations();
+    let before = thread_allocations();
     let mut touching = 0;
     for (a, b) in &pairs {
         let cold = closest_features(a, b, None);
@@ -84,7 +53,7 @@ fn contact_queries_allocate_nothing() {
         overlap_polygon(a, b, &mut out);
         assert_eq!(cold.distance, warm.distance);
     }
-    assert_eq!(allocations() - before, 0);
+    assert_eq!(thread_allocations() - before, 0);
     // The set must hold contacts and separated pairs alike: 4 of the 6 offsets overlap for each vertex count.
     assert!(touching >= 2 * 4 * 5, "only {touching} overlapping evaluations");
     assert!(touching < 2 * pairs.len());

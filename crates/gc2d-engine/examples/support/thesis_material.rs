@@ -1,5 +1,5 @@
 //! The particles and material of the thesis's dip-pile ensemble (reference §8.3) and a walled box, shared by the
-//! `bench_pile` and `pile` examples.
+//! `bench_pile` and `pile` examples and the `step_allocation` test.
 //!
 //! Material: Δt = 2·10⁻⁶ s, E = 10⁷ N/m, γ = 0.75, μ = 0.6, area density 5000 kg/m², g = 9.81 m/s². Particles:
 //! 7-gons with corners at RAND1 positions on an ellipse whose semi-axes are drawn uniformly in 1.75 mm ± 25 %.
