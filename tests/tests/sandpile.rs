@@ -87,7 +87,8 @@ fn flank(fit: &Option<gc2d_analysis::FlankFit>) -> f64 {
 /// the thesis-sized pile while it was still being poured). The band is therefore wider than the thesis's
 /// 26.8° ± 2.0° on the low side: the mean of both flanks must lie in 18°–35° (35° ≈ a little above arctan μ = 31°,
 /// the steepest a cohesionless Coulomb slope holds), and each flank in 14°–35°. The thesis value itself is asserted
-/// by `thesis_sandpile`.
+/// by `thesis_sandpile`. Also asserted: rest, no losses, no chatter on the last step (force alternation < 0.01) and
+/// the floor carrying the weight within 2 %.
 #[test]
 fn ci_sandpile() {
     let (world, elapsed) = run_scene("sandpile.ron");
@@ -96,6 +97,8 @@ fn ci_sandpile() {
     assert!(m.particles > 200, "only {} particles were poured", m.particles);
     assert!(m.kinetic_ratio < REST_KINETIC_RATIO, "not at rest: KE/(M g d) = {:.3e}", m.kinetic_ratio);
     assert_eq!(m.removed, 0, "particles left the domain");
+    let alternation = world.force_alternation().ratio();
+    assert!(alternation < 0.01, "the last step's contact forces alternate by {alternation} (chatter)");
     let (left, right) = (flank(&m.repose.left), flank(&m.repose.right));
     let mean = 0.5 * (left + right);
     assert!((18.0..=35.0).contains(&mean), "mean flank angle {mean:.2}° outside 18°–35°");

@@ -139,11 +139,11 @@ fn print(name: &str, m: &SiloMeasurement, seconds: f64) {
 }
 
 /// The CI-sized column (§10.3 item 13 with r_p = 2.5 mm, ~400 particles, 20 cm of fill, see the scene's header).
-/// Asserted: rest, no losses, k and ρ_rel in broad bands around the thesis's, the Janssen effect (the side walls'
-/// friction carries at least 10 % of the weight, the fit returns a wall friction well above its lower bound, and
-/// the fit with k free reads a μ_j within 0.2–0.5 off the plateau, around the thesis's 0.33), the
-/// approach to saturation (σ_xx over the deepest quarter varies by less than 30 %) and the force balance of a
-/// single step within 2 %. Measured values are in docs/validation.md.
+/// Asserted: rest, no losses, no chatter on the last step (force alternation < 0.01), k and ρ_rel in broad bands
+/// around the thesis's, the Janssen effect (the side walls' friction carries at least 10 % of the weight, the fit
+/// returns a wall friction well above its lower bound, and the fit with k free reads a μ_j within 0.2–0.5 off the
+/// plateau, around the thesis's 0.33), the approach to saturation (σ_xx over the deepest quarter varies by less than
+/// 30 %) and the force balance of a single step within 2 %. Measured values are in docs/validation.md.
 #[test]
 fn ci_silo() {
     let (world, elapsed) = run_scene("silo.ron");
@@ -152,6 +152,8 @@ fn ci_silo() {
     assert!(m.particles > 350, "only {} particles were filled in", m.particles);
     assert_eq!(m.removed, 0, "particles left the domain");
     assert!(m.kinetic_ratio < 1e-3, "not at rest: KE/(M g d) = {:.3e}", m.kinetic_ratio);
+    let alternation = world.force_alternation().ratio();
+    assert!(alternation < 0.01, "the last step's contact forces alternate by {alternation} (chatter)");
     assert!((0.4..=1.0).contains(&m.report.k), "k = {}", m.report.k);
     assert!((0.70..=0.90).contains(&m.report.packing_fraction), "ρ_rel = {}", m.report.packing_fraction);
     let mu_j = m.report.janssen.map_or(f64::NAN, |f| f.mu_j);

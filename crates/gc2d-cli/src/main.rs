@@ -5,7 +5,7 @@
 use clap::{Parser, Subcommand};
 use gc2d_analysis::{AnalyzeOptions, SceneKind, analyze_run};
 use gc2d_cli::outputs::{RunStatus, Summary, TimeSeriesWriter};
-use gc2d_cli::runner::{FrameSink, run_to};
+use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
 use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording};
 use gc2d_engine::World;
 use gc2d_record::{ColourBy, PngOptions, RecordOptions, Recorder, RunInfo, SceneFile, render_png};
@@ -273,7 +273,7 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         sinks.push(p);
     }
     let started = Instant::now();
-    let status =
+    let RunOutcome { status, chatter } =
         pool.install(|| run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet));
     drop(sinks);
     let status = match (status, recording.and_then(|r| r.recorder).map(Recorder::finish)) {
@@ -286,7 +286,7 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         (RunStatus::Completed, Err(e)) => RunStatus::Failed(format!("could not write the final checkpoint: {e}")),
         (status, _) => status,
     };
-    Summary::of(&world, &args.scene, status.clone(), wall_time)
+    Summary::of(&world, &args.scene, status.clone(), chatter, wall_time)
         .write(&out.join("summary.json"))
         .map_err(|e| Failure { code: 1, report: format!("could not write the summary: {e}") })?;
     report_outcome(&status, &world, &out, wall_time)

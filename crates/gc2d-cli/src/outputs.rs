@@ -1,14 +1,16 @@
 //! What a run leaves in its output directory: `timeseries.csv` (one row per output tick, flushed as written, so an
 //! interrupted run leaves a readable file) and `summary.json` (written at the end, whatever the outcome).
 
+use crate::chatter::ChatterSummary;
 use gc2d_engine::World;
 use serde::Serialize;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
-/// Column names of `timeseries.csv`, in order. Energies in J per unit thickness (per metre of depth).
-pub const TIME_SERIES_COLUMNS: [&str; 15] = [
+/// Column names of `timeseries.csv`, in order. Energies in J per unit thickness (per metre of depth);
+/// `force_alternation` is the engine's chatter diagnostic on the row's step (`World::force_alternation`).
+pub const TIME_SERIES_COLUMNS: [&str; 16] = [
     "time_s",
     "particles",
     "contacts",
@@ -24,11 +26,15 @@ pub const TIME_SERIES_COLUMNS: [&str; 15] = [
     "work_in_j",
     "opening_residual_j",
     "balance_error_j",
+    "force_alternation",
 ];
 
 /// Appends one row per call to `timeseries.csv`.
 pub struct TimeSeriesWriter {
     file: BufWriter<File>,
+    /// Time of the row a continued series already ends with: the resumed run does not write it again (its
+    /// `force_alternation` would be NaN there, the history not being saved in checkpoints).
+    kept_last_row: Option<f64>,
 }
 
 impl TimeSeriesWriter {
@@ -37,13 +43,14 @@ impl TimeSeriesWriter {
         let mut file = BufWriter::new(File::create(path)?);
         writeln!(file, "{}", TIME_SERIES_COLUMNS.join(","))?;
         file.flush()?;
-        Ok(Self { file })
+        Ok(Self { file, kept_last_row: None })
     }
 
-    /// Continues an existing `path` for a run resumed at simulated time `resumed_at`: rows from `resumed_at` on
+    /// Continues an existing `path` for a run resumed at simulated time `resumed_at`: rows after `resumed_at`
     /// (written by the earlier run after its checkpoint, when it went on before it was stopped) and any line that is
     /// not a whole row (a run killed mid-write) are dropped, so that the resumed run's rows follow on without
-    /// repeating a time. Rows are compared with half a time step of slack, `slack`.
+    /// repeating a time. A row at `resumed_at` itself (within `slack`, half a time step) was written from the same
+    /// state and is kept.
     pub fn continue_at(path: &Path, resumed_at: f64, slack: f64) -> io::Result<Self> {
         let text = std::fs::read_to_string(path)?;
         let mut lines = text.lines();
@@ -54,26 +61,31 @@ impl TimeSeriesWriter {
         let earlier = |line: &&str| {
             let fields: Vec<&str> = line.split(',').collect();
             let whole = fields.len() == TIME_SERIES_COLUMNS.len() && fields.iter().all(|f| f.parse::<f64>().is_ok());
-            whole && fields[0].parse::<f64>().is_ok_and(|t| t < resumed_at - slack)
+            whole && fields[0].parse::<f64>().is_ok_and(|t| t < resumed_at + slack)
         };
         let mut kept = String::with_capacity(text.len());
-        for line in std::iter::once(header).chain(lines.filter(earlier)) {
+        let mut kept_last_row = None;
+        for line in lines.filter(earlier) {
             kept.push_str(line);
             kept.push('\n');
+            kept_last_row = line.split(',').next().and_then(|t| t.parse::<f64>().ok());
         }
-        std::fs::write(path, kept)?;
+        std::fs::write(path, format!("{header}\n{kept}"))?;
         let file = std::fs::OpenOptions::new().append(true).open(path)?;
-        Ok(Self { file: BufWriter::new(file) })
+        Ok(Self { file: BufWriter::new(file), kept_last_row })
     }
 
-    /// Writes the World's current row and flushes it to disk.
+    /// Writes the World's current row and flushes it to disk; a no-op for the row a continued series already has.
     pub fn append(&mut self, world: &World) -> io::Result<()> {
+        if self.kept_last_row.take() == Some(world.time()) {
+            return Ok(());
+        }
         let l = world.ledger();
         let s = world.stats();
         let particles = world.bodies().particles().count();
         writeln!(
             self.file,
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             world.time(),
             particles,
             s.contacts,
@@ -89,6 +101,7 @@ impl TimeSeriesWriter {
             l.work_in(),
             l.opening_residual,
             l.balance_error(),
+            world.force_alternation().ratio(),
         )?;
         self.file.flush()
     }
@@ -137,6 +150,8 @@ pub struct Summary {
     pub contacts: usize,
     /// Energy ledger at the end, J per unit thickness.
     pub energy: EnergySummary,
+    /// The chatter watch of this process's run: the largest force alternation over a window of steps.
+    pub chatter: ChatterSummary,
 }
 
 /// The ledger's columns in `summary.json`.
@@ -158,7 +173,7 @@ pub struct EnergySummary {
 
 impl Summary {
     /// Gathers the summary of `world` after a run.
-    pub fn of(world: &World, scene: &Path, outcome: RunStatus, wall_time_s: f64) -> Self {
+    pub fn of(world: &World, scene: &Path, outcome: RunStatus, chatter: ChatterSummary, wall_time_s: f64) -> Self {
         let l = world.ledger();
         let s = world.stats();
         Self {
@@ -183,6 +198,7 @@ impl Summary {
                 work_in_j: l.work_in(),
                 balance_error_j: l.balance_error(),
             },
+            chatter,
         }
     }
 

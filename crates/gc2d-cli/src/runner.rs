@@ -1,6 +1,7 @@
 //! The run loop: steps a World to its end time, writing time-series rows, recording frames and checkpoints on their
 //! cadences, showing progress, and stopping cleanly on Ctrl-C or on an error.
 
+use crate::chatter::{ChatterSummary, ChatterWatch};
 use crate::outputs::{RunStatus, TimeSeriesWriter};
 use gc2d_engine::World;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -60,8 +61,18 @@ impl Cadence<'_> {
     }
 }
 
+/// How a run loop ended, and what the chatter watch saw.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunOutcome {
+    /// How the run ended.
+    pub status: RunStatus,
+    /// The force-alternation windows of this run (warned once on stderr when they exceeded the threshold).
+    pub chatter: ChatterSummary,
+}
+
 /// Steps `world` until `end_time`, appending a row to `series` every `series_interval` of simulated time and
-/// feeding each sink on its cadence. Returns how the run ended; the outputs are flushed in every case.
+/// feeding each sink on its cadence, and watches for chatter. Returns how the run ended; the outputs are flushed in
+/// every case.
 pub fn run_to(
     world: &mut World,
     end_time: f64,
@@ -70,8 +81,9 @@ pub fn run_to(
     sinks: &mut [&mut dyn FrameSink],
     stop: &AtomicBool,
     show_progress: bool,
-) -> RunStatus {
+) -> RunOutcome {
     let progress = Progress::new(world, end_time, show_progress);
+    let mut chatter = ChatterWatch::default();
     let (start, slack) = (world.time(), 0.5 * world.time_step());
     let mut rows = Ticks::from(series_interval, start, slack);
     let mut cadences: Vec<Cadence> = sinks
@@ -100,13 +112,18 @@ pub fn run_to(
         if let Err(e) = world.step() {
             break RunStatus::Failed(e.to_string());
         }
+        if let Some(warning) = chatter.observe(world) {
+            progress.warn(&warning);
+        }
         progress.update(world);
     };
-    if status != RunStatus::Completed && series.append(world).is_err() {
-        return RunStatus::Failed("could not write the last row of the time series".into());
-    }
+    let status = if status != RunStatus::Completed && series.append(world).is_err() {
+        RunStatus::Failed("could not write the last row of the time series".into())
+    } else {
+        status
+    };
     progress.finish(&status);
-    status
+    RunOutcome { status, chatter: chatter.summary() }
 }
 
 /// The progress bar: simulated time, steps/s, contacts and ETA; hidden when stderr is not a terminal.
@@ -148,6 +165,15 @@ impl Progress {
             world.bodies().particles().count(),
             world.stats().contacts
         ));
+    }
+
+    /// Prints a warning above the bar, or on stderr when the bar is hidden.
+    fn warn(&self, message: &str) {
+        if self.bar.is_hidden() {
+            eprintln!("{message}");
+        } else {
+            self.bar.println(message);
+        }
     }
 
     fn finish(&self, status: &RunStatus) {

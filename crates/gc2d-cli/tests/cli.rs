@@ -1,6 +1,7 @@
 //! The `gc2d-rs` binary as a user meets it: check, run, outputs, resume, interruption and bad input.
 
 use assert_cmd::Command;
+use predicates::prelude::PredicateBooleanExt;
 use predicates::str::contains;
 use std::path::{Path, PathBuf};
 
@@ -36,10 +37,27 @@ fn run_writes_summary_series_and_final_checkpoint() {
     assert_eq!(summary["outcome"]["status"], "completed");
     assert!(summary["particles_inserted"].as_u64().unwrap() > 10);
     assert_eq!(summary["particles_removed"], 0);
+    assert_eq!(summary["chatter"]["warned"], false, "a pour with impacts does not chatter: {}", summary["chatter"]);
     let series = std::fs::read_to_string(out.path().join("timeseries.csv")).unwrap();
     // A row every 1/100 s from 0 to 0.08.
     assert_eq!(series.lines().count(), 1 + 9);
     assert!(out.path().join("final.ckpt").exists());
+}
+
+#[test]
+fn a_chattering_contact_is_warned_about_and_summarised() {
+    let out = tempfile::tempdir().unwrap();
+    gc2d()
+        .args(["run", scene("chattering_plate.ron").to_str().unwrap(), "--quiet", "--out"])
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("warning: at t = ").and(contains("period-2 chatter")).and(contains("run.time_step_s")));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["chatter"]["warned"], true);
+    let largest = summary["chatter"]["largest_window"]["alternation"].as_f64().unwrap();
+    assert!((largest - 1.0).abs() < 0.01, "force 0 and 2mg on alternate steps: alternation {largest}");
 }
 
 #[test]

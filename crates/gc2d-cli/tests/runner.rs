@@ -58,8 +58,8 @@ fn rows_and_frames_follow_their_cadence() {
     let mut world = small_world();
     let mut series = TimeSeriesWriter::create(&path).unwrap();
     let mut ticks = Ticks { interval: 0.01, times: Vec::new() };
-    let status = run_to(&mut world, 0.05, &mut series, 0.005, &mut [&mut ticks], &AtomicBool::new(false), false);
-    assert_eq!(status, RunStatus::Completed);
+    let outcome = run_to(&mut world, 0.05, &mut series, 0.005, &mut [&mut ticks], &AtomicBool::new(false), false);
+    assert_eq!(outcome.status, RunStatus::Completed);
     assert!((world.time() - 0.05).abs() < 1e-9);
     let text = std::fs::read_to_string(&path).unwrap();
     // Header plus rows at 0, 0.005, ..., 0.05.
@@ -76,10 +76,11 @@ fn a_stop_request_ends_the_run_cleanly_with_a_last_row() {
     let path = dir.path().join("timeseries.csv");
     let mut world = small_world();
     let mut series = TimeSeriesWriter::create(&path).unwrap();
-    let status = run_to(&mut world, 1.0, &mut series, 0.1, &mut [], &AtomicBool::new(true), false);
-    assert_eq!(status, RunStatus::Interrupted);
+    let outcome = run_to(&mut world, 1.0, &mut series, 0.1, &mut [], &AtomicBool::new(true), false);
+    assert_eq!(outcome.status, RunStatus::Interrupted);
     assert_eq!(world.steps(), 0);
-    let summary = Summary::of(&world, std::path::Path::new("in-code"), status, 0.0);
+    assert_eq!(outcome.chatter.largest_window, None, "no step, no window");
+    let summary = Summary::of(&world, std::path::Path::new("in-code"), outcome.status, outcome.chatter, 0.0);
     summary.write(&dir.path().join("summary.json")).unwrap();
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap()).unwrap();
@@ -107,7 +108,7 @@ fn a_failing_sink_stops_the_run_with_its_message() {
     let dir = tempfile::tempdir().unwrap();
     let mut world = small_world();
     let mut series = TimeSeriesWriter::create(&dir.path().join("t.csv")).unwrap();
-    let status = run_to(&mut world, 1.0, &mut series, 0.1, &mut [&mut Failing(0)], &AtomicBool::new(false), false);
-    assert_eq!(status, RunStatus::Failed("disk full".into()));
+    let outcome = run_to(&mut world, 1.0, &mut series, 0.1, &mut [&mut Failing(0)], &AtomicBool::new(false), false);
+    assert_eq!(outcome.status, RunStatus::Failed("disk full".into()));
     assert!(world.time() < 0.01);
 }

@@ -31,4 +31,4 @@ pub use narrowphase::PairContact;
 pub use safety::{SafetyError, SafetyLimits};
 pub use sources::{DropHeight, DropSource};
 pub use time_window::TimeWindow;
-pub use world::{StepStats, World, WorldConfig, WorldError};
+pub use world::{ForceAlternation, StepStats, World, WorldConfig, WorldError};

@@ -32,6 +32,11 @@ pub struct PairContact {
     pub wall_work: f64,
     /// Passes the closest-feature walk needed this step; 0 when the pair was still touching and no query ran.
     pub passes: u32,
+    /// `force_on_a` of the two steps before this one, newest first: the history of the force-alternation
+    /// diagnostic ([`World::force_alternation`](crate::World::force_alternation)). Not saved in checkpoints, so that
+    /// the format stays; a resumed World measures the diagnostic again after two steps.
+    #[serde(skip)]
+    pub earlier_forces: [DVec2; 2],
 }
 
 /// The overlap of polygons `i` and `j` this step, or `None`.
@@ -111,6 +116,7 @@ impl PairContext<'_> {
         } else {
             (1.0, response.torque_on_i, response.torque_on_j)
         };
+        contact.earlier_forces = [contact.force_on_a, contact.earlier_forces[0]];
         contact.force_on_a = sign * response.force_on_i;
         contact.torque_on_a = torque_a;
         contact.torque_on_b = torque_b;

@@ -88,6 +88,39 @@ pub struct StepStats {
     pub removed: u64,
 }
 
+/// The chatter diagnostic of one step, summed over the pairs of touching boxes with F the force on the pair:
+/// `change` = Σ|F(n) − 2F(n−1) + F(n−2)| and `scale` = 2Σ(|F(n)| + |F(n−1)|), in N.
+///
+/// Their ratio is the relative step-to-step alternation: a force alternating M ± A gives A/M (a flat plate
+/// chattering on a floor: 1), smooth motion about (ω Δt)², far below 0.01. A contact that closes adds about half
+/// its first force for a step or two, which is why a few bouncing grains can reach tenths on single steps;
+/// summing both parts over many steps before dividing (as `gc2d-rs run` does) weighs that by force.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct ForceAlternation {
+    /// Σ|F(n) − 2F(n−1) + F(n−2)|, N.
+    pub change: f64,
+    /// 2Σ(|F(n)| + |F(n−1)|), N.
+    pub scale: f64,
+}
+
+impl ForceAlternation {
+    /// Both parts NaN: the history is not known.
+    pub fn not_measured() -> Self {
+        Self { change: f64::NAN, scale: f64::NAN }
+    }
+
+    /// `change / scale`; 0 when no force acts, NaN when not measured.
+    pub fn ratio(&self) -> f64 {
+        if self.scale > 0.0 {
+            self.change / self.scale
+        } else if self.scale.is_nan() {
+            f64::NAN
+        } else {
+            0.0
+        }
+    }
+}
+
 /// Which optional stages the step runs; fixed when the World is built and when drivers are added.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 struct Stages {
@@ -118,6 +151,13 @@ pub struct World {
     stats: StepStats,
     stages: Stages,
     started: bool,
+    /// How many of the forces F(n−1), F(n−2) the next step's [`Self::force_alternation`] will know: 2 in a new
+    /// World, 1 after loading a checkpoint (which saves `force_on_a` but not the older history).
+    #[serde(skip, default = "force_history_after_loading")]
+    force_history_steps: u8,
+    /// This step's [`Self::force_alternation`]; not saved in checkpoints (NaN after loading).
+    #[serde(skip, default = "ForceAlternation::not_measured")]
+    force_alternation: ForceAlternation,
 }
 
 impl World {
@@ -146,6 +186,8 @@ impl World {
             stats: StepStats::default(),
             stages,
             started: false,
+            force_history_steps: FULL_FORCE_HISTORY,
+            force_alternation: ForceAlternation::default(),
         })
     }
 
@@ -277,6 +319,13 @@ impl World {
     /// Counters of the last step.
     pub fn stats(&self) -> &StepStats {
         &self.stats
+    }
+
+    /// How much the contact forces alternated from step to step on the last step: a detector of period-2 chatter
+    /// (Δt too large for the contact damping, docs/model.md "Automatic Δt"). See [`ForceAlternation`]. NaN parts in
+    /// a World loaded from a checkpoint until its second step (the older force history is not saved).
+    pub fn force_alternation(&self) -> ForceAlternation {
+        self.force_alternation
     }
 
     /// Current g (magnitude; gravity points along −y).
@@ -449,9 +498,13 @@ impl World {
         let ledger = &mut self.ledger;
         let law = &self.config.contact_law;
         let mut contact_stored = 0.0;
+        let (mut alternation, mut force_scale) = (0.0, 0.0);
         for pair in self.broadphase.pairs() {
             let c = &pair.payload;
             contact_stored += law.stored_energy(&c.state);
+            let [previous, before_previous] = c.earlier_forces;
+            alternation += (c.force_on_a - 2.0 * previous + before_previous).length();
+            force_scale += c.force_on_a.length() + previous.length();
             stats.multi_pass_queries += usize::from(c.passes > 1);
             let energy = &c.energy;
             ledger.dissipated_normal_damping += energy.normal_damping;
@@ -472,6 +525,12 @@ impl World {
         }
         ledger.contact_stored = contact_stored;
         self.stats = stats;
+        self.force_alternation = if self.force_history_steps < FULL_FORCE_HISTORY {
+            ForceAlternation::not_measured()
+        } else {
+            ForceAlternation { change: alternation, scale: 2.0 * force_scale }
+        };
+        self.force_history_steps = (self.force_history_steps + 1).min(FULL_FORCE_HISTORY);
     }
 
     /// Gravity and drag springs.
@@ -733,6 +792,14 @@ impl World {
             })
         })
     }
+}
+
+/// Steps of contact-force history the force-alternation diagnostic needs (F(n−1) and F(n−2)).
+const FULL_FORCE_HISTORY: u8 = 2;
+
+/// A loaded World knows each pair's last force (saved) but not the one before.
+fn force_history_after_loading() -> u8 {
+    1
 }
 
 /// Worlds with fewer bodies than this step on the calling thread: below it, handing work to the thread pool costs

@@ -208,6 +208,23 @@ fn a_run_split_at_a_checkpoint_ends_bitwise_identical_to_the_unsplit_run() {
 }
 
 #[test]
+fn the_force_alternation_is_measured_again_from_the_second_step_after_loading() {
+    // The pairs' force history is not saved (the format stays): a loaded World knows each pair's last force but
+    // not the one before, so its first step reports NaN and its second agrees bit for bit with the unsplit run.
+    let mut unsplit = scene();
+    run(&mut unsplit, 700);
+    let mut loaded = World::load_checkpoint(checkpoint_bytes(&unsplit).as_slice()).unwrap();
+    assert!(loaded.force_alternation().ratio().is_nan(), "not measured before a step");
+    run(&mut unsplit, 1);
+    run(&mut loaded, 1);
+    assert!(loaded.force_alternation().ratio().is_nan(), "the first step lacks F(n−2)");
+    assert!(unsplit.force_alternation().scale > 0.0, "the box has contacts");
+    run(&mut unsplit, 1);
+    run(&mut loaded, 1);
+    assert_eq!(loaded.force_alternation(), unsplit.force_alternation());
+}
+
+#[test]
 fn a_checkpoint_round_trip_preserves_every_byte() {
     let mut world = scene();
     // Before the first step: bodies still pending in the broadphase, ledger not opened.
