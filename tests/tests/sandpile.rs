@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{particle_weight, run_or_load_scene, run_scene};
+use common::{particle_weight, run_or_load_ensemble, run_scene};
 use gc2d_analysis::scene_pile::auto_half_width;
 use gc2d_analysis::{
     Facing, FlankOptions, ProfileOptions, Repose, Snapshot, WallSelection, angle_of_repose, pressure_profile,
@@ -109,21 +109,38 @@ fn ci_sandpile() {
     assert!((m.floor_force_over_weight - 1.0).abs() < WEIGHT_TOLERANCE, "ΣF_n / W = {}", m.floor_force_over_weight);
 }
 
-/// The thesis-sized pile (§8.3 dip-pile ensemble, one seed of nine): ~2500 particles, 26.8° ± 2.0°. Run with
-/// `cargo test --release -p gc2d-regression -- --ignored` or as tests/README.md describes. Measured on the former 1 m
-/// floor: mean flank 24.8°, 4 early grains rolled off the floor. On the current 2 m floor (1 h 5 min on two threads):
-/// removed 0, height 10.2 cm, width 0.411 m, ∫p dx / W = 0.9996, but mean flank 30.4°, outside 26.8° ± 2.0° — one
-/// seed scatters by about ±3° (docs/validation.md).
+/// The thesis-sized pile (§8.3 dip-pile ensemble of nine seeds): ~2500 particles. Every member must come to rest
+/// without losses with ∫p dx = W within 2 %; the ensemble's mean flank angle must lie within 26.8° ± 3° (the port
+/// criterion of reference §10.3 item 19; the thesis's ± 2.0° is the spread of its nine seeds, printed beside it) and
+/// its mean width within 0.46 ± 0.05 m. Run the seeds with `gc2d-rs run … --seed N` as tests/README.md describes
+/// (about 1 h each on one thread); without `GC2D_REGRESSION_RUN_DIR` the test runs the scene's own seed once.
+/// Measured members are in docs/validation.md.
 #[test]
-#[ignore = "thesis-sized: about 2500 particles, hours of run time"]
+#[ignore = "thesis-sized: about 2500 particles, hours of run time per seed"]
 fn thesis_sandpile() {
-    let (world, elapsed) = run_or_load_scene("sandpile_thesis.ron");
-    let m = measure(&world);
-    report("sandpile_thesis", &m, elapsed.as_secs_f64());
-    assert!(m.kinetic_ratio < REST_KINETIC_RATIO, "not at rest: KE/(M g d) = {:.3e}", m.kinetic_ratio);
-    assert_eq!(m.removed, 0, "particles left the domain");
-    let mean = 0.5 * (flank(&m.repose.left) + flank(&m.repose.right));
-    assert!((mean - 26.8).abs() <= 2.0, "mean flank angle {mean:.2}° not 26.8° ± 2.0°");
-    assert!((m.repose.shape.width - 0.46).abs() <= 0.05, "width {} m, thesis 0.46 ± 0.012 m", m.repose.shape.width);
-    assert!((m.profile_over_weight - 1.0).abs() < WEIGHT_TOLERANCE, "∫p dx / W = {}", m.profile_over_weight);
+    let members = run_or_load_ensemble("sandpile_thesis.ron");
+    let mut angles = Vec::new();
+    let mut widths = Vec::new();
+    for (name, world) in &members {
+        let m = measure(world);
+        report(name, &m, 0.0);
+        assert!(m.kinetic_ratio < REST_KINETIC_RATIO, "{name} not at rest: KE/(M g d) = {:.3e}", m.kinetic_ratio);
+        assert_eq!(m.removed, 0, "{name}: particles left the domain");
+        assert!(
+            (m.profile_over_weight - 1.0).abs() < WEIGHT_TOLERANCE,
+            "{name}: ∫p dx / W = {}",
+            m.profile_over_weight
+        );
+        angles.push(0.5 * (flank(&m.repose.left) + flank(&m.repose.right)));
+        widths.push(m.repose.shape.width);
+    }
+    let seeds: std::collections::BTreeSet<u64> = members.iter().map(|(_, w)| w.config().seed).collect();
+    assert_eq!(seeds.len(), members.len(), "the ensemble's members must differ in their seed: {seeds:?}");
+    let n = angles.len() as f64;
+    let mean = angles.iter().sum::<f64>() / n;
+    let spread = (angles.iter().map(|a| (a - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0)).sqrt();
+    let width = widths.iter().sum::<f64>() / n;
+    eprintln!("ensemble of {n}: mean flank {mean:.2}° ± {spread:.2}° (thesis 26.8° ± 2.0°), width {width:.3} m (0.46)");
+    assert!((mean - 26.8).abs() <= 3.0, "ensemble-mean flank angle {mean:.2}° not within 26.8° ± 3°");
+    assert!((width - 0.46).abs() <= 0.05, "ensemble-mean width {width} m, thesis 0.46 ± 0.012 m");
 }

@@ -143,6 +143,10 @@ struct RunArgs {
     /// Continue from a checkpoint written by an earlier run of the same scene.
     #[arg(long)]
     resume: Option<PathBuf>,
+    /// Use this random seed instead of the scene's run.seed: one member of an ensemble of runs that differ only in
+    /// their random numbers (shapes, sources).
+    #[arg(long, conflicts_with = "resume")]
+    seed: Option<u64>,
     /// Record the run for Foxglove into this MCAP file (frames at the scene's frames_per_second).
     #[arg(long)]
     record: Option<PathBuf>,
@@ -206,7 +210,10 @@ fn check(path: &Path) -> Result<u8, Failure> {
 }
 
 fn run(args: RunArgs) -> Result<u8, Failure> {
-    let scene = load(&args.scene)?;
+    let mut scene = load(&args.scene)?;
+    if let Some(seed) = args.seed {
+        scene.run.seed = seed;
+    }
     if args.threads == Some(0) {
         return Err(Failure::input("--threads must be at least 1"));
     }

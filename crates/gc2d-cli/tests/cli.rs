@@ -123,6 +123,29 @@ fn resuming_from_an_earlier_checkpoint_rewrites_the_later_rows_of_the_series() {
 }
 
 #[test]
+fn a_seed_option_makes_another_member_of_the_ensemble() {
+    let [scene_seed, same, other] = [(); 3].map(|_| tempfile::tempdir().unwrap());
+    let path = scene("tiny_pile.ron");
+    for (dir, seed) in [(&scene_seed, None), (&same, Some("3")), (&other, Some("4"))] {
+        let mut command = gc2d();
+        command.args(["run", path.to_str().unwrap(), "--quiet", "--out"]).arg(dir.path());
+        if let Some(seed) = seed {
+            command.args(["--seed", seed]);
+        }
+        command.assert().success();
+    }
+    let state = |dir: &tempfile::TempDir| std::fs::read(dir.path().join("final.ckpt")).unwrap();
+    assert!(state(&scene_seed) == state(&same), "--seed 3 is the scene's own seed");
+    assert!(state(&scene_seed) != state(&other), "another seed draws other shapes");
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--seed", "4", "--resume"])
+        .arg(scene_seed.path().join("final.ckpt"))
+        .assert()
+        .code(2)
+        .stderr(contains("cannot be used with"));
+}
+
+#[test]
 fn thread_count_does_not_change_the_result() {
     let one = tempfile::tempdir().unwrap();
     let two = tempfile::tempdir().unwrap();

@@ -1,4 +1,5 @@
 //! Shared steps of the regression tests: load a scene from `tests/scenes/`, run it to its end time, and time it.
+#![allow(dead_code)] // each test file uses its own subset of these helpers
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -38,6 +39,41 @@ pub fn run_or_load_scene(file: &str) -> (World, Duration) {
         world.time()
     );
     (world, Duration::ZERO)
+}
+
+/// The members of an ensemble of a thesis-sized scene: with [`RUN_DIR_VARIABLE`] set, the final checkpoint of every
+/// directory in it whose name starts with the scene's stem (`sandpile_thesis`, `sandpile_thesis_seed2`, … made with
+/// `gc2d-rs run SCENE --seed N --out DIR/sandpile_thesis_seedN`), each checked to have reached the scene's end time,
+/// in name order; otherwise the scene run once with its own seed. Each member comes with its name.
+pub fn run_or_load_ensemble(file: &str) -> Vec<(String, World)> {
+    let Some(dir) = std::env::var_os(RUN_DIR_VARIABLE) else {
+        return vec![(file.to_owned(), run_scene(file).0)];
+    };
+    let stem = Path::new(file).file_stem().expect("a scene file name").to_string_lossy().into_owned();
+    let mut members: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("cannot list {}: {e}", Path::new(&dir).display()))
+        .filter_map(|entry| entry.ok().map(|e| e.path()))
+        .filter(|path| path.file_name().is_some_and(|name| name.to_string_lossy().starts_with(&stem)))
+        .filter(|path| path.join("final.ckpt").is_file())
+        .collect();
+    members.sort();
+    assert!(!members.is_empty(), "no {stem}*/final.ckpt in {}", Path::new(&dir).display());
+    let end = load_scene(file).run.end_time_s;
+    members
+        .into_iter()
+        .map(|member| {
+            let checkpoint = member.join("final.ckpt");
+            let world = World::load_checkpoint_file(&checkpoint)
+                .unwrap_or_else(|e| panic!("cannot read {}: {e}", checkpoint.display()));
+            assert!(
+                world.time() >= end - 0.5 * world.time_step(),
+                "{} stops at t = {} s, before the scene's end time {end} s",
+                checkpoint.display(),
+                world.time()
+            );
+            (member.file_name().unwrap().to_string_lossy().into_owned(), world)
+        })
+        .collect()
 }
 
 /// Builds the scene and runs it to its `run.end_time_s`; returns the World and the wall-clock time of the run.
