@@ -56,7 +56,11 @@ impl TimeSeriesWriter {
         let mut lines = text.lines();
         let header = lines.next().unwrap_or_default();
         if header != TIME_SERIES_COLUMNS.join(",") {
-            return Err(io::Error::new(io::ErrorKind::InvalidData, "its first line is not the time-series header"));
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                "its first line is not this version's time-series header (another gc2d-rs version wrote it?); resume \
+                 into a new --out directory",
+            ));
         }
         let earlier = |line: &&str| {
             let fields: Vec<&str> = line.split(',').collect();

@@ -146,6 +146,29 @@ fn a_seed_option_makes_another_member_of_the_ensemble() {
 }
 
 #[test]
+fn resuming_into_a_series_of_another_format_is_refused_without_touching_it() {
+    let out = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.02", "--out"])
+        .arg(out.path())
+        .assert()
+        .success();
+    let series_path = out.path().join("timeseries.csv");
+    let foreign = "time_s,particles\n0,0\n";
+    std::fs::write(&series_path, foreign).unwrap();
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
+        .arg(out.path().join("final.ckpt"))
+        .arg("--out")
+        .arg(out.path())
+        .assert()
+        .code(2)
+        .stderr(contains("timeseries.csv").and(contains("resume into a new --out directory")));
+    assert_eq!(std::fs::read_to_string(&series_path).unwrap(), foreign);
+}
+
+#[test]
 fn thread_count_does_not_change_the_result() {
     let one = tempfile::tempdir().unwrap();
     let two = tempfile::tempdir().unwrap();
