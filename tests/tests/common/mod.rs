@@ -26,19 +26,23 @@ pub const RUN_DIR_VARIABLE: &str = "GC2D_REGRESSION_RUN_DIR";
 /// scene's end time (the returned duration is zero); otherwise runs the scene like [`run_scene`].
 pub fn run_or_load_scene(file: &str) -> (World, Duration) {
     let Some(dir) = std::env::var_os(RUN_DIR_VARIABLE) else { return run_scene(file) };
-    let scene = load_scene(file);
     let stem = Path::new(file).file_stem().expect("a scene file name");
-    let checkpoint = PathBuf::from(dir).join(stem).join("final.ckpt");
+    let world = load_finished_run(&PathBuf::from(dir).join(stem), load_scene(file).run.end_time_s);
+    (world, Duration::ZERO)
+}
+
+/// The final checkpoint of the `gc2d-rs run` output directory `run`, which must have reached `end` (s).
+fn load_finished_run(run: &Path, end: f64) -> World {
+    let checkpoint = run.join("final.ckpt");
     let world = World::load_checkpoint_file(&checkpoint)
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", checkpoint.display()));
-    let end = scene.run.end_time_s;
     assert!(
         world.time() >= end - 0.5 * world.time_step(),
         "{} stops at t = {} s, before the scene's end time {end} s: resume it with `gc2d-rs run --resume`",
         checkpoint.display(),
         world.time()
     );
-    (world, Duration::ZERO)
+    world
 }
 
 /// The members of an ensemble of a thesis-sized scene: with [`RUN_DIR_VARIABLE`] set, the final checkpoint of every
@@ -61,18 +65,7 @@ pub fn run_or_load_ensemble(file: &str) -> Vec<(String, World)> {
     let end = load_scene(file).run.end_time_s;
     members
         .into_iter()
-        .map(|member| {
-            let checkpoint = member.join("final.ckpt");
-            let world = World::load_checkpoint_file(&checkpoint)
-                .unwrap_or_else(|e| panic!("cannot read {}: {e}", checkpoint.display()));
-            assert!(
-                world.time() >= end - 0.5 * world.time_step(),
-                "{} stops at t = {} s, before the scene's end time {end} s",
-                checkpoint.display(),
-                world.time()
-            );
-            (member.file_name().unwrap().to_string_lossy().into_owned(), world)
-        })
+        .map(|member| (member.file_name().unwrap().to_string_lossy().into_owned(), load_finished_run(&member, end)))
         .collect()
 }
 
