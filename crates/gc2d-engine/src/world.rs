@@ -95,7 +95,7 @@ pub struct StepStats {
 /// chattering on a floor: 1), smooth motion about (ω Δt)², far below 0.01. A contact that closes adds about half
 /// its first force for a step or two, which is why a few bouncing grains can reach tenths on single steps;
 /// summing both parts over many steps before dividing (as `gc2d-rs run` does) weighs that by force.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ForceAlternation {
     /// Σ|F(n) − 2F(n−1) + F(n−2)|, N.
     pub change: f64,
