@@ -62,17 +62,21 @@ impl TimeSeriesWriter {
                  into a new --out directory",
             ));
         }
-        let earlier = |line: &&str| {
-            let fields: Vec<&str> = line.split(',').collect();
-            let whole = fields.len() == TIME_SERIES_COLUMNS.len() && fields.iter().all(|f| f.parse::<f64>().is_ok());
-            whole && fields[0].parse::<f64>().is_ok_and(|t| t < resumed_at + slack)
+        // The time of a whole row (every column a number), `None` for anything else.
+        let row_time = |line: &str| {
+            let values: Option<Vec<f64>> = line.split(',').map(|field| field.parse().ok()).collect();
+            values.filter(|v| v.len() == TIME_SERIES_COLUMNS.len()).map(|v| v[0])
         };
         let mut kept = String::with_capacity(text.len());
         let mut kept_last_row = None;
-        for line in lines.filter(earlier) {
-            kept.push_str(line);
-            kept.push('\n');
-            kept_last_row = line.split(',').next().and_then(|t| t.parse::<f64>().ok());
+        for line in lines {
+            if let Some(time) = row_time(line)
+                && time < resumed_at + slack
+            {
+                kept.push_str(line);
+                kept.push('\n');
+                kept_last_row = Some(time);
+            }
         }
         std::fs::write(path, format!("{header}\n{kept}"))?;
         let file = std::fs::OpenOptions::new().append(true).open(path)?;
