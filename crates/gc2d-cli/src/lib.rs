@@ -4,5 +4,6 @@
 pub mod chatter;
 pub mod import;
 pub mod outputs;
+pub mod resume;
 pub mod runner;
 pub mod sinks;

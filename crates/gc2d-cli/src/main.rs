@@ -5,6 +5,7 @@
 use clap::{Parser, Subcommand};
 use gc2d_analysis::{AnalyzeOptions, SceneKind, analyze_run};
 use gc2d_cli::outputs::{RunStatus, Summary, TimeSeriesWriter};
+use gc2d_cli::resume::{ResumePoint, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
 use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording};
 use gc2d_engine::World;
@@ -125,7 +126,7 @@ enum Kind {
 struct RunArgs {
     /// The scene file (.ron).
     scene: PathBuf,
-    /// Output directory [default: out/<scene name>].
+    /// Output directory [default: the --resume directory, else out/<scene name>].
     #[arg(long)]
     out: Option<PathBuf>,
     /// Worker threads [default: all cores]. Results are identical for any count.
@@ -140,7 +141,8 @@ struct RunArgs {
     /// Write a restartable checkpoint every this many simulated seconds (into <out>/checkpoints/).
     #[arg(long)]
     checkpoint_every: Option<f64>,
-    /// Continue from a checkpoint written by an earlier run of the same scene.
+    /// Continue from a checkpoint written by an earlier run of the same scene, or from the newest checkpoint in a
+    /// run directory (its final.ckpt or checkpoints/checkpoint-<step>.ckpt, whichever took more steps).
     #[arg(long)]
     resume: Option<PathBuf>,
     /// Use this random seed instead of the scene's run.seed: one member of an ensemble of runs that differ only in
@@ -236,11 +238,18 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         return Err(Failure::input(format!("--until must be a non-negative time in seconds, got {end_time}")));
     }
     let mut world = match &args.resume {
-        Some(checkpoint) => World::load_checkpoint_file(checkpoint)
-            .map_err(|e| Failure::input(format!("cannot resume from {}: {e}", checkpoint.display())))?,
+        Some(from) => {
+            let ResumePoint { path, world } = load_resume_point(from).map_err(Failure::input)?;
+            eprintln!("Resuming from {} at t = {:.6} s (step {}).", path.display(), world.time(), world.steps());
+            world
+        }
         None => scene.build().map_err(|e| Failure::input(render(e)))?,
     };
-    let out = args.out.clone().unwrap_or_else(|| default_out_dir(&args.scene));
+    let out = match (&args.out, &args.resume) {
+        (Some(out), _) => out.clone(),
+        (None, Some(from)) if from.is_dir() => from.clone(),
+        (None, _) => default_out_dir(&args.scene),
+    };
     std::fs::create_dir_all(&out)
         .map_err(|e| Failure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
     let series_path = out.join("timeseries.csv");

@@ -123,6 +123,50 @@ fn resuming_from_an_earlier_checkpoint_rewrites_the_later_rows_of_the_series() {
 }
 
 #[test]
+fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
+    // A run to 0.025 s (final.ckpt at 0.025), resumed to 0.045 s with checkpoints at 0.02 and 0.04 s and then
+    // "killed": its final.ckpt is the stale one of the first part. `--resume DIR` without --out must pick the 0.04 s
+    // checkpoint (more steps than the stale final.ckpt), write into DIR and end as the unsplit run.
+    let whole = tempfile::tempdir().unwrap();
+    let split = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    gc2d().args(["run", path.to_str().unwrap(), "--quiet", "--out"]).arg(whole.path()).assert().success();
+    let part = |until: &str| {
+        let mut command = gc2d();
+        command
+            .args(["run", path.to_str().unwrap(), "--quiet", "--until", until, "--checkpoint-every", "0.02", "--out"])
+            .arg(split.path());
+        command
+    };
+    part("0.025").assert().success();
+    let stale_final = std::fs::read(split.path().join("final.ckpt")).unwrap();
+    part("0.045").arg("--resume").arg(split.path().join("final.ckpt")).assert().success();
+    std::fs::write(split.path().join("final.ckpt"), stale_final).unwrap();
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
+        .arg(split.path())
+        .assert()
+        .success()
+        .stderr(contains("checkpoint-").and(contains("Resuming from")));
+    let a = std::fs::read(whole.path().join("final.ckpt")).unwrap();
+    let b = std::fs::read(split.path().join("final.ckpt")).unwrap();
+    assert!(a == b, "the run resumed from its directory differs from the unsplit run");
+    let expected = std::fs::read_to_string(whole.path().join("timeseries.csv")).unwrap();
+    assert_eq!(std::fs::read_to_string(split.path().join("timeseries.csv")).unwrap(), expected);
+}
+
+#[test]
+fn resuming_a_directory_without_checkpoints_names_it() {
+    let empty = tempfile::tempdir().unwrap();
+    gc2d()
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--resume"])
+        .arg(empty.path())
+        .assert()
+        .code(2)
+        .stderr(contains(empty.path().to_str().unwrap()).and(contains("neither final.ckpt")));
+}
+
+#[test]
 fn a_seed_option_makes_another_member_of_the_ensemble() {
     let [scene_seed, same, other] = [(); 3].map(|_| tempfile::tempdir().unwrap());
     let path = scene("tiny_pile.ron");

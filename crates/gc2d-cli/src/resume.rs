@@ -1,0 +1,88 @@
+//! Where `gc2d-rs run --resume` continues from: a checkpoint file as given, or the newest state a run directory
+//! holds. A long run killed without warning (a batch system's wall-time limit, a closed session) leaves no
+//! `final.ckpt`, only its periodic checkpoints; naming the directory spares the user finding the newest one.
+
+use gc2d_engine::World;
+use std::path::{Path, PathBuf};
+
+/// The file a run resumes from and the World it holds.
+pub struct ResumePoint {
+    /// The checkpoint that was loaded.
+    pub path: PathBuf,
+    /// Its state.
+    pub world: World,
+}
+
+/// Loads the state to resume from.
+///
+/// A file is loaded as it is. A directory (a run's `--out`) resumes from whichever of
+/// its `final.ckpt` and its highest-numbered `checkpoints/checkpoint-<step>.ckpt` has taken more steps: `final.ckpt`
+/// is missing after a kill, and older than the numbered ones when a later resumed run was killed. Errors name the
+/// file and say why it cannot be used; an unreadable newest checkpoint is reported, not silently skipped.
+pub fn load_resume_point(from: &Path) -> Result<ResumePoint, String> {
+    if !from.is_dir() {
+        return load(from);
+    }
+    let mut candidates = Vec::new();
+    let final_checkpoint = from.join("final.ckpt");
+    if final_checkpoint.is_file() {
+        candidates.push(final_checkpoint);
+    }
+    if let Some(newest) = highest_numbered_checkpoint(&from.join("checkpoints"))? {
+        candidates.push(newest);
+    }
+    let mut newest: Option<ResumePoint> = None;
+    for path in candidates {
+        let point = load(&path)?;
+        if newest.as_ref().is_none_or(|best| point.world.steps() > best.world.steps()) {
+            newest = Some(point);
+        }
+    }
+    newest.ok_or_else(|| {
+        format!(
+            "cannot resume from {}: the directory holds neither final.ckpt nor checkpoints/checkpoint-<step>.ckpt \
+             (give a run's output directory or a checkpoint file; runs write periodic checkpoints with \
+             --checkpoint-every)",
+            from.display()
+        )
+    })
+}
+
+fn load(path: &Path) -> Result<ResumePoint, String> {
+    World::load_checkpoint_file(path)
+        .map(|world| ResumePoint { path: path.to_path_buf(), world })
+        .map_err(|e| format!("cannot resume from {}: {e}", path.display()))
+}
+
+/// The `checkpoint-<step>.ckpt` in `folder` with the largest step, if the folder exists and holds any.
+fn highest_numbered_checkpoint(folder: &Path) -> Result<Option<PathBuf>, String> {
+    let Ok(entries) = std::fs::read_dir(folder) else { return Ok(None) };
+    let mut newest: Option<(u64, PathBuf)> = None;
+    for entry in entries {
+        let entry = entry.map_err(|e| format!("cannot list {}: {e}", folder.display()))?;
+        let name = entry.file_name();
+        let Some(step) = name.to_str().and_then(checkpoint_step) else { continue };
+        if newest.as_ref().is_none_or(|(best, _)| step > *best) {
+            newest = Some((step, entry.path()));
+        }
+    }
+    Ok(newest.map(|(_, path)| path))
+}
+
+/// The step of a periodic checkpoint's file name, `checkpoint-<step>.ckpt`.
+fn checkpoint_step(file_name: &str) -> Option<u64> {
+    file_name.strip_prefix("checkpoint-")?.strip_suffix(".ckpt")?.parse().ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_periodic_checkpoint_names_give_a_step() {
+        assert_eq!(checkpoint_step("checkpoint-0001909091.ckpt"), Some(1_909_091));
+        assert_eq!(checkpoint_step("checkpoint-0001909091.ckpt.tmp"), None);
+        assert_eq!(checkpoint_step("final.ckpt"), None);
+        assert_eq!(checkpoint_step("checkpoint-.ckpt"), None);
+    }
+}
