@@ -1,6 +1,7 @@
 //! `gc2d-rs`: run, check, draw and analyse gc2d-rs scenes.
 //!
-//! Exit codes: 0 success, 1 the run failed (blow-up, I/O), 2 the input is invalid, 130 interrupted by Ctrl-C.
+//! Exit codes: 0 success, 1 the run failed (blow-up, I/O), 2 the input is invalid, 130 interrupted by
+//! Ctrl-C, SIGTERM or SIGHUP.
 
 use clap::{Parser, Subcommand};
 use gc2d_analysis::{AnalyzeOptions, SceneKind, analyze_run};
@@ -262,7 +263,8 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
 
     let stop = Arc::new(AtomicBool::new(false));
     let handler_flag = Arc::clone(&stop);
-    // Without a handler Ctrl-C still ends the run, only less tidily; a failure to install one is not fatal.
+    // Ctrl-C, SIGTERM and SIGHUP end the run tidily. Without a handler they still end it, only without a final
+    // checkpoint and summary; a failure to install one is not fatal.
     let _ = ctrlc::set_handler(move || handler_flag.store(true, Ordering::Relaxed));
 
     let checkpoint_interval = args.checkpoint_every.or(scene.run.checkpoint_interval_s);

@@ -231,6 +231,16 @@ fn thread_count_does_not_change_the_result() {
 
 #[test]
 fn ctrl_c_stops_cleanly_with_readable_outputs() {
+    stops_cleanly_with_readable_outputs_on("INT");
+}
+
+/// Batch systems end a job that reaches its time limit with SIGTERM before they kill it.
+#[test]
+fn sigterm_stops_cleanly_with_readable_outputs() {
+    stops_cleanly_with_readable_outputs_on("TERM");
+}
+
+fn stops_cleanly_with_readable_outputs_on(signal: &str) {
     let out = tempfile::tempdir().unwrap();
     let bin = assert_cmd::cargo::cargo_bin("gc2d-rs");
     let child = std::process::Command::new(bin)
@@ -246,7 +256,8 @@ fn ctrl_c_stops_cleanly_with_readable_outputs() {
         assert!(std::time::Instant::now() < deadline, "the run wrote no rows");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-    let killed = std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    let killed =
+        std::process::Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
     assert!(killed.success());
     let output = child.wait_with_output().unwrap();
     assert_eq!(output.status.code(), Some(130));
