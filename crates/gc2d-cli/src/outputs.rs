@@ -121,7 +121,7 @@ impl TimeSeriesWriter {
 pub enum RunStatus {
     /// Reached the end time.
     Completed,
-    /// Stopped by Ctrl-C; outputs are complete up to the last step.
+    /// Stopped by Ctrl-C, SIGTERM or SIGHUP; outputs are complete up to the last step.
     Interrupted,
     /// Stopped by an error (blow-up, I/O); the message explains it.
     Failed(String),

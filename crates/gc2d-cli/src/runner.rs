@@ -1,5 +1,5 @@
 //! The run loop: steps a World to its end time, writing time-series rows, recording frames and checkpoints on their
-//! cadences, showing progress, and stopping cleanly on Ctrl-C or on an error.
+//! cadences, showing progress, and stopping cleanly on Ctrl-C (or SIGTERM, SIGHUP) or on an error.
 
 use crate::chatter::{ChatterSummary, ChatterWatch};
 use crate::outputs::{RunStatus, TimeSeriesWriter};
