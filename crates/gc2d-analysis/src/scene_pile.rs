@@ -101,10 +101,10 @@ pub fn analyze_pile(
     out.write_csv("surface.csv", &["x", "y_top"], &surface.iter().map(|&(x, y)| vec![x, y]).collect::<Vec<_>>())?;
     let mut flank_rows = Vec::new();
     let mut fit_lines = Vec::new();
-    for (side, fit) in [(0.0, &repose.left), (1.0, &repose.right)] {
+    for (side, name, fit) in [(0.0, "left", &repose.left), (1.0, "right", &repose.right)] {
         if let Some(fit) = fit {
             flank_rows.extend(fit.points.iter().map(|p| vec![side, p.x, p.y, fit.intercept + fit.slope * p.x]));
-            fit_lines.push(fit_line_points(fit));
+            fit_lines.push((format!("{name} flank fit, {:.1}°", fit.angle_degrees), fit_line_points(fit)));
         }
     }
     out.write_csv("flank_points.csv", &["flank_right", "x", "y_centroid", "y_fit"], &flank_rows)?;
@@ -113,7 +113,7 @@ pub fn analyze_pile(
         Series { label: "surface envelope", points: &surface, color: BLACK, mark: Mark::Line },
         Series { label: "highest centroid per bin (fitted)", points: &flank_points, color: BLUE, mark: Mark::Dots },
     ];
-    series.extend(fit_lines.iter().map(|line| Series { label: "fit", points: line, color: RED, mark: Mark::Line }));
+    series.extend(fit_lines.iter().map(|(label, line)| Series { label, points: line, color: RED, mark: Mark::Line }));
     figures::line_chart(
         &out.file("surface.svg"),
         Labels { title: "pile surface and flank fits", x: "x / m", y: "y / m" },
