@@ -5,7 +5,7 @@
 
 use clap::{Parser, Subcommand};
 use gc2d_analysis::{AnalyzeOptions, SceneKind, analyze_run};
-use gc2d_cli::outputs::{RunStatus, Summary, TimeSeriesWriter};
+use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_scene_copy};
 use gc2d_cli::resume::{ResumePoint, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
 use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording};
@@ -197,6 +197,11 @@ fn main() -> ExitCode {
 }
 
 /// Renders a scene diagnostic with its source snippet.
+/// True when both paths name one existing file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b)
+}
+
 fn render(error: gc2d_scene::SceneError) -> String {
     format!("{:?}", miette::Report::new(error))
 }
@@ -253,6 +258,12 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     };
     std::fs::create_dir_all(&out)
         .map_err(|e| Failure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
+    let copy = out.join(SCENE_COPY);
+    // The copy records what a fresh run started from; a resumed run keeps it, and the user's own scene file is
+    // never overwritten by it (a scene named scene.ron run into its own directory).
+    if args.resume.is_none() && !same_file(&copy, &args.scene) {
+        write_scene_copy(&copy, &scene).map_err(|e| Failure::input(format!("cannot write {}: {e}", copy.display())))?;
+    }
     let series_path = out.join("timeseries.csv");
     let mut series = if args.resume.is_some() && series_path.exists() {
         TimeSeriesWriter::continue_at(&series_path, world.time(), 0.5 * world.time_step())

@@ -1,12 +1,29 @@
-//! What a run leaves in its output directory: `timeseries.csv` (one row per output tick, flushed as written, so an
-//! interrupted run leaves a readable file) and `summary.json` (written at the end, whatever the outcome).
+//! What a run leaves in its output directory: `scene.ron` (the scene the run started from), `timeseries.csv` (one
+//! row per output tick, flushed as written, so an interrupted run leaves a readable file) and `summary.json` (written
+//! at the end, whatever the outcome).
 
 use crate::chatter::ChatterSummary;
 use gc2d_engine::World;
+use gc2d_scene::Scene;
 use serde::Serialize;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
+
+/// The name of the scene copy in a run's output directory.
+pub const SCENE_COPY: &str = "scene.ron";
+
+/// Writes `scene` as the run uses it (after `--seed`) to `path`, every field spelled out: what a run directory was
+/// made from stays with it, so an ensemble of runs can be checked to share one scene and a run can be repeated
+/// after the scene file has changed.
+pub fn write_scene_copy(path: &Path, scene: &Scene) -> io::Result<()> {
+    let text = scene.to_ron_string().map_err(io::Error::other)?;
+    let header = format!(
+        "// The scene this run started from, as gc2d-rs {} read it (with --seed applied); every field is written.\n",
+        env!("CARGO_PKG_VERSION")
+    );
+    std::fs::write(path, header + &text + "\n")
+}
 
 /// Column names of `timeseries.csv`, in order. Energies in J per unit thickness (per metre of depth);
 /// `force_alternation` is the engine's chatter diagnostic on the row's step (`World::force_alternation`).

@@ -181,6 +181,11 @@ fn a_seed_option_makes_another_member_of_the_ensemble() {
     let state = |dir: &tempfile::TempDir| std::fs::read(dir.path().join("final.ckpt")).unwrap();
     assert!(state(&scene_seed) == state(&same), "--seed 3 is the scene's own seed");
     assert!(state(&scene_seed) != state(&other), "another seed draws other shapes");
+    // Each run directory keeps the scene it was made from, with the seed it used, and it reads back to that scene.
+    let copy = gc2d_scene::Scene::from_path(other.path().join("scene.ron")).unwrap();
+    let mut expected = gc2d_scene::Scene::from_path(&path).unwrap();
+    expected.run.seed = 4;
+    assert_eq!(gc2d_scene::Scene { source: None, ..copy }, gc2d_scene::Scene { source: None, ..expected });
     gc2d()
         .args(["run", path.to_str().unwrap(), "--seed", "4", "--resume"])
         .arg(scene_seed.path().join("final.ckpt"))
@@ -269,6 +274,20 @@ fn stops_cleanly_with_readable_outputs_on(signal: &str) {
     let columns = text.lines().next().unwrap().split(',').count();
     assert!(text.lines().all(|l| l.split(',').count() == columns), "every row is complete");
     assert!(out.path().join("final.ckpt").exists());
+}
+
+#[test]
+fn a_scene_named_scene_ron_in_its_own_output_directory_is_not_overwritten() {
+    let out = tempfile::tempdir().unwrap();
+    let own = out.path().join("scene.ron");
+    std::fs::copy(scene("tiny_pile.ron"), &own).unwrap();
+    let before = std::fs::read(&own).unwrap();
+    gc2d()
+        .args(["run", own.to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
+        .arg(out.path())
+        .assert()
+        .success();
+    assert!(std::fs::read(&own).unwrap() == before, "the user's scene file (with its comments) was rewritten");
 }
 
 #[test]

@@ -27,12 +27,15 @@ pub const RUN_DIR_VARIABLE: &str = "GC2D_REGRESSION_RUN_DIR";
 pub fn run_or_load_scene(file: &str) -> (World, Duration) {
     let Some(dir) = std::env::var_os(RUN_DIR_VARIABLE) else { return run_scene(file) };
     let stem = Path::new(file).file_stem().expect("a scene file name");
-    let world = load_finished_run(&PathBuf::from(dir).join(stem), load_scene(file).run.end_time_s);
+    let world = load_finished_run(&PathBuf::from(dir).join(stem), &load_scene(file));
     (world, Duration::ZERO)
 }
 
-/// The final checkpoint of the `gc2d-rs run` output directory `run`, which must have reached `end` (s).
-fn load_finished_run(run: &Path, end: f64) -> World {
+/// The final checkpoint of the `gc2d-rs run` output directory `run`, which must have been made from `scene` (its
+/// `scene.ron` equals it in everything but the seed) and have reached the scene's end time.
+fn load_finished_run(run: &Path, scene: &Scene) -> World {
+    check_made_from(run, scene);
+    let end = scene.run.end_time_s;
     let checkpoint = run.join("final.ckpt");
     let world = World::load_checkpoint_file(&checkpoint)
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", checkpoint.display()));
@@ -62,11 +65,39 @@ pub fn run_or_load_ensemble(file: &str) -> Vec<(String, World)> {
         .collect();
     members.sort();
     assert!(!members.is_empty(), "no {stem}*/final.ckpt in {}", Path::new(&dir).display());
-    let end = load_scene(file).run.end_time_s;
+    let scene = load_scene(file);
     members
         .into_iter()
-        .map(|member| (member.file_name().unwrap().to_string_lossy().into_owned(), load_finished_run(&member, end)))
+        .map(|member| (member.file_name().unwrap().to_string_lossy().into_owned(), load_finished_run(&member, &scene)))
         .collect()
+}
+
+/// Refuses a run directory whose `scene.ron` (the copy `gc2d-rs run` writes) differs from `scene` in anything but
+/// the seed and the name (which only names outputs), naming the first differing line: a run of an older version of
+/// a scene must not be measured against the current one's targets, nor mixed into its ensemble.
+fn check_made_from(run: &Path, scene: &Scene) {
+    let copy = run.join("scene.ron");
+    let used = Scene::from_path(&copy)
+        .unwrap_or_else(|e| panic!("cannot read {} (the scene the run was made from): {e:?}", copy.display()));
+    let comparable = |s: &Scene| {
+        let mut s = s.clone();
+        s.source = None;
+        s.run.seed = 0;
+        s.name.clear();
+        s.to_ron_string().expect("a scene serializes")
+    };
+    let (used, current) = (comparable(&used), comparable(scene));
+    if let Some((line, (a, b))) = used.lines().zip(current.lines()).enumerate().find(|(_, (a, b))| a != b) {
+        panic!(
+            "{} was made from another version of the scene: line {} of its normalized text is `{}`, the current \
+             scene has `{}`; run it again",
+            run.display(),
+            line + 1,
+            a.trim(),
+            b.trim()
+        );
+    }
+    assert_eq!(used.lines().count(), current.lines().count(), "{} was made from another scene", copy.display());
 }
 
 /// Builds the scene and runs it to its `run.end_time_s`; returns the World and the wall-clock time of the run.
