@@ -6,4 +6,5 @@ pub mod import;
 pub mod outputs;
 pub mod resume;
 pub mod runner;
+pub mod segments;
 pub mod sinks;

@@ -8,6 +8,7 @@ use gc2d_analysis::{AnalyzeOptions, SceneKind, analyze_run};
 use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_scene_copy};
 use gc2d_cli::resume::{ResumePoint, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
+use gc2d_cli::segments::SegmentLog;
 use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording};
 use gc2d_engine::World;
 use gc2d_record::{ColourBy, PngOptions, RecordOptions, Recorder, RunInfo, SceneFile, render_png};
@@ -243,13 +244,13 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     if !(end_time.is_finite() && end_time >= 0.0) {
         return Err(Failure::input(format!("--until must be a non-negative time in seconds, got {end_time}")));
     }
-    let mut world = match &args.resume {
+    let (mut world, resumed_from) = match &args.resume {
         Some(from) => {
             let ResumePoint { path, world } = load_resume_point(from).map_err(Failure::input)?;
             eprintln!("Resuming from {} at t = {:.6} s (step {}).", path.display(), world.time(), world.steps());
-            world
+            (world, Some(path))
         }
-        None => scene.build().map_err(|e| Failure::input(render(e)))?,
+        None => (scene.build().map_err(|e| Failure::input(render(e)))?, None),
     };
     let out = match (&args.out, &args.resume) {
         (Some(out), _) => out.clone(),
@@ -281,6 +282,15 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     let checkpoint_interval = args.checkpoint_every.or(scene.run.checkpoint_interval_s);
     let mut checkpoints = checkpoint_interval.map(|interval| Checkpoints { dir: out.join("checkpoints"), interval });
     let frame_interval = 1.0 / scene.run.frames_per_second;
+    let segments_path = out.join("segments.csv");
+    let mut segments = SegmentLog::start(
+        &segments_path,
+        resumed_from.as_deref(),
+        pool.current_num_threads(),
+        &world,
+        checkpoint_interval.unwrap_or(frame_interval),
+    )
+    .map_err(|e| Failure::input(format!("cannot write {}: {e}", segments_path.display())))?;
     let mut recording = match &args.record {
         Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
         None => None,
@@ -291,7 +301,7 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         options: PngOptions { colour_by: args.colour_by.into(), ..PngOptions::default() },
         written: 0,
     });
-    let mut sinks: Vec<&mut dyn FrameSink> = Vec::new();
+    let mut sinks: Vec<&mut dyn FrameSink> = vec![&mut segments];
     if let Some(c) = checkpoints.as_mut() {
         sinks.push(c);
     }
@@ -315,7 +325,18 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         (RunStatus::Completed, Err(e)) => RunStatus::Failed(format!("could not write the final checkpoint: {e}")),
         (status, _) => status,
     };
-    Summary::of(&world, &args.scene, status.clone(), chatter, wall_time)
+    let segment_written = segments.write(&world, status.name());
+    let status = match (status, segment_written) {
+        (RunStatus::Completed, Err(e)) => {
+            RunStatus::Failed(format!("could not write {}: {e}", segments_path.display()))
+        }
+        (status, _) => status,
+    };
+    let summary = Summary {
+        wall_time_all_segments_s: segments.total_wall_s(),
+        ..Summary::of(&world, &args.scene, status.clone(), chatter, wall_time)
+    };
+    summary
         .write(&out.join("summary.json"))
         .map_err(|e| Failure { code: 1, report: format!("could not write the summary: {e}") })?;
     report_outcome(&status, &world, &out, wall_time)

@@ -144,6 +144,17 @@ pub enum RunStatus {
     Failed(String),
 }
 
+impl RunStatus {
+    /// The status as `summary.json` and `segments.csv` name it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            RunStatus::Completed => "completed",
+            RunStatus::Interrupted => "interrupted",
+            RunStatus::Failed(_) => "failed",
+        }
+    }
+}
+
 /// The content of `summary.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
@@ -163,6 +174,9 @@ pub struct Summary {
     pub stable_time_step_s: Option<f64>,
     /// Wall-clock time of this process's run, s.
     pub wall_time_s: f64,
+    /// Wall-clock time of every process that worked on the run (this one and those it resumed from, as
+    /// `segments.csv` lists them), s.
+    pub wall_time_all_segments_s: f64,
     /// Particles in the World at the end.
     pub particles: usize,
     /// Particles inserted by sources.
@@ -197,7 +211,8 @@ pub struct EnergySummary {
 }
 
 impl Summary {
-    /// Gathers the summary of `world` after a run.
+    /// Gathers the summary of `world` after a run; `wall_time_all_segments_s` starts equal to `wall_time_s` (a run
+    /// in one process).
     pub fn of(world: &World, scene: &Path, outcome: RunStatus, chatter: ChatterSummary, wall_time_s: f64) -> Self {
         let l = world.ledger();
         let s = world.stats();
@@ -210,6 +225,7 @@ impl Summary {
             time_step_s: world.time_step(),
             stable_time_step_s: world.stable_time_step(),
             wall_time_s,
+            wall_time_all_segments_s: wall_time_s,
             particles: world.bodies().particles().count(),
             particles_inserted: s.inserted,
             insertions_skipped: s.insertions_skipped,

@@ -153,6 +153,47 @@ fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     assert!(a == b, "the run resumed from its directory differs from the unsplit run");
     let expected = std::fs::read_to_string(whole.path().join("timeseries.csv")).unwrap();
     assert_eq!(std::fs::read_to_string(split.path().join("timeseries.csv")).unwrap(), expected);
+    // Three processes worked on the split run: segments.csv has a row for each, and the summary adds their times.
+    let segments = std::fs::read_to_string(split.path().join("segments.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = segments.lines().skip(1).map(|l| l.splitn(8, ',').collect()).collect();
+    assert_eq!(rows.len(), 3, "{segments}");
+    let from: Vec<f64> = rows.iter().map(|r| r[2].parse().unwrap()).collect();
+    assert!(
+        (from[0] - 0.0).abs() < 1e-9 && (from[1] - 0.025).abs() < 1e-6 && (from[2] - 0.04).abs() < 1e-6,
+        "{from:?}"
+    );
+    assert!(rows.iter().all(|r| r[6] == "completed"), "{segments}");
+    assert!(rows[0][7].is_empty() && rows[2][7].contains("checkpoint-"), "{segments}");
+    let summed: f64 = rows.iter().map(|r| r[5].parse::<f64>().unwrap()).sum();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(split.path().join("summary.json")).unwrap()).unwrap();
+    let total = summary["wall_time_all_segments_s"].as_f64().unwrap();
+    assert!((total - summed).abs() < 0.01, "summary {total} s, rows {summed} s");
+    assert!(total >= summary["wall_time_s"].as_f64().unwrap());
+}
+
+#[test]
+fn a_killed_run_leaves_its_segment_row_with_the_time_so_far() {
+    let out = tempfile::tempdir().unwrap();
+    let bin = assert_cmd::cargo::cargo_bin("gc2d-rs");
+    let mut child = std::process::Command::new(bin)
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--until", "1000"])
+        .args(["--checkpoint-every", "0.01", "--out"])
+        .arg(out.path())
+        .spawn()
+        .unwrap();
+    let checkpoints = out.path().join("checkpoints");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while std::fs::read_dir(&checkpoints).map_or(0, |d| d.count()) < 3 {
+        assert!(std::time::Instant::now() < deadline, "the run wrote no checkpoints");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let segments = std::fs::read_to_string(out.path().join("segments.csv")).unwrap();
+    let row: Vec<&str> = segments.lines().nth(1).expect("a row").splitn(8, ',').collect();
+    assert_eq!(row[6], "running", "{segments}");
+    assert!(row[3].parse::<f64>().unwrap() >= 0.01, "the row was updated on the checkpoints' cadence: {segments}");
 }
 
 #[test]
