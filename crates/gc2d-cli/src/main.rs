@@ -197,12 +197,12 @@ fn main() -> ExitCode {
     }
 }
 
-/// Renders a scene diagnostic with its source snippet.
 /// True when both paths name one existing file.
 fn same_file(a: &Path, b: &Path) -> bool {
     matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b)
 }
 
+/// Renders a scene diagnostic with its source snippet.
 fn render(error: gc2d_scene::SceneError) -> String {
     format!("{:?}", miette::Report::new(error))
 }

@@ -32,7 +32,7 @@ pub fn run_or_load_scene(file: &str) -> (World, Duration) {
 }
 
 /// The final checkpoint of the `gc2d-rs run` output directory `run`, which must have been made from `scene` (its
-/// `scene.ron` equals it in everything but the seed) and have reached the scene's end time.
+/// `scene.ron` equals it in everything but the seed and the name) and have reached the scene's end time.
 fn load_finished_run(run: &Path, scene: &Scene) -> World {
     check_made_from(run, scene);
     let end = scene.run.end_time_s;
