@@ -13,6 +13,17 @@ fn gc2d() -> Command {
     Command::cargo_bin("gc2d-rs").unwrap()
 }
 
+/// tiny_pile.ron run in one go, the reference for the resume tests.
+fn unsplit_tiny_pile() -> tempfile::TempDir {
+    let whole = tempfile::tempdir().unwrap();
+    gc2d()
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--out"])
+        .arg(whole.path())
+        .assert()
+        .success();
+    whole
+}
+
 #[test]
 fn check_prints_what_the_scene_contains() {
     gc2d()
@@ -62,10 +73,9 @@ fn a_chattering_contact_is_warned_about_and_summarised() {
 
 #[test]
 fn a_run_split_by_resume_ends_bitwise_identical() {
-    let whole = tempfile::tempdir().unwrap();
+    let whole = unsplit_tiny_pile();
     let split = tempfile::tempdir().unwrap();
     let path = scene("tiny_pile.ron");
-    gc2d().args(["run", path.to_str().unwrap(), "--quiet", "--out"]).arg(whole.path()).assert().success();
     gc2d()
         .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.025", "--out"])
         .arg(split.path())
@@ -91,10 +101,9 @@ fn resuming_from_an_earlier_checkpoint_rewrites_the_later_rows_of_the_series() {
     // A run stopped at 0.045 s after checkpoints at 0.02 and 0.04 s, then resumed from the 0.02 s one (as after a
     // crash whose newest checkpoint is damaged), with a half-written row at the end of its series: the series ends
     // byte-identical to an unsplit run's, with no time written twice.
-    let whole = tempfile::tempdir().unwrap();
+    let whole = unsplit_tiny_pile();
     let split = tempfile::tempdir().unwrap();
     let path = scene("tiny_pile.ron");
-    gc2d().args(["run", path.to_str().unwrap(), "--quiet", "--out"]).arg(whole.path()).assert().success();
     gc2d()
         .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.045", "--checkpoint-every", "0.02", "--out"])
         .arg(split.path())
@@ -127,10 +136,9 @@ fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     // A run to 0.025 s (final.ckpt at 0.025), resumed to 0.045 s with checkpoints at 0.02 and 0.04 s and then
     // "killed": its final.ckpt is the stale one of the first part. `--resume DIR` without --out must pick the 0.04 s
     // checkpoint (more steps than the stale final.ckpt), write into DIR and end as the unsplit run.
-    let whole = tempfile::tempdir().unwrap();
+    let whole = unsplit_tiny_pile();
     let split = tempfile::tempdir().unwrap();
     let path = scene("tiny_pile.ron");
-    gc2d().args(["run", path.to_str().unwrap(), "--quiet", "--out"]).arg(whole.path()).assert().success();
     let part = |until: &str| {
         let mut command = gc2d();
         command
