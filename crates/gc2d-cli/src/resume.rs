@@ -23,21 +23,15 @@ pub fn load_resume_point(from: &Path) -> Result<ResumePoint, String> {
     if !from.is_dir() {
         return load(from);
     }
-    let mut candidates = Vec::new();
     let final_checkpoint = from.join("final.ckpt");
-    if final_checkpoint.is_file() {
-        candidates.push(final_checkpoint);
-    }
-    if let Some(newest) = highest_numbered_checkpoint(&from.join("checkpoints"))? {
-        candidates.push(newest);
-    }
-    let mut newest: Option<ResumePoint> = None;
-    for path in candidates {
-        let point = load(&path)?;
-        if newest.as_ref().is_none_or(|best| point.world.steps() > best.world.steps()) {
-            newest = Some(point);
-        }
-    }
+    let final_point = if final_checkpoint.is_file() { Some(load(&final_checkpoint)?) } else { None };
+    // A periodic checkpoint's name carries its step, so it is only loaded when it is the newer one.
+    let numbered = highest_numbered_checkpoint(&from.join("checkpoints"))?;
+    let newest = match (final_point, numbered) {
+        (Some(point), Some((step, _))) if point.world.steps() >= step => Some(point),
+        (_, Some((_, path))) => Some(load(&path)?),
+        (point, None) => point,
+    };
     newest.ok_or_else(|| {
         format!(
             "cannot resume from {}: the directory holds neither final.ckpt nor checkpoints/checkpoint-<step>.ckpt \
@@ -54,8 +48,9 @@ fn load(path: &Path) -> Result<ResumePoint, String> {
         .map_err(|e| format!("cannot resume from {}: {e}", path.display()))
 }
 
-/// The `checkpoint-<step>.ckpt` in `folder` with the largest step, if the folder exists and holds any.
-fn highest_numbered_checkpoint(folder: &Path) -> Result<Option<PathBuf>, String> {
+/// The step and path of the `checkpoint-<step>.ckpt` in `folder` with the largest step, if the folder exists and
+/// holds any.
+fn highest_numbered_checkpoint(folder: &Path) -> Result<Option<(u64, PathBuf)>, String> {
     let Ok(entries) = std::fs::read_dir(folder) else { return Ok(None) };
     let mut newest: Option<(u64, PathBuf)> = None;
     for entry in entries {
@@ -66,7 +61,7 @@ fn highest_numbered_checkpoint(folder: &Path) -> Result<Option<PathBuf>, String>
             newest = Some((step, entry.path()));
         }
     }
-    Ok(newest.map(|(_, path)| path))
+    Ok(newest)
 }
 
 /// The step of a periodic checkpoint's file name, `checkpoint-<step>.ckpt`.

@@ -159,6 +159,15 @@ fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     let a = std::fs::read(whole.path().join("final.ckpt")).unwrap();
     let b = std::fs::read(split.path().join("final.ckpt")).unwrap();
     assert!(a == b, "the run resumed from its directory differs from the unsplit run");
+    // Now final.ckpt (at the end time) is newer than every periodic checkpoint, so it is the one resumed from.
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.08", "--resume"])
+        .arg(split.path())
+        .arg("--out")
+        .arg(tempfile::tempdir().unwrap().path())
+        .assert()
+        .success()
+        .stderr(contains("final.ckpt at t = 0.08"));
     let expected = std::fs::read_to_string(whole.path().join("timeseries.csv")).unwrap();
     assert_eq!(std::fs::read_to_string(split.path().join("timeseries.csv")).unwrap(), expected);
     // Three processes worked on the split run: segments.csv has a row for each, and the summary adds their times.
