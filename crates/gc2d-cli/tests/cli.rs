@@ -13,6 +13,15 @@ fn gc2d() -> Command {
     Command::cargo_bin("gc2d-rs").unwrap()
 }
 
+/// Polls `done` until it holds, failing after a minute without `what` appearing (a run started in the background).
+fn wait_for(what: &str, done: impl Fn() -> bool) {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while !done() {
+        assert!(std::time::Instant::now() < deadline, "the run wrote no {what}");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
 /// tiny_pile.ron run in one go, the reference for the resume tests.
 fn unsplit_tiny_pile() -> tempfile::TempDir {
     let whole = tempfile::tempdir().unwrap();
@@ -200,11 +209,7 @@ fn a_killed_run_leaves_its_segment_row_with_the_time_so_far() {
         .spawn()
         .unwrap();
     let checkpoints = out.path().join("checkpoints");
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-    while std::fs::read_dir(&checkpoints).map_or(0, |d| d.count()) < 3 {
-        assert!(std::time::Instant::now() < deadline, "the run wrote no checkpoints");
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    wait_for("checkpoints", || std::fs::read_dir(&checkpoints).map_or(0, |d| d.count()) >= 3);
     child.kill().unwrap();
     child.wait().unwrap();
     let segments = std::fs::read_to_string(out.path().join("segments.csv")).unwrap();
@@ -314,11 +319,7 @@ fn stops_cleanly_with_readable_outputs_on(signal: &str) {
         .unwrap();
     // Wait until the run has written its first rows, then interrupt it.
     let series = out.path().join("timeseries.csv");
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-    while std::fs::read_to_string(&series).map_or(0, |s| s.lines().count()) < 3 {
-        assert!(std::time::Instant::now() < deadline, "the run wrote no rows");
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
+    wait_for("time-series rows", || std::fs::read_to_string(&series).map_or(0, |s| s.lines().count()) >= 3);
     let killed =
         std::process::Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
     assert!(killed.success());
