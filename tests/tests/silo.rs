@@ -170,7 +170,7 @@ fn ci_silo() {
 }
 
 /// The thesis-sized column (§7.1): 10,000 particles of r = 1 mm; k = 0.64 ± 0.19, ρ_rel = 0.78 ± 0.03,
-/// μ_j = 0.33 ± 0.1, saturation and the force balance within 2 %. About 4–5 hours on this two-core machine.
+/// μ_j = 0.33 ± 0.1, saturation and the force balance within 2 %. About 6.6 hours of wall time on this two-core machine.
 #[test]
 #[ignore = "thesis-sized: 10,000 particles, hours of run time"]
 fn thesis_silo() {
