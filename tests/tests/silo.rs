@@ -171,6 +171,9 @@ fn ci_silo() {
 
 /// The thesis-sized column (§7.1): 10,000 particles of r = 1 mm; k = 0.64 ± 0.19, ρ_rel = 0.78 ± 0.03,
 /// μ_j = 0.33 ± 0.1, saturation and the force balance within 2 %. About 6.6 hours of wall time on this two-core machine.
+/// Measured (seed 2): k = 0.573 and μ_j = 0.350 meet the thesis's; ρ_rel = 0.853 and a 46 % σ_xx variation over the
+/// deepest quarter (the 32 cm column is 1.3 saturation lengths deep) do not, so this test fails; docs/validation.md
+/// has the numbers and the candidate causes.
 #[test]
 #[ignore = "thesis-sized: 10,000 particles, hours of run time"]
 fn thesis_silo() {
