@@ -9,6 +9,10 @@
 //! bodies ([`BodyMotion`]) and the per-contact history ([`ContactState`]). It returns the force and torques, the
 //! energy terms of the step ([`EnergyTerms`]) and the next history, and never allocates. Conventions and the decisions
 //! the thesis leaves open are in `docs/model.md`, section "Contact law (§2.5–§2.11)".
+//!
+//! A second family, the [`penetration`] laws for disks (linear or Hertz spring, damping ratio or restitution e or
+//! e(v), Cundall–Strack or Mindlin friction, rolling resistance), is driven by the penetration depth instead of the
+//! overlap area: [`PenetrationLaw`].
 
 pub mod body;
 pub mod cohesion;
@@ -17,6 +21,7 @@ pub mod energy;
 pub mod geometry;
 pub mod law;
 pub mod normal;
+pub mod penetration;
 pub mod state;
 pub mod tangential;
 
@@ -28,12 +33,17 @@ pub use gc2d_geometry::DVec2;
 pub use geometry::ContactGeometry;
 pub use law::{ContactLaw, ContactLawError, ContactResponse};
 pub use normal::{NormalDamping, NormalElastic};
+pub use penetration::{
+    ImpactLaw, NormalSpring, PairProperties, PenetrationDamping, PenetrationGeometry, PenetrationLaw,
+    PenetrationLawError, PenetrationResponse, PenetrationState, RestitutionTable, RollingResistance, TangentialSpring,
+    TangentialStiffness,
+};
 pub use state::ContactState;
 pub use tangential::{CundallStrack, TangentialStep};
 
 /// 1/x for a positive finite x, else 0: an effective mass or compliance that does not exist (two anchored bodies,
 /// zero stiffness) contributes nothing instead of an infinity or a NaN.
 #[inline]
-pub(crate) fn reciprocal_or_zero(x: f64) -> f64 {
+pub fn reciprocal_or_zero(x: f64) -> f64 {
     if x > 0.0 && x.is_finite() { 1.0 / x } else { 0.0 }
 }
