@@ -1,9 +1,14 @@
-//! Geometry of convex polygons for the gc2d-rs discrete element engine.
+//! Geometry of convex polygons, disks, capsules and chamber circles for the gc2d-rs discrete element engine.
 //!
 //! Everything here is f64 and counter-clockwise positive (see `docs/model.md`). A [`ConvexPolygon`] lives in its
 //! body frame (centroid at the origin); a [`Pose`] places it in the world. The engine transforms body vertices into
 //! world vertices once per step and hands the world slices to the contact routines of this crate, which neither
 //! allocate nor panic.
+//!
+//! Disks, capsules and inner circles (a chamber's boundary) join the polygons through [`ShapeView`]: the
+//! shape-generic pair queries [`area_contact`] (overlap area and chord, for the overlap-area law) and
+//! [`penetration`] (depth, normal, contact point and surface curvature, for linear and Hertz laws) dispatch to the
+//! per-family files of [`pair`].
 //!
 //! Particles and walls are made by the generators in [`shapes`] (regular and ellipse-inscribed polygons, plain, cut
 //! and rounded rectangles) or drawn at random from a [`ShapeRecipe`], with the CONST / EQUAL / GAUSS rules of
@@ -11,19 +16,26 @@
 
 pub mod closest;
 pub mod overlap;
+pub mod pair;
 pub mod polygon;
 pub mod pose;
 pub mod randomize;
 pub mod recipe;
+pub mod shape;
 pub mod shapes;
 
 pub use closest::{Feature, FeaturePair, Separation, closest_features};
 pub use glam::DVec2;
 pub use overlap::{ContactGeometry, ContactKind, OverlapPolygon, contact_geometry, overlap_polygon};
+pub use pair::capsule::{disk_capsule_intersection_area, polygon_capsule_intersection_area};
+pub use pair::circle_polygon::{circle_polygon_intersection_area, polygon_outside_circle_area};
+pub use pair::circles::{disk_outside_circle_area, lens_area};
+pub use pair::circular_segment_area;
 pub use polygon::{ConvexPolygon, MAX_VERTICES, MassProperties, PolygonError};
 pub use pose::{Aabb, Pose};
 pub use randomize::{Randomization, UnknownOptionValue, truncated_gaussian};
 pub use recipe::ShapeRecipe;
+pub use shape::{AreaContact, Penetration, ShapeView, area_contact, penetration};
 pub use shapes::{
     AngleMode, ShapeError, cut_rectangle, ellipse_polygon, rectangle, regular_polygon, rounded_rectangle, square,
     square_cut, square_round,

@@ -1,0 +1,216 @@
+//! Shapes as the narrowphase sees them, and the two shape-generic pair queries the contact laws read: the overlap
+//! area with its contact chord (the gc2d overlap-area law) and the penetration depth with its normal and contact
+//! point (linear spring and Hertz laws).
+//!
+//! Particles are convex polygons or exact disks; walls may also be capsules (rotor blades, rounded wall ends) and
+//! inner circles (the boundary of a circular chamber, solid outside). Every query is a `match` on the two shapes,
+//! like Box2D's pair table, into the per-family files of [`pair`](crate::pair). Body i is a particle; a wall given
+//! as i is answered by swapping the bodies and flipping the normal, and two walls never interact (`None`).
+
+use crate::pair::{capsule, circle_polygon, circles, polygon_polygon};
+use crate::{Aabb, DVec2};
+
+/// A body's outline in the world frame, as the narrowphase sees it. Lengths in m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ShapeView<'a> {
+    /// A convex polygon: counter-clockwise world vertices, 3..=[`MAX_VERTICES`](crate::MAX_VERTICES), validated as
+    /// by [`ConvexPolygon::new`](crate::ConvexPolygon::new). A particle or a wall.
+    Polygon(&'a [DVec2]),
+    /// An exact circle (its interior is the body). A particle, or a disk-shaped wall.
+    Disk {
+        /// Centre, m.
+        center: DVec2,
+        /// Radius, m, > 0.
+        radius: f64,
+    },
+    /// The segment a–b swept by a disk of `radius` (a stadium): rotor blades, rounded wall ends. A wall only.
+    /// `a == b` is allowed and is then a disk-shaped wall.
+    Capsule {
+        /// One end of the core segment, m.
+        a: DVec2,
+        /// The other end, m.
+        b: DVec2,
+        /// Radius of the rounding, m, > 0.
+        radius: f64,
+    },
+    /// The boundary of a circular chamber: the solid is everything OUTSIDE the circle; particles stay inside. A
+    /// wall only.
+    InnerCircle {
+        /// Centre, m.
+        center: DVec2,
+        /// Radius of the chamber, m, > 0.
+        radius: f64,
+    },
+}
+
+impl ShapeView<'_> {
+    /// The axis-aligned bounding box for the broadphase. For an [`InnerCircle`](ShapeView::InnerCircle) it is the
+    /// circle's bounding box, so that every particle inside the chamber pairs with it (its solid is unbounded).
+    pub fn aabb(&self) -> Aabb {
+        match *self {
+            ShapeView::Polygon(points) => Aabb::of_points(points),
+            ShapeView::Disk { center, radius } | ShapeView::InnerCircle { center, radius } => {
+                Aabb { min: center - DVec2::splat(radius), max: center + DVec2::splat(radius) }
+            }
+            ShapeView::Capsule { a, b, radius } => {
+                Aabb { min: a.min(b) - DVec2::splat(radius), max: a.max(b) + DVec2::splat(radius) }
+            }
+        }
+    }
+
+    /// True for the shapes a particle may have (polygon, disk).
+    fn is_particle_shape(&self) -> bool {
+        matches!(self, ShapeView::Polygon(_) | ShapeView::Disk { .. })
+    }
+}
+
+/// What the gc2d overlap-area law needs: today's polygon [`ContactGeometry`](crate::ContactGeometry) reduced to
+/// the area, the chord c1c2 and the normal, for any pair of shapes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AreaContact {
+    /// Overlap area A of the interiors (for an inner circle: of the particle with the solid outside it), m², > 0.
+    pub area: f64,
+    /// |c2 − c1|, m: the rate −dA/dh at which the overlap shrinks when i moves along the normal.
+    pub chord_length: f64,
+    /// Midpoint of the chord c1c2: the force application point, m.
+    pub point: DVec2,
+    /// Unit vector perpendicular to the chord, from j towards i: the repulsive force on i is along +normal.
+    pub normal: DVec2,
+}
+
+/// What penetration laws (linear spring, Hertz) need.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Penetration {
+    /// Penetration depth, m, > 0: how far i must move along `normal` to stop overlapping j.
+    pub depth: f64,
+    /// Unit vector from j towards i: the repulsive force on i is along +normal.
+    pub normal: DVec2,
+    /// Contact point: midway between the two surface points, which lie `depth` apart along the normal, m.
+    pub point: DVec2,
+    /// Curvature radius of j's outline at the contact, m: disk r, capsule cap r, capsule side or polygon edge
+    /// `f64::INFINITY`, inner circle −R (concave), polygon vertex 0.0. With i's radius R_i the Hertz law's
+    /// effective radius is 1/(1/R_i + 1/R_j).
+    pub surface_radius_j: f64,
+}
+
+impl AreaContact {
+    /// The same contact seen from the other body: the normal flips, everything else stays.
+    fn flipped(self) -> Self {
+        Self { normal: -self.normal, ..self }
+    }
+}
+
+/// A penetration together with the curvature radius of i's outline at the contact, which the public result leaves
+/// to the caller but swapping the bodies needs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PairPenetration {
+    pub(crate) penetration: Penetration,
+    pub(crate) surface_radius_i: f64,
+}
+
+impl PairPenetration {
+    /// The penetration from surface point `on_i` (the deepest point of i along −normal), depth and normal: the
+    /// contact point is midway to j's surface point `on_i + depth·normal`. `None` unless all is finite and depth > 0.
+    pub(crate) fn new(
+        depth: f64,
+        normal: DVec2,
+        on_i: DVec2,
+        surface_radius_i: f64,
+        surface_radius_j: f64,
+    ) -> Option<Self> {
+        Self::at(depth, normal, on_i + 0.5 * depth * normal, surface_radius_i, surface_radius_j)
+    }
+
+    /// The penetration with its contact point given. `None` unless all is finite and depth > 0.
+    pub(crate) fn at(
+        depth: f64,
+        normal: DVec2,
+        point: DVec2,
+        surface_radius_i: f64,
+        surface_radius_j: f64,
+    ) -> Option<Self> {
+        let ok = depth.is_finite() && depth > 0.0 && normal.is_finite() && point.is_finite();
+        ok.then_some(Self { penetration: Penetration { depth, normal, point, surface_radius_j }, surface_radius_i })
+    }
+
+    /// The same contact seen from the other body: normal flipped, surface radii swapped.
+    pub(crate) fn flipped(self) -> Self {
+        let p = self.penetration;
+        Self {
+            penetration: Penetration { normal: -p.normal, surface_radius_j: self.surface_radius_i, ..p },
+            surface_radius_i: p.surface_radius_j,
+        }
+    }
+}
+
+/// Overlap area and contact chord of body i with body j, for the overlap-area law.
+///
+/// `i` is a particle shape (polygon or disk), `j` any shape; a wall given as `i` with a particle as `j` is answered
+/// for the swapped pair with the normal flipped. Returns `None` when the interiors do not overlap (touching
+/// included), for two walls, and for non-finite or degenerate input (radius ≤ 0, a polygon outside 3..=64
+/// vertices). Never allocates or panics.
+///
+/// Polygon–polygon is [`contact_geometry`](crate::contact_geometry) unchanged. Every other pair is exact (areas to
+/// rounding): see `docs/model.md` (“Shapes and pair queries”) for the chord rules of crossing, multi-crossing and
+/// contained overlaps, which are those of the polygon code.
+pub fn area_contact(i: ShapeView, j: ShapeView) -> Option<AreaContact> {
+    use ShapeView::*;
+    match (i, j) {
+        (Polygon(a), Polygon(b)) => polygon_polygon::area_contact(a, b),
+        (Disk { center: ci, radius: ri }, Disk { center: cj, radius: rj }) => {
+            circles::disk_disk_area_contact(ci, ri, cj, rj)
+        }
+        (Disk { center, radius }, Polygon(b)) => circle_polygon::disk_polygon_area_contact(center, radius, b),
+        (Polygon(a), Disk { center, radius }) => circle_polygon::polygon_disk_area_contact(a, center, radius),
+        (Disk { center: ci, radius: ri }, InnerCircle { center, radius }) => {
+            circles::disk_inner_area_contact(ci, ri, center, radius)
+        }
+        (Polygon(a), InnerCircle { center, radius }) => circle_polygon::polygon_inner_area_contact(a, center, radius),
+        (Disk { center, radius: r }, Capsule { a, b, radius }) => {
+            capsule::disk_capsule_area_contact(center, r, a, b, radius)
+        }
+        (Polygon(p), Capsule { a, b, radius }) => capsule::polygon_capsule_area_contact(p, a, b, radius),
+        (Capsule { .. } | InnerCircle { .. }, _) if j.is_particle_shape() => {
+            area_contact(j, i).map(AreaContact::flipped)
+        }
+        _ => None,
+    }
+}
+
+/// Penetration depth, normal and contact point of body i with body j, for the penetration laws.
+///
+/// Same roles and `None` rules as [`area_contact`]. Exact for every pair with a disk or capsule (centre distances,
+/// closest points on segments and polygons; a disk centre inside a polygon gives depth = r + its distance to the
+/// outline, through the nearest edge), polygon–capsule by the separating axes of polygon and core segment. For
+/// polygon–polygon it is defined from the area law: depth = A/|c1c2|, normal = chord normal, point = chord
+/// midpoint, surface radius ∞ (the overlap as an equivalent flat contact). Polygon–inner circle takes the vertex
+/// farthest outside. Never allocates or panics.
+pub fn penetration(i: ShapeView, j: ShapeView) -> Option<Penetration> {
+    pair_penetration(i, j).map(|p| p.penetration)
+}
+
+fn pair_penetration(i: ShapeView, j: ShapeView) -> Option<PairPenetration> {
+    use ShapeView::*;
+    match (i, j) {
+        (Polygon(a), Polygon(b)) => polygon_polygon::penetration(a, b),
+        (Disk { center: ci, radius: ri }, Disk { center: cj, radius: rj }) => {
+            circles::disk_disk_penetration(ci, ri, cj, rj)
+        }
+        (Disk { center, radius }, Polygon(b)) => circle_polygon::disk_polygon_penetration(center, radius, b),
+        (Polygon(a), Disk { center, radius }) => {
+            circle_polygon::disk_polygon_penetration(center, radius, a).map(PairPenetration::flipped)
+        }
+        (Disk { center: ci, radius: ri }, InnerCircle { center, radius }) => {
+            circles::disk_inner_penetration(ci, ri, center, radius)
+        }
+        (Polygon(a), InnerCircle { center, radius }) => circle_polygon::polygon_inner_penetration(a, center, radius),
+        (Disk { center, radius: r }, Capsule { a, b, radius }) => {
+            capsule::disk_capsule_penetration(center, r, a, b, radius)
+        }
+        (Polygon(p), Capsule { a, b, radius }) => capsule::polygon_capsule_penetration(p, a, b, radius),
+        (Capsule { .. } | InnerCircle { .. }, _) if j.is_particle_shape() => {
+            pair_penetration(j, i).map(PairPenetration::flipped)
+        }
+        _ => None,
+    }
+}
