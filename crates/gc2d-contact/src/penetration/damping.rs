@@ -19,7 +19,8 @@ pub enum PenetrationDamping {
     /// D given directly (the thesis input `#D`, feedpipe.md §2.3). D = 0 is undamped.
     DampingRatio(f64),
     /// A constant restitution coefficient e ∈ [0, 1], mapped to D by [`NormalSpring::damping_ratio_for`]: exact for
-    /// the linear spring and for Hertz + δ^{1/4} dashpot **without** tensile clamp (feedpipe.md §2.4).
+    /// the linear spring and for Hertz + δ^{1/4} dashpot, with or without the law's tensile clamp (feedpipe.md
+    /// §2.4 for the unclamped mapping; the clamped one is derived in [`linear_clamped_restitution`]).
     Restitution(f64),
     /// e(v) evaluated at the impact normal speed stored at the first touching step, mapped to D for the whole
     /// episode (ballmill.md §7.3).
@@ -28,20 +29,20 @@ pub enum PenetrationDamping {
 
 impl PenetrationDamping {
     /// The damping ratio D of an episode whose impact normal speed is `impact_speed` (m/s), with normal spring
-    /// `spring`.
-    pub fn episode_ratio(&self, impact_speed: f64, spring: &NormalSpring) -> f64 {
+    /// `spring`, for a law with or without `tensile_clamp`.
+    pub fn episode_ratio(&self, impact_speed: f64, spring: &NormalSpring, tensile_clamp: bool) -> f64 {
         match self {
             Self::DampingRatio(ratio) => *ratio,
-            Self::Restitution(e) => spring.damping_ratio_for(*e),
-            Self::VelocityDependent(law) => spring.damping_ratio_for(law.restitution(impact_speed)),
+            Self::Restitution(e) => spring.damping_ratio_for(*e, tensile_clamp),
+            Self::VelocityDependent(law) => spring.damping_ratio_for(law.restitution(impact_speed), tensile_clamp),
         }
     }
 
     /// The largest damping ratio an episode can get with impact speeds up to `max_speed` (m/s): for the time-step
     /// bound (damping lowers the stable step). Tables are searched at their points and at `max_speed`; the power laws
     /// fall with speed for c ≥ 0, and are searched at 0 and `max_speed` otherwise.
-    pub fn max_ratio(&self, max_speed: f64, spring: &NormalSpring) -> f64 {
-        let at = |speed: f64| self.episode_ratio(speed, spring);
+    pub fn max_ratio(&self, max_speed: f64, spring: &NormalSpring, tensile_clamp: bool) -> f64 {
+        let at = |speed: f64| self.episode_ratio(speed, spring, tensile_clamp);
         match self {
             Self::VelocityDependent(ImpactLaw::Table(table)) => table
                 .points()
@@ -233,22 +234,83 @@ pub fn hertz_restitution(ratio: f64) -> f64 {
     linear_restitution(ratio / HERTZ_DAMPING_FACTOR)
 }
 
+/// The restitution of a linear spring–dashpot whose total force is clamped at 0 (the contact ends when the force
+/// would pull), for damping ratio `ratio` D:
+///
+/// e = exp(−D·ω₀·t_s) with ω₀·t_s = 2·acos(D)/√(1 − D²) for D < 1, 2 for D = 1, 2·acosh(D)/√(D² − 1) for D > 1.
+///
+/// Derivation (this crate, checked by the tests against feedpipe.md §2.4's clamped table and against integration):
+/// with x(t) = (v₀/ω)·e^{−βt}·sin ωt (β = D·ω₀, ω = ω₀√(1 − D²)) the force k·x + c·ẋ vanishes where
+/// tan ωt = −2βω/(ω² − β²), i.e. ωt_s = π − 2·asin D, and there ẋ = −v₀·e^{−βt_s} exactly; the overdamped case is the
+/// same with sinh. Compare the unclamped e = exp(−π·D/√(1 − D²)). e < 1/D² for D > 1 and e → 1/(4D²): every e > 0
+/// is reached.
+pub fn linear_clamped_restitution(ratio: f64) -> f64 {
+    let d = ratio.max(0.0);
+    let time = if d < 1.0 {
+        2.0 * d.acos() / (1.0 - d * d).sqrt()
+    } else if d > 1.0 {
+        2.0 * d.acosh() / (d * d - 1.0).sqrt()
+    } else {
+        2.0
+    };
+    (-d * time).exp()
+}
+
+/// The smallest restitution the clamped mappings aim at: below it the damping ratio (≈ 1/(2√e)) would make the
+/// dashpot, and the time step, unreasonable. Smaller targets give this e.
+pub const MIN_CLAMPED_RESTITUTION: f64 = 1e-3;
+
+/// The damping ratio of a clamped linear spring–dashpot with restitution `e`, the inverse of
+/// [`linear_clamped_restitution`] (by bisection, 64 halvings: about 1 µs, once per contact episode). e is clipped to
+/// [[`MIN_CLAMPED_RESTITUTION`], 1].
+pub fn linear_clamped_damping_ratio(e: f64) -> f64 {
+    if e >= 1.0 || e.is_nan() {
+        return 0.0;
+    }
+    let e = e.max(MIN_CLAMPED_RESTITUTION);
+    // e(D) falls monotonically, e(1) = e^{−2} and e(D) < 1/D² above 1, so [0, max(1, 1/√e)] brackets the root.
+    let (mut lo, mut hi) = (0.0, (1.0 / e.sqrt()).max(1.0));
+    for _ in 0..64 {
+        let mid = 0.5 * (lo + hi);
+        if linear_clamped_restitution(mid) > e { lo = mid } else { hi = mid }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The restitution of the Hertz spring with the δ^{1/4} dashpot and the tensile clamp, damping ratio `ratio`:
+/// [`linear_clamped_restitution`] of 2D/√5. The √5/2 equivalence of the unclamped case carries over to the clamped
+/// one (checked against integration to 1e-9 in the tests; it reproduces feedpipe.md §2.4's "Hertz, clamp" column).
+pub fn hertz_clamped_restitution(ratio: f64) -> f64 {
+    linear_clamped_restitution(ratio / HERTZ_DAMPING_FACTOR)
+}
+
+/// The damping ratio of the clamped Hertz spring with the δ^{1/4} dashpot for restitution `e`, the inverse of
+/// [`hertz_clamped_restitution`].
+pub fn hertz_clamped_damping_ratio(e: f64) -> f64 {
+    HERTZ_DAMPING_FACTOR * linear_clamped_damping_ratio(e)
+}
+
 impl NormalSpring {
-    /// The damping ratio D that gives restitution `e` (clipped to [0, 1]) with this spring, unclamped:
-    /// [`linear_damping_ratio`] or [`hertz_damping_ratio`].
-    pub fn damping_ratio_for(&self, e: f64) -> f64 {
-        match self {
-            Self::Linear { .. } => linear_damping_ratio(e),
-            Self::Hertz { .. } => hertz_damping_ratio(e),
+    /// The damping ratio D that gives restitution `e` (clipped to [0, 1]) with this spring, for a law with or
+    /// without `tensile_clamp`: [`linear_damping_ratio`], [`hertz_damping_ratio`], [`linear_clamped_damping_ratio`]
+    /// or [`hertz_clamped_damping_ratio`].
+    pub fn damping_ratio_for(&self, e: f64, tensile_clamp: bool) -> f64 {
+        match (self, tensile_clamp) {
+            (Self::Linear { .. }, false) => linear_damping_ratio(e),
+            (Self::Hertz { .. }, false) => hertz_damping_ratio(e),
+            (Self::Linear { .. }, true) => linear_clamped_damping_ratio(e),
+            (Self::Hertz { .. }, true) => hertz_clamped_damping_ratio(e),
         }
     }
 
-    /// The restitution of a head-on impact with damping ratio `ratio` and no tensile clamp: [`linear_restitution`]
-    /// or [`hertz_restitution`].
-    pub fn restitution_for(&self, ratio: f64) -> f64 {
-        match self {
-            Self::Linear { .. } => linear_restitution(ratio),
-            Self::Hertz { .. } => hertz_restitution(ratio),
+    /// The restitution of a head-on impact with damping ratio `ratio`, with or without `tensile_clamp`: the inverse
+    /// of [`Self::damping_ratio_for`].
+    pub fn restitution_for(&self, ratio: f64, tensile_clamp: bool) -> f64 {
+        match (self, tensile_clamp) {
+            (Self::Linear { .. }, false) => linear_restitution(ratio),
+            (Self::Hertz { .. }, false) => hertz_restitution(ratio),
+            (Self::Linear { .. }, true) => linear_clamped_restitution(ratio),
+            (Self::Hertz { .. }, true) => hertz_clamped_restitution(ratio),
         }
     }
 }
@@ -321,6 +383,29 @@ mod tests {
         assert_eq!(linear_damping_ratio(0.0), 1.0);
         assert_eq!(linear_restitution(1.2), 0.0);
         assert!((HERTZ_DAMPING_FACTOR - 5f64.sqrt() / 2.0).abs() < 1e-16);
+        // feedpipe.md §2.4 clamped columns: linear and Hertz.
+        for (d, linear, hertz) in
+            [(0.05, 0.8588, 0.8723), (0.1, 0.7441, 0.7664), (0.3, 0.4510, 0.4849), (0.7, 0.2103, 0.2379)]
+        {
+            assert!(
+                (linear_clamped_restitution(d) - linear).abs() < 1e-4,
+                "D = {d}: {}",
+                linear_clamped_restitution(d)
+            );
+            assert!((hertz_clamped_restitution(d) - hertz).abs() < 1e-4, "D = {d}: {}", hertz_clamped_restitution(d));
+        }
+        assert_eq!(linear_clamped_restitution(1.0), (-2.0f64).exp());
+        // Continuous through D = 1 and ≈ 1/(4D²) far above it.
+        for d in [1.0 - 1e-9, 1.0 + 1e-9] {
+            assert!((linear_clamped_restitution(d) - (-2.0f64).exp()).abs() < 1e-8);
+        }
+        assert!((linear_clamped_restitution(1e4) * 4e8 - 1.0).abs() < 1e-3);
+        for e in [0.001, 0.01, 0.1, 0.5, 0.9, 0.999] {
+            assert!((linear_clamped_restitution(linear_clamped_damping_ratio(e)) - e).abs() < 1e-14);
+            assert!((hertz_clamped_restitution(hertz_clamped_damping_ratio(e)) - e).abs() < 1e-14);
+        }
+        assert_eq!(linear_clamped_damping_ratio(1.0), 0.0);
+        assert_eq!(linear_clamped_damping_ratio(0.0), linear_clamped_damping_ratio(MIN_CLAMPED_RESTITUTION));
         // feedpipe.md §2.4 table, Hertz column.
         for (d, e) in [(0.1, 0.7542), (0.5, 0.2079), (1.0, 0.0019)] {
             assert!((hertz_restitution(d) - e).abs() < 1e-4, "D = {d}: {}", hertz_restitution(d));

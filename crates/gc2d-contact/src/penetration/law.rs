@@ -20,10 +20,11 @@ use thiserror::Error;
 /// - `rolling`: [`RollingResistance`], a capped rotational spring–dashpot;
 /// - `tensile_clamp`: whether the total normal force is floored at 0.
 ///
-/// The thesis has no clamp (feedpipe.md §2.3), and the restitution mappings of [`PenetrationDamping::Restitution`]
-/// and [`PenetrationDamping::VelocityDependent`] are exact only without it (feedpipe.md §2.4); hence the laws built
-/// here default to `tensile_clamp: false`. With the clamp, contacts end when the force would pull and e comes out
-/// higher than the target (by up to 0.16, feedpipe.md §2.4 table).
+/// The thesis has no clamp (feedpipe.md §2.3), so the laws built here default to `tensile_clamp: false`. The
+/// restitution of [`PenetrationDamping::Restitution`] and [`PenetrationDamping::VelocityDependent`] is met either
+/// way: the mapping e → D follows the flag (the unclamped one of feedpipe.md §2.4, or the clamped one of
+/// [`crate::penetration::linear_clamped_restitution`]). A [`PenetrationDamping::DampingRatio`] D gives a higher e
+/// with the clamp (by up to 0.16, feedpipe.md §2.4 table).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct PenetrationLaw {
     /// The elastic normal force F(δ).
@@ -196,7 +197,7 @@ impl PenetrationLaw {
             (previous.impact_speed, previous.damping_ratio)
         } else {
             let impact = if approach_speed > 0.0 { approach_speed } else { 0.0 };
-            (impact, self.damping.map_or(0.0, |d| d.episode_ratio(impact, &self.normal)))
+            (impact, self.damping.map_or(0.0, |d| d.episode_ratio(impact, &self.normal, self.tensile_clamp)))
         };
 
         let elastic = self.normal.force(depth, radius);
@@ -308,7 +309,7 @@ impl PenetrationLaw {
     pub fn max_time_step(&self, properties: &PairProperties, max_speed: f64) -> Option<f64> {
         let depth = self.max_depth(properties, max_speed);
         let radius = properties.effective_radius;
-        let normal_ratio = self.damping.map_or(0.0, |d| d.max_ratio(max_speed, &self.normal));
+        let normal_ratio = self.damping.map_or(0.0, |d| d.max_ratio(max_speed, &self.normal, self.tensile_clamp));
         let mut modes = [(properties.effective_mass, self.max_stiffness(properties, max_speed), normal_ratio); 3];
         if let Some(t) = &self.tangential {
             modes[1] = (properties.tangential_mass, t.stiffness(&self.normal, depth, radius), t.damping_ratio);

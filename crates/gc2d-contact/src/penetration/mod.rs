@@ -19,8 +19,9 @@ mod tangential;
 
 pub use context::{PairProperties, PenetrationGeometry, effective_modulus, effective_shear_modulus, shear_modulus};
 pub use damping::{
-    HERTZ_DAMPING_FACTOR, ImpactLaw, PenetrationDamping, RestitutionTable, hertz_damping_ratio, hertz_restitution,
-    linear_damping_ratio, linear_restitution,
+    HERTZ_DAMPING_FACTOR, ImpactLaw, MIN_CLAMPED_RESTITUTION, PenetrationDamping, RestitutionTable,
+    hertz_clamped_damping_ratio, hertz_clamped_restitution, hertz_damping_ratio, hertz_restitution,
+    linear_clamped_damping_ratio, linear_clamped_restitution, linear_damping_ratio, linear_restitution,
 };
 pub use elastic::{HERTZ_CONTACT_TIME_FACTOR, NormalSpring, hertz_contact_time, hertz_max_depth, linear_contact_time};
 pub use law::{PenetrationLaw, PenetrationLawError, PenetrationResponse};
