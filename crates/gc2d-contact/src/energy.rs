@@ -6,7 +6,8 @@ use serde::{Deserialize, Serialize};
 /// thickness). The definitions are in `docs/model.md` ("Contact law", energy).
 ///
 /// The three `*_change` terms add up to the change of [`crate::ContactLaw::stored_energy`] from the previous to
-/// the next [`crate::ContactState`]. The work the contact force does on the relative motion of the bodies over the
+/// the next [`crate::ContactState`] (for the penetration laws: of [`crate::PenetrationLaw::stored_energy`], with the
+/// rolling spring's terms booked with the tangential ones). The work the contact force does on the relative motion of the bodies over the
 /// step is `−`[`EnergyTerms::absorbed`]; the virtual surface velocity of a wall injects
 /// [`EnergyTerms::surface_work`] on top.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
