@@ -89,6 +89,33 @@ mod tests {
     }
 
     #[test]
+    fn energy_terms_add_up_to_the_documented_step_work() {
+        // (S_old, k_old, k, rate, cap): stick, slide, reversal, cap drop, stiffness up and down, unloading to 0.
+        let cases = [
+            (0.5, 2e6, 2e6, 1e-3, 10.0),
+            (3.0, 2e6, 2e6, 2.0, 3.0),
+            (-3.0, 2e6, 2e6, 0.5, 3.0),
+            (4.0, 2e6, 2e6, -0.3, 1.0),
+            (2.0, 1e6, 3e6, 0.7, 2.5),
+            (2.0, 3e6, 1e6, -0.7, 2.5),
+            (2.0, 3e6, 0.0, 0.2, 0.0),
+        ];
+        let (dt, c) = (1e-6, 7.0);
+        for (previous, k_old, k, rate, cap) in cases {
+            let step = spring_step(previous, k_old, k, rate, dt, c, cap);
+            let rescaled = if k < k_old { previous * k / k_old } else { previous };
+            let start = clamp_magnitude(rescaled, cap);
+            let absorbed = step.energy_change + step.slip_dissipation + step.damping_dissipation;
+            // −F·rate·Δt is the work of the force on the motion; the second term is the trapezoid correction of a
+            // sticking spring (zero while sliding at the cap).
+            let expected = -step.force * rate * dt - 0.5 * (step.stored - start).powi(2) * reciprocal_or_zero(k);
+            assert!((absorbed - expected).abs() < 1e-15 * previous.abs().max(1.0), "{previous} {k_old} {k} {rate}");
+            assert!(step.slip_dissipation >= 0.0 && step.damping_dissipation >= 0.0);
+            assert!(step.force.abs() <= cap && step.stored.abs() <= cap);
+        }
+    }
+
+    #[test]
     fn changing_stiffness_never_creates_energy() {
         for (k_old, k_new) in [(1e6, 2e6), (2e6, 1e6), (1e6, 0.0)] {
             let step = spring_step(3.0, k_old, k_new, 0.0, 1e-6, 0.0, 10.0);

@@ -608,6 +608,50 @@ fn mindlin_spring_sticks_with_8_g_sqrt_r_delta_then_slides_at_mu_f() {
 }
 
 #[test]
+fn oblique_impact_slides_with_the_coulomb_impulse_and_spins_the_ball() {
+    // A steel ball (R = 5 mm) hits the wall at v_n = 1 m/s with v_t = 5 m/s and μ = 0.1: it slides throughout (the
+    // slip 5 − 3.5·Δv_t stays positive), so the tangential impulse is μ·J_n = μ·(1 + e)·m·v_n and Δω = R·μ·J_n/I.
+    let mu = 0.1;
+    let law = PenetrationLaw {
+        tangential: Some(TangentialSpring {
+            mu,
+            stiffness: TangentialStiffness::Mindlin {
+                effective_shear_modulus_pa: effective_shear_modulus(STEEL_E, STEEL_NU, STEEL_E, STEEL_NU),
+            },
+            damping_ratio: 0.0,
+        }),
+        ..PenetrationLaw::elastic(steel_hertz())
+    };
+    let (radius, speed) = (0.005, 1.0);
+    let properties = on_wall(radius, speed, 1.0).properties();
+    let modulus = effective_modulus(STEEL_E, STEEL_NU, STEEL_E, STEEL_NU);
+    let dt = hertz_contact_time(properties.effective_mass, radius, modulus, speed) / 2000.0;
+    let mut pair = on_wall(radius, speed, dt);
+    pair.i.v.x = 5.0;
+    let ball = pair.i;
+    // Impulses from the force history (the ball's final velocities are these over its mass and inertia).
+    let (mut impulse, mut angular_impulse) = (DVec2::ZERO, 0.0);
+    collide(&law, pair, dt, 100_000, |out, depth| {
+        if depth > 0.0 {
+            assert!(out.tangential_force.abs() <= mu * out.normal_force * (1.0 + 1e-12));
+        }
+        impulse += out.force_on_i * dt;
+        angular_impulse += out.torque_on_i * dt;
+    });
+    let normal_impulse = impulse.y;
+    assert!(relative_error(normal_impulse, 2.0 * ball.mass * speed) < 2e-3, "J_n = {normal_impulse}");
+    assert!(relative_error(-impulse.x, mu * normal_impulse) < 2e-3, "J_t = {}", impulse.x);
+    // A force along −x at the contact point below the centre: r × F = (0, −R) × (−F, 0) = −R·F, clockwise, the spin
+    // of a ball rolling along +x.
+    let expected_spin = -radius * mu * normal_impulse / ball.inertia;
+    assert!(
+        relative_error(angular_impulse / ball.inertia, expected_spin) < 3e-3,
+        "Δω = {}",
+        angular_impulse / ball.inertia
+    );
+}
+
+#[test]
 fn rolling_moment_opposes_relative_rotation_and_is_capped() {
     let law = PenetrationLaw { tangential: None, damping: None, ..full_law(0.0, 0.02) };
     let rolling = law.rolling.unwrap();
