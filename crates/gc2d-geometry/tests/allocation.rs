@@ -58,3 +58,46 @@ fn contact_queries_allocate_nothing() {
     assert!(touching >= 2 * 4 * 5, "only {touching} overlapping evaluations");
     assert!(touching < 2 * pairs.len());
 }
+
+/// The shape-generic queries allocate nothing either: every pair family, overlapping and apart, both orders.
+#[test]
+fn shape_generic_queries_allocate_nothing() {
+    use gc2d_geometry::{ShapeView, area_contact, penetration};
+    let origin = DVec2::new(0.07, 0.05);
+    let r = 1.75e-3;
+    let polygons: Vec<Vec<DVec2>> = [3, 7, 20, MAX_VERTICES].iter().map(|&n| regular(n, r, origin, 0.37)).collect();
+    let mut walls = vec![
+        ShapeView::Capsule {
+            a: origin + DVec2::new(-2.0 * r, 1.5 * r),
+            b: origin + DVec2::new(2.0 * r, 1.9 * r),
+            radius: 0.5 * r,
+        },
+        ShapeView::Capsule {
+            a: origin + DVec2::new(0.0, 1.2 * r),
+            b: origin + DVec2::new(0.0, 1.2 * r),
+            radius: 0.5 * r,
+        },
+        ShapeView::InnerCircle { center: origin + DVec2::new(0.3 * r, 0.0), radius: 1.5 * r },
+        ShapeView::InnerCircle { center: origin, radius: 10.0 * r },
+    ];
+    walls.extend(polygons.iter().map(|p| ShapeView::Polygon(p)));
+    let mut particles: Vec<ShapeView> = polygons.iter().map(|p| ShapeView::Polygon(p)).collect();
+    for offset in [0.0, 0.5, 1.5, 1.9, 2.5] {
+        particles.push(ShapeView::Disk { center: origin + DVec2::new(offset * r, 0.2 * offset * r), radius: r });
+        particles.push(ShapeView::Disk { center: origin + DVec2::new(0.0, offset * r), radius: 0.3 * r });
+    }
+    walls.extend(particles.iter().copied());
+    let before = thread_allocations();
+    let mut touching = 0;
+    for i in &particles {
+        for j in &walls {
+            touching += usize::from(area_contact(*i, *j).is_some());
+            touching += usize::from(penetration(*i, *j).is_some());
+            touching += usize::from(area_contact(*j, *i).is_some());
+            touching += usize::from(penetration(*j, *i).is_some());
+        }
+    }
+    assert_eq!(thread_allocations() - before, 0);
+    let total = 4 * particles.len() * walls.len();
+    assert!(touching > total / 4 && touching < total, "{touching} of {total} evaluations touch");
+}

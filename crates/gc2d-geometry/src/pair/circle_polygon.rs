@@ -35,17 +35,22 @@ pub(crate) enum Part {
 /// Input must be admissible and the radius positive (checked by the callers).
 pub(crate) fn walk(center: DVec2, radius: f64, polygon: &[DVec2], part: Part, crossings: &mut Crossings) -> f64 {
     let keep_inside = part == Part::InsideCircle;
-    let origin = match part {
-        Part::InsideCircle => closest_boundary(center, polygon).clamped_point(center),
-        Part::OutsideCircle => farthest_vertex(center, polygon).0,
-    };
     let n = polygon.len();
     let radius_squared = radius * radius;
     let inside = |p: DVec2| (p - center).length_squared() < radius_squared;
+    // P ∩ D is one convex region: one reference point in it. P \ D may fall apart into several pieces (a polygon
+    // poking out of a chamber at several corners), each summed relative to its own exit point; the outside chain
+    // before the walk's first exit belongs to the last piece and is moved onto that piece's origin at the end.
+    let origin = match part {
+        Part::InsideCircle => closest_boundary(center, polygon).clamped_point(center),
+        Part::OutsideCircle => polygon[0],
+    };
     let mut state = Walk {
         center,
         radius,
         origin,
+        start_vertex: polygon[0],
+        prefix: 0.0,
         keep_inside,
         twice_straight: 0.0,
         arcs: 0.0,
@@ -94,8 +99,13 @@ pub(crate) fn walk(center: DVec2, radius: f64, polygon: &[DVec2], part: Part, cr
 struct Walk {
     center: DVec2,
     radius: f64,
-    /// Reference point of the shoelace sum: a point of (or next to) the measured region.
+    /// Reference point of the shoelace sum: a point of (or next to) the measured region; for P \ D the current
+    /// piece's exit point.
     origin: DVec2,
+    /// The walk's first vertex: the reference point of `prefix`.
+    start_vertex: DVec2,
+    /// For P \ D: twice the area swept (about `start_vertex`) by the outside chain before the first exit.
+    prefix: f64,
     keep_inside: bool,
     /// Twice the area of the straight polygon through the piece ends (kept pieces and arc chords).
     twice_straight: f64,
@@ -120,14 +130,21 @@ impl Walk {
 
     fn outside_piece(&mut self, u: DVec2, v: DVec2) {
         self.chain += subtended(u - self.center, v - self.center);
-        if !self.keep_inside {
+        // Outside pieces follow an exit, or come before the walk's first exit (the prefix).
+        if self.keep_inside {
+        } else if self.open_exit.is_some() {
             self.twice_straight += cross(u - self.origin, v - self.origin);
+        } else {
+            self.prefix += cross(u - self.start_vertex, v - self.start_vertex);
         }
     }
 
     fn exit(&mut self, point: DVec2, crossings: &mut Crossings) {
         crossings.push(point, false);
         self.crossed = true;
+        if !self.keep_inside {
+            self.origin = point;
+        }
         self.open_exit = Some(point);
         self.chain = 0.0;
     }
@@ -160,7 +177,12 @@ impl Walk {
     fn finish(mut self) -> f64 {
         if let (Some(exit), Some((entry, before))) = (self.open_exit.take(), self.first_entry) {
             self.arc(exit, entry, self.chain + before);
+            if !self.keep_inside {
+                // The chain before the first exit ran from the first vertex to `entry`: moved onto `exit` as origin.
+                self.prefix -= cross(exit - self.start_vertex, entry - self.start_vertex);
+            }
         }
+        self.twice_straight += self.prefix;
         // No crossing and every vertex outside: the chain is the polygon's winding about the centre (0 or 2π).
         if !self.crossed && self.chain > PI {
             let disk = PI * self.radius * self.radius;

@@ -44,6 +44,19 @@ impl CircleCrossing {
     }
 }
 
+/// r1 + r2 − d, summed as r_small − (d − r_big): near touching both differences are exact (Sterbenz), so a 1e-9
+/// overlap of a 5 mm disk at 0.1 m keeps all its digits, where the plain sum would round r1 + r2 first.
+pub(crate) fn external_gap(d: f64, r1: f64, r2: f64) -> f64 {
+    let (big, small) = if r1 >= r2 { (r1, r2) } else { (r2, r1) };
+    small - (d - big)
+}
+
+/// d − |r1 − r2|, summed as (d − r_big) + r_small for the same reason (a disk against a chamber's wall).
+pub(crate) fn internal_gap(d: f64, r1: f64, r2: f64) -> f64 {
+    let (big, small) = if r1 >= r2 { (r1, r2) } else { (r2, r1) };
+    (d - big) + small
+}
+
 /// Classifies circles (c1, r1) and (c2, r2). The chord's half-length comes from Heron's product
 /// (r1 + r2 + d)(r2 − r1 + d)(r1 − r2 + d)(r1 + r2 − d), whose small factor in a shallow contact is the depth itself.
 pub(crate) fn circle_pair(c1: DVec2, r1: f64, c2: DVec2, r2: f64) -> CirclePair {
@@ -55,7 +68,8 @@ pub(crate) fn circle_pair(c1: DVec2, r1: f64, c2: DVec2, r2: f64) -> CirclePair 
         return CirclePair::Nested;
     }
     let axis = (c1 - c2) / d;
-    let heron = (r1 + r2 + d) * (r2 - r1 + d) * (r1 - r2 + d) * (r1 + r2 - d);
+    let (big, small) = if r1 >= r2 { (r1, r2) } else { (r2, r1) };
+    let heron = (r1 + r2 + d) * (d + (big - small)) * internal_gap(d, r1, r2) * external_gap(d, r1, r2);
     let half_chord = heron.max(0.0).sqrt() / (2.0 * d);
     // Signed distances from each centre to the chord, towards the other centre.
     let x2 = 0.5 * (d + (r2 - r1) * (r2 + r1) / d);
@@ -157,7 +171,7 @@ pub(crate) fn disk_disk_penetration(ci: DVec2, ri: f64, cj: DVec2, rj: f64) -> O
     let offset = ci - cj;
     let distance = offset.length();
     let normal = if distance > 0.0 { offset / distance } else { DVec2::Y };
-    PairPenetration::new(ri + rj - distance, normal, ci - ri * normal, ri, rj)
+    PairPenetration::new(external_gap(distance, ri, rj), normal, ci - ri * normal, ri, rj)
 }
 
 /// Disk i inside a chamber j: depth |ci − cj| + ri − R, normal towards the chamber's centre (+y when concentric),
@@ -169,7 +183,7 @@ pub(crate) fn disk_inner_penetration(ci: DVec2, ri: f64, cj: DVec2, rj: f64) -> 
     let offset = cj - ci;
     let distance = offset.length();
     let normal = if distance > 0.0 { offset / distance } else { DVec2::Y };
-    PairPenetration::new(distance + ri - rj, normal, ci - ri * normal, ri, -rj)
+    PairPenetration::new((distance - rj) + ri, normal, ci - ri * normal, ri, -rj)
 }
 
 #[cfg(test)]
