@@ -217,13 +217,21 @@ pub fn linear_restitution(ratio: f64) -> f64 {
 }
 
 /// √5/2: the factor between the damping ratio a Hertz spring with the δ^{1/4} dashpot needs and the one a linear
-/// spring needs for the same restitution (feedpipe.md §2.4, §7.1 item 3).
+/// spring needs for the same restitution (feedpipe.md §2.4, §7.1 item 3). It is exact, with or without the tensile
+/// clamp:
+///
+/// In units where m* = k_Hz = v₀ = 1 the impact is ẍ + 2D·x^{1/4}·ẋ + x^{3/2} = 0 (feedpipe.md (3.34), (3.44)). With
+/// the time change dt = x^{−1/4}·ds and x = y^{4/5} it becomes the *linear* oscillator y'' + 2D·y' + (5/4)·y = 0,
+/// whose damping ratio is D' = D/√(5/4) = 2D/√5. Because ẋ = (4/5)·y', x and y start and end at 0 together, and
+/// ẍ = (4/5)·y^{1/5}·y'' (the force vanishes exactly when the linear oscillator's force does), e(D) of the Hertz
+/// model is the linear e(2D/√5), unclamped and clamped. (Derived for this crate; feedpipe.md §2.4 found the factor
+/// numerically.)
 pub const HERTZ_DAMPING_FACTOR: f64 = 1.118_033_988_749_895;
 
 /// The damping ratio of the Hertz spring with the Tsuji δ^{1/4} dashpot (c = 2D·√(m*·k_Hz)·δ^{1/4}) for restitution
-/// `e`: D = (√5/2)·(−ln e)/√(π² + ln² e) (feedpipe.md §2.4). The mapping holds without clamp. It is exact: a
-/// fourth-order integration of the dimensionless impact x'' = −x^{3/2} − 2D·x^{1/4}·x' realises the target to
-/// |Δe| < 1e-14 for e ∈ [0.01, 0.999] (test `hertz_restitution_mapping_is_exact`).
+/// `e`: D = (√5/2)·(−ln e)/√(π² + ln² e) (feedpipe.md §2.4), without clamp. Exact (see [`HERTZ_DAMPING_FACTOR`]);
+/// a fourth-order integration of the dimensionless impact realises the target to |Δe| < 1e-14 for
+/// e ∈ [0.01, 0.999] (test `hertz_restitution_mapping_is_exact`).
 pub fn hertz_damping_ratio(e: f64) -> f64 {
     HERTZ_DAMPING_FACTOR * linear_damping_ratio(e)
 }
@@ -278,8 +286,8 @@ pub fn linear_clamped_damping_ratio(e: f64) -> f64 {
 }
 
 /// The restitution of the Hertz spring with the δ^{1/4} dashpot and the tensile clamp, damping ratio `ratio`:
-/// [`linear_clamped_restitution`] of 2D/√5. The √5/2 equivalence of the unclamped case carries over to the clamped
-/// one (checked against integration to 1e-9 in the tests; it reproduces feedpipe.md §2.4's "Hertz, clamp" column).
+/// [`linear_clamped_restitution`] of 2D/√5, exactly (see [`HERTZ_DAMPING_FACTOR`]; checked against integration to
+/// 1e-8 in the tests, and it reproduces feedpipe.md §2.4's "Hertz, clamp" column).
 pub fn hertz_clamped_restitution(ratio: f64) -> f64 {
     linear_clamped_restitution(ratio / HERTZ_DAMPING_FACTOR)
 }
