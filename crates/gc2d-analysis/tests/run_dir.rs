@@ -3,7 +3,7 @@
 use gc2d_analysis::*;
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{World, WorldConfig};
+use gc2d_engine::{InteractionTable, MassModel, World, WorldConfig};
 use gc2d_geometry::{DVec2, Pose, rectangle, regular_polygon};
 use std::path::PathBuf;
 
@@ -20,7 +20,8 @@ fn world() -> World {
     let config = WorldConfig {
         time_step: 3e-5,
         integrator: Default::default(),
-        contact_law,
+        interactions: InteractionTable::uniform(contact_law),
+        mass_model: MassModel::PerUnitThickness,
         gravity: GravitySchedule::constant(G),
         heating: None,
         safety: Default::default(),

@@ -85,7 +85,7 @@ pub fn import_gsi(gsi: &Path, output: Option<&Path>, part_size: PartSizeOption) 
     let summary = Scene::from_str(&written, &output_name).and_then(|scene| scene.summary()).map_err(invalid)?;
     eprintln!(
         "Wrote {output_name}: {} walls, {} particles, {} sources, Δt = {:e} s{}.",
-        summary.wall_polygons,
+        summary.wall_bodies,
         summary.particles,
         summary.sources,
         summary.time_step_s,

@@ -34,7 +34,7 @@ fn the_piston_file_imports_warns_about_part_size_and_the_scene_builds_and_runs()
     let scene = Scene::from_str(&text, "piston.ron").unwrap_or_else(|e| panic!("{}", e.render_plain()));
     assert_eq!(scene.name, "piston");
     let summary = scene.summary().unwrap();
-    assert_eq!((summary.wall_polygons, summary.moving_walls, summary.particles), (4, 1, 1251));
+    assert_eq!((summary.wall_bodies, summary.moving_walls, summary.particles), (4, 1, 1251));
     assert!(summary.time_step_is_automatic);
     let out = dir.path().join("out");
     gc2d()

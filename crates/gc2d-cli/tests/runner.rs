@@ -4,7 +4,7 @@ use gc2d_cli::outputs::{RunStatus, Summary, TimeSeriesWriter};
 use gc2d_cli::runner::{FrameSink, run_to};
 use gc2d_contact::ContactLaw;
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{WallMotion, World, WorldConfig};
+use gc2d_engine::{InteractionTable, MassModel, WallMotion, World, WorldConfig};
 use gc2d_geometry::{DVec2, Pose, rectangle, regular_polygon};
 use std::sync::atomic::AtomicBool;
 
@@ -12,7 +12,8 @@ fn small_world() -> World {
     let config = WorldConfig {
         time_step: 1e-5,
         integrator: Default::default(),
-        contact_law: ContactLaw::elastic(1e7),
+        interactions: InteractionTable::uniform(ContactLaw::elastic(1e7)),
+        mass_model: MassModel::PerUnitThickness,
         gravity: GravitySchedule::constant(9.81),
         heating: None,
         safety: Default::default(),
@@ -21,7 +22,7 @@ fn small_world() -> World {
     };
     let mut world = World::new(config).unwrap();
     world.add_wall(
-        &rectangle(0.2, 0.01).unwrap(),
+        rectangle(0.2, 0.01).unwrap(),
         Pose::new(DVec2::new(0.0, -0.005), 0.0),
         DVec2::ZERO,
         WallMotion::Static,

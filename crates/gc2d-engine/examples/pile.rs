@@ -14,7 +14,7 @@
 #[path = "support/thesis_material.rs"]
 mod thesis_material;
 
-use gc2d_engine::{DropHeight, DropSource, TimeWindow, WallMotion, World};
+use gc2d_engine::{DropHeight, DropSource, MaterialId, TimeWindow, WallMotion, World};
 use gc2d_geometry::{DVec2, Pose, rectangle};
 use std::time::Instant;
 
@@ -54,6 +54,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         interval: INSERTION_INTERVAL,
         recipe: thesis_material::thesis_recipe(),
         density: thesis_material::DENSITY,
+        material: MaterialId::default(),
     })?;
 
     println!("    t/s  particles  contacts  kinetic/J  balance error/J");

@@ -5,7 +5,9 @@
 //! per-body offsets, so a step transforms them without allocating.
 
 use crate::integrator::GearState;
-use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose};
+use crate::interactions::MaterialId;
+use crate::shape::{BodyShape, ShapeKind, shape_view};
+use gc2d_geometry::{Aabb, DVec2, Pose, ShapeView};
 use serde::{Deserialize, Serialize};
 
 /// Index of a body in the World's store; stable for the life of the World.
@@ -53,9 +55,15 @@ pub struct Bodies {
     pub kind: Vec<BodyKind>,
     /// False once a particle has been removed.
     pub alive: Vec<bool>,
+    /// How to read the body's points and radius (see [`crate::shape`]).
+    pub shape: Vec<ShapeKind>,
+    /// Radius of a disk, capsule or inner circle at scale 1, m; 0 for polygons.
+    pub radius: Vec<f64>,
+    /// The body's material: with the other body's, it selects the pair's contact model.
+    pub material: Vec<MaterialId>,
     /// Where the body's vertices are in `body_vertices` and `world_vertices`.
     pub vertices: Vec<VertexRange>,
-    /// Body-frame vertices of all bodies, centroid at the origin, CCW.
+    /// Body-frame points of all bodies (polygon vertices CCW, centroid at the origin; see [`crate::shape`]).
     pub body_vertices: Vec<DVec2>,
     /// World-frame vertices of all bodies at the current (predicted) pose.
     pub world_vertices: Vec<DVec2>,
@@ -79,6 +87,8 @@ pub struct Bodies {
     pub area: Vec<f64>,
     /// Radius of the largest circle about the centroid inside the body, at scale 1, m.
     pub inscribed_radius: Vec<f64>,
+    /// Largest distance of a point of the body from its centroid, at scale 1, m.
+    pub reach: Vec<f64>,
     /// Virtual tangential surface velocity of a wall (drums, §2.11); zero for particles.
     pub surface_velocity: Vec<DVec2>,
     /// Axis-aligned box around the world vertices.
@@ -100,24 +110,21 @@ impl Bodies {
         self.kind.is_empty()
     }
 
-    /// Appends a body and returns its slot. `mass`/`inertia` are infinite for walls.
-    pub(crate) fn push(
-        &mut self,
-        kind: BodyKind,
-        shape: &ConvexPolygon,
-        pose: Pose,
-        mass: f64,
-        inertia: f64,
-    ) -> BodyId {
+    /// Appends a body of material 0 and returns its slot. `mass`/`inertia` are infinite for walls.
+    pub(crate) fn push(&mut self, kind: BodyKind, shape: &BodyShape, pose: Pose, mass: f64, inertia: f64) -> BodyId {
         let id = BodyId(self.kind.len() as u32);
         let start = self.body_vertices.len() as u32;
-        self.body_vertices.extend_from_slice(shape.vertices());
-        self.world_vertices.extend(shape.vertices().iter().map(|&v| pose.apply(v)));
-        let range = VertexRange { start, len: shape.len() as u32 };
+        let points = shape.body_points();
+        self.body_vertices.extend_from_slice(&points);
+        self.world_vertices.extend(points.iter().map(|&v| pose.apply(v)));
+        let range = VertexRange { start, len: points.len() as u32 };
         self.kind.push(kind);
         self.alive.push(true);
+        self.shape.push(shape.kind());
+        self.radius.push(shape.radius());
+        self.material.push(MaterialId::default());
         self.vertices.push(range);
-        self.aabb.push(Aabb::of_points(&self.world_vertices[range.range()]));
+        self.aabb.push(body_aabb(&self.world_vertices[range.range()], shape.radius() * pose.scale));
         self.pose.push(pose);
         self.velocity.push(DVec2::ZERO);
         self.angular_velocity.push(0.0);
@@ -128,6 +135,7 @@ impl Bodies {
         self.inverse_inertia.push(if inertia.is_finite() { 1.0 / (inertia * pose.scale * pose.scale) } else { 0.0 });
         self.area.push(shape.area());
         self.inscribed_radius.push(shape.inscribed_radius());
+        self.reach.push(shape.reach());
         self.surface_velocity.push(DVec2::ZERO);
         self.force.push(DVec2::ZERO);
         self.torque.push(0.0);
@@ -139,6 +147,10 @@ impl Bodies {
     pub fn heap_bytes(&self) -> usize {
         vec_bytes(&self.kind)
             + vec_bytes(&self.alive)
+            + vec_bytes(&self.shape)
+            + vec_bytes(&self.radius)
+            + vec_bytes(&self.material)
+            + vec_bytes(&self.reach)
             + vec_bytes(&self.vertices)
             + vec_bytes(&self.body_vertices)
             + vec_bytes(&self.world_vertices)
@@ -162,6 +174,13 @@ impl Bodies {
     #[inline]
     pub fn world_vertices_of(&self, id: BodyId) -> &[DVec2] {
         &self.world_vertices[self.vertices[id.index()].range()]
+    }
+
+    /// Body `id`'s outline in the world frame at its current pose and scale, for the pair queries.
+    #[inline]
+    pub fn shape_view(&self, id: BodyId) -> ShapeView<'_> {
+        let i = id.index();
+        shape_view(self.shape[i], self.world_vertices_of(id), self.radius[i] * self.pose[i].scale)
     }
 
     /// Body-frame vertices of one body.
@@ -189,6 +208,17 @@ impl Bodies {
         }
     }
 
+    /// The radius penetration laws give body `i` at its current scale, m: a disk's radius, a polygon's equal-area
+    /// radius √(A/π) (docs/model.md, "Penetration laws").
+    #[inline]
+    pub fn contact_radius(&self, i: usize) -> f64 {
+        let radius = match self.shape[i] {
+            ShapeKind::Polygon => (self.area[i] / std::f64::consts::PI).sqrt(),
+            _ => self.radius[i],
+        };
+        radius * self.pose[i].scale
+    }
+
     /// Ids of the living particles, in slot order.
     pub fn particles(&self) -> impl Iterator<Item = BodyId> + '_ {
         (0..self.len()).filter(|&i| self.alive[i] && self.kind[i] == BodyKind::Particle).map(|i| BodyId(i as u32))
@@ -199,17 +229,23 @@ impl Bodies {
     /// written by exactly one task.
     pub(crate) fn update_world_vertices(&mut self) {
         let count = self.len();
-        transform_range(
-            0,
-            count,
-            &self.vertices,
-            &self.body_vertices,
-            &self.pose,
-            &self.alive,
-            &mut self.world_vertices,
-            &mut self.aabb,
-        );
+        let inputs = TransformInputs {
+            ranges: &self.vertices,
+            body: &self.body_vertices,
+            poses: &self.pose,
+            alive: &self.alive,
+            radius: &self.radius,
+        };
+        transform_range(0, count, &inputs, &mut self.world_vertices, &mut self.aabb);
     }
+}
+
+/// The box around a body's world points `points`, grown by its scaled radius (disks, capsules, inner circles; a
+/// polygon's radius is 0 and its box is the points' own).
+#[inline]
+fn body_aabb(points: &[DVec2], scaled_radius: f64) -> Aabb {
+    let aabb = Aabb::of_points(points);
+    if scaled_radius > 0.0 { aabb.expanded(scaled_radius) } else { aabb }
 }
 
 /// Heap bytes of a `Vec`'s buffer: capacity times element size.
@@ -228,28 +264,29 @@ pub(crate) type ForceColumns<'a> = (&'a [DVec2], &'a [f64], &'a [f64], &'a [f64]
 /// Bodies below this many per task are transformed sequentially.
 const TRANSFORM_GRAIN: usize = 512;
 
+/// The columns [`transform_range`] reads.
+struct TransformInputs<'a> {
+    ranges: &'a [VertexRange],
+    body: &'a [DVec2],
+    poses: &'a [Pose],
+    alive: &'a [bool],
+    radius: &'a [f64],
+}
+
 /// Transforms bodies `first..last`; `world` starts at body `first`'s first vertex, `aabbs` at body `first`.
-#[allow(clippy::too_many_arguments)]
-fn transform_range(
-    first: usize,
-    last: usize,
-    ranges: &[VertexRange],
-    body: &[DVec2],
-    poses: &[Pose],
-    alive: &[bool],
-    world: &mut [DVec2],
-    aabbs: &mut [Aabb],
-) {
+fn transform_range(first: usize, last: usize, inputs: &TransformInputs, world: &mut [DVec2], aabbs: &mut [Aabb]) {
+    let ranges = inputs.ranges;
     if last - first <= TRANSFORM_GRAIN {
         let offset = if first < ranges.len() { ranges[first].start as usize } else { 0 };
         for i in first..last {
-            if !alive[i] {
+            if !inputs.alive[i] {
                 continue;
             }
             let r = ranges[i].range();
             let local = r.start - offset..r.end - offset;
-            poses[i].transform_into(&body[r], &mut world[local.clone()]);
-            aabbs[i - first] = Aabb::of_points(&world[local]);
+            let pose = &inputs.poses[i];
+            pose.transform_into(&inputs.body[r], &mut world[local.clone()]);
+            aabbs[i - first] = body_aabb(&world[local], inputs.radius[i] * pose.scale);
         }
         return;
     }
@@ -258,7 +295,7 @@ fn transform_range(
     let (world_lo, world_hi) = world.split_at_mut(split);
     let (aabb_lo, aabb_hi) = aabbs.split_at_mut(mid - first);
     rayon::join(
-        || transform_range(first, mid, ranges, body, poses, alive, world_lo, aabb_lo),
-        || transform_range(mid, last, ranges, body, poses, alive, world_hi, aabb_hi),
+        || transform_range(first, mid, inputs, world_lo, aabb_lo),
+        || transform_range(mid, last, inputs, world_hi, aabb_hi),
     );
 }

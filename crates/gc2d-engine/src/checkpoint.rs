@@ -24,8 +24,8 @@
 //! program version is refused with an error naming both versions, and a truncated or corrupted file is refused by
 //! its length or checksum before a byte of it is decoded.
 
+use crate::shape::ShapeKind;
 use crate::world::World;
-use gc2d_contact::ContactLawError;
 use std::fs::File;
 use std::io::{self, BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
@@ -36,7 +36,7 @@ pub const CHECKPOINT_MAGIC: [u8; 8] = *b"GC2DCKPT";
 
 /// Version of the checkpoint layout. Bump it whenever a serialized type of the World changes; the test
 /// `checkpoint_layout_is_pinned` fails until it is bumped.
-pub const CHECKPOINT_FORMAT_VERSION: u32 = 3;
+pub const CHECKPOINT_FORMAT_VERSION: u32 = 4;
 
 /// The program version written into, and required of, every checkpoint.
 pub const PROGRAM_VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -91,12 +91,6 @@ pub enum CheckpointError {
     /// The payload decoded, but to a World that breaks the engine's invariants.
     #[error("checkpoint holds an inconsistent World: {0}")]
     Inconsistent(String),
-}
-
-impl From<ContactLawError> for CheckpointError {
-    fn from(error: ContactLawError) -> Self {
-        CheckpointError::Inconsistent(error.to_string())
-    }
 }
 
 impl World {
@@ -225,11 +219,15 @@ fn fnv1a64(bytes: &[u8]) -> u64 {
 fn check_consistency(world: &World) -> Result<(), CheckpointError> {
     crate::integrator::TimeStep::new(world.config().time_step)
         .map_err(|e| CheckpointError::Inconsistent(e.to_string()))?;
-    world.config().contact_law.validate()?;
+    world.config().interactions.validate().map_err(|e| CheckpointError::Inconsistent(e.to_string()))?;
     let b = world.bodies();
     let n = b.len();
     let columns = [
         ("alive", b.alive.len()),
+        ("shape", b.shape.len()),
+        ("radius", b.radius.len()),
+        ("material", b.material.len()),
+        ("reach", b.reach.len()),
         ("vertices", b.vertices.len()),
         ("pose", b.pose.len()),
         ("velocity", b.velocity.len()),
@@ -255,10 +253,19 @@ fn check_consistency(world: &World) -> Result<(), CheckpointError> {
     let mut next_start = 0u64;
     for (i, range) in b.vertices.iter().enumerate() {
         let (start, len) = (u64::from(range.start), u64::from(range.len));
-        if start != next_start || len < 3 || start + len > b.body_vertices.len() as u64 {
+        let points_needed = match b.shape[i] {
+            ShapeKind::Polygon => len >= 3,
+            ShapeKind::Disk | ShapeKind::InnerCircle => len == 1,
+            ShapeKind::Capsule => len == 2,
+        };
+        if start != next_start || !points_needed || start + len > b.body_vertices.len() as u64 {
             return Err(CheckpointError::Inconsistent(format!("body {i} has an invalid vertex range")));
         }
         next_start = start + len;
+    }
+    let materials = world.config().interactions.material_count();
+    if let Some(i) = b.material.iter().position(|m| m.index() >= materials) {
+        return Err(CheckpointError::Inconsistent(format!("body {i} has a material beyond the interaction table")));
     }
     if let Some((a, bb, _)) = world.pairs().find(|(a, bb, _)| !(a < bb && bb.index() < n)) {
         return Err(CheckpointError::Inconsistent(format!("pair ({}, {}) names a missing body", a.0, bb.0)));

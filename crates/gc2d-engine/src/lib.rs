@@ -10,25 +10,33 @@
 //! World through the types exported here.
 
 pub mod bodies;
+pub mod body_forces;
 pub mod broadphase;
 pub mod checkpoint;
+pub mod events;
 pub mod integrator;
+pub mod interactions;
 pub mod ledger;
 pub mod motion;
 pub mod narrowphase;
 pub mod safety;
 pub mod schedules;
+pub mod shape;
 pub mod sources;
 pub mod time_window;
 pub mod world;
 
 pub use bodies::{Bodies, BodyId, BodyKind};
+pub use body_forces::{AttachedSpring, BodyForce};
 pub use checkpoint::CheckpointError;
+pub use events::{ContactEvent, ContactEventKind, Episode};
 pub use integrator::{GearC0, Integrator};
+pub use interactions::{ContactModel, InteractionError, InteractionTable, MaterialId, MaterialPair};
 pub use ledger::EnergyLedger;
 pub use motion::WallMotion;
-pub use narrowphase::PairContact;
+pub use narrowphase::{ContactHistory, PairContact};
 pub use safety::{SafetyError, SafetyLimits};
+pub use shape::{BodyShape, BodyShapeError, MassModel, ShapeKind, shape_view};
 pub use sources::{DropHeight, DropSource};
 pub use time_window::TimeWindow;
 pub use world::{ForceAlternation, StepStats, World, WorldConfig, WorldError};

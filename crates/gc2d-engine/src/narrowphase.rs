@@ -1,19 +1,68 @@
-//! The narrowphase: for one broadphase pair, closest features (warm-started; skipped while the pair keeps touching),
-//! then the overlap and its contact chord, then the contact law (reference §2.15). Each pair writes only its own record, so all pairs run in parallel;
-//! the engine adds the forces to the bodies afterwards in pair order, which keeps results independent of threads.
+//! The narrowphase: for one broadphase pair, the contact model of the two bodies' materials, the pair query of
+//! their two shapes that model needs, then the model itself (reference §2.15). Polygon pairs under the overlap-area
+//! law keep gc2d's path: closest features (warm-started; skipped while the pair keeps touching), then the overlap
+//! and its contact chord. Each pair writes only its own record, so all pairs run in parallel; the engine adds the
+//! forces to the bodies afterwards in pair order, which keeps results independent of threads.
 
 use crate::bodies::{Bodies, BodyId, BodyKind};
-use gc2d_contact::{BodyMotion, ContactLaw, ContactState, EnergyTerms};
-use gc2d_geometry::{ContactGeometry, DVec2, FeaturePair, closest_features, contact_geometry};
+use crate::interactions::{ContactModel, InteractionTable};
+use crate::shape::ShapeKind;
+use gc2d_contact::{
+    BodyMotion, ContactLaw, ContactState, EnergyTerms, PairProperties, PenetrationGeometry, PenetrationLaw,
+    PenetrationState, reciprocal_or_zero,
+};
+use gc2d_geometry::{
+    AreaContact, DVec2, FeaturePair, ShapeView, area_contact, closest_features, contact_geometry, penetration,
+};
 use serde::{Deserialize, Serialize};
+
+/// What a contact remembers between steps, of the kind its contact model keeps. A pair's model is fixed by its two
+/// materials, so a pair keeps one kind for its life; a new pair starts as a not-touching overlap-area history, which
+/// a penetration law reads as its own not-touching default.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum ContactHistory {
+    /// The overlap-area law's history (old area, tangential spring, frozen l, m⊥, m∥).
+    OverlapArea(ContactState),
+    /// A penetration law's history (impact speed, episode damping, depth, springs).
+    Penetration(PenetrationState),
+}
+
+impl Default for ContactHistory {
+    fn default() -> Self {
+        ContactHistory::OverlapArea(ContactState::default())
+    }
+}
+
+impl ContactHistory {
+    /// The overlap-area history, or the not-touching one.
+    #[inline]
+    pub fn overlap_area(&self) -> ContactState {
+        match self {
+            ContactHistory::OverlapArea(state) => *state,
+            ContactHistory::Penetration(_) => ContactState::default(),
+        }
+    }
+
+    /// The penetration history, or the not-touching one.
+    #[inline]
+    pub fn penetration(&self) -> PenetrationState {
+        match self {
+            ContactHistory::Penetration(state) => *state,
+            ContactHistory::OverlapArea(_) => PenetrationState::default(),
+        }
+    }
+}
 
 /// Everything the World keeps about one pair of bodies whose boxes touch: the contact history and this step's result.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct PairContact {
     /// Closest features of the last closest-feature query, the warm start of the next one.
     pub warm_start: Option<FeaturePair>,
-    /// The contact law's history (old area, tangential spring, frozen l, m⊥, m∥).
-    pub state: ContactState,
+    /// The contact model's history.
+    pub state: ContactHistory,
+    /// Energy stored in the contact after this step (elastic, spring and cohesive), J: the contact term of the
+    /// energy ledger, and the opening residual if the pair ends before it is evaluated again.
+    pub stored_energy: f64,
     /// True when the bodies overlapped this step.
     pub touching: bool,
     /// Force on body `a` of the pair (body `b` receives the opposite), N.
@@ -24,7 +73,8 @@ pub struct PairContact {
     pub torque_on_b: f64,
     /// Force application point (midpoint of the contact chord), m.
     pub point: DVec2,
-    /// Overlap area as a fraction of the smaller particle's area.
+    /// How deep the bodies overlap: for the overlap-area law the overlap area as a fraction of the smaller
+    /// particle's area, for penetration laws the depth as a fraction of the smaller particle's diameter.
     pub overlap_fraction: f64,
     /// Energy stored and dissipated by the contact this step.
     pub energy: EnergyTerms,
@@ -39,36 +89,46 @@ pub struct PairContact {
     pub earlier_forces: [DVec2; 2],
 }
 
-/// The overlap of polygons `i` and `j` this step, or `None`.
+/// The overlap of polygons `i` and `j` this step, or `None` (the polygon–polygon path of the overlap-area law).
 ///
 /// A pair that touched in the last step almost always still touches, so the overlap computation itself decides; a
 /// closest-feature query first would only repeat its answer. Every other pair (approaching, or just separated) asks
 /// the warm-started closest-feature walk first (reference §4.3), which settles the common "apart" case without
 /// building an overlap polygon, and keeps the warm start fresh for the step the pair comes into contact.
 #[inline]
-fn overlap_of(vertices_i: &[DVec2], vertices_j: &[DVec2], contact: &mut PairContact) -> Option<ContactGeometry> {
+fn polygon_overlap(vertices_i: &[DVec2], vertices_j: &[DVec2], contact: &mut PairContact) -> Option<AreaContact> {
+    let as_area_contact = |g: gc2d_geometry::ContactGeometry| AreaContact {
+        area: g.area,
+        chord_length: g.chord_length,
+        point: g.point,
+        normal: g.normal,
+    };
     if contact.touching
         && let Some(overlap) = contact_geometry(vertices_i, vertices_j)
     {
         contact.passes = 0;
-        return Some(overlap);
+        return Some(as_area_contact(overlap));
     }
     let separation = closest_features(vertices_i, vertices_j, contact.warm_start);
     contact.warm_start = Some(separation.features);
     contact.passes = separation.passes;
-    if separation.distance > 0.0 || contact.touching { None } else { contact_geometry(vertices_i, vertices_j) }
+    if separation.distance > 0.0 || contact.touching {
+        None
+    } else {
+        contact_geometry(vertices_i, vertices_j).map(as_area_contact)
+    }
 }
 
 /// What a pair evaluation reads: the body store as it is after the predictor.
 pub(crate) struct PairContext<'a> {
     pub bodies: &'a Bodies,
-    pub law: &'a ContactLaw,
+    pub interactions: &'a InteractionTable,
     pub dt: f64,
 }
 
 impl PairContext<'_> {
     /// The contact law's view of body `id` at the predicted state.
-    fn motion(&self, id: BodyId) -> BodyMotion {
+    pub fn motion(&self, id: BodyId) -> BodyMotion {
         let i = id.index();
         let b = self.bodies;
         BodyMotion {
@@ -88,8 +148,84 @@ impl PairContext<'_> {
         let bodies = self.bodies;
         let wall_first = bodies.kind[a as usize] == BodyKind::Wall;
         let (i, j) = if wall_first { (BodyId(b), BodyId(a)) } else { (BodyId(a), BodyId(b)) };
-        let (vertices_i, vertices_j) = (bodies.world_vertices_of(i), bodies.world_vertices_of(j));
-        let overlap = overlap_of(vertices_i, vertices_j, contact);
+        match self.interactions.model(bodies.material[i.index()], bodies.material[j.index()]) {
+            ContactModel::OverlapArea(law) => self.evaluate_overlap_area(law, i, j, wall_first, contact),
+            ContactModel::Penetration(law) => self.evaluate_penetration(law, i, j, wall_first, contact),
+        }
+    }
+
+    /// The contact normal of the pair {a, b} (a < b) at the current poses, from j to i with i the particle when one
+    /// body is a wall, by the query the pair's model uses; with i. `None` when the bodies do not overlap. For
+    /// contact events (impact speeds at first touch), so it repeats a query the step already made, once per episode.
+    pub fn contact_normal(&self, a: u32, b: u32) -> Option<(BodyId, BodyId, DVec2)> {
+        let bodies = self.bodies;
+        let wall_first = bodies.kind[a as usize] == BodyKind::Wall;
+        let (i, j) = if wall_first { (BodyId(b), BodyId(a)) } else { (BodyId(a), BodyId(b)) };
+        let (view_i, view_j) = (bodies.shape_view(i), bodies.shape_view(j));
+        let normal = match self.interactions.model(bodies.material[i.index()], bodies.material[j.index()]) {
+            ContactModel::OverlapArea(_) => area_contact(view_i, view_j).map(|c| c.normal),
+            ContactModel::Penetration(_) => penetration(view_i, view_j).map(|p| p.normal),
+        };
+        normal.map(|n| (i, j, n))
+    }
+
+    /// A penetration law for the pair (i, j), i the particle when one body is a wall.
+    fn evaluate_penetration(
+        &self,
+        law: &PenetrationLaw,
+        i: BodyId,
+        j: BodyId,
+        wall_first: bool,
+        contact: &mut PairContact,
+    ) {
+        let bodies = self.bodies;
+        let found = penetration(bodies.shape_view(i), bodies.shape_view(j));
+        let (position_i, position_j) = (bodies.pose[i.index()].position, bodies.pose[j.index()].position);
+        let geometry = found.map_or(PenetrationGeometry::SEPARATED, |p| PenetrationGeometry {
+            depth: p.depth,
+            normal: p.normal,
+            arm_i: p.point - position_i,
+            arm_j: p.point - position_j,
+        });
+        let (motion_i, motion_j) = (self.motion(i), self.motion(j));
+        let radius_i = bodies.contact_radius(i.index());
+        let surface_radius_j = match bodies.shape_view(j) {
+            ShapeView::Disk { radius, .. } if bodies.kind[j.index()] == BodyKind::Particle => radius,
+            ShapeView::Polygon(_) if bodies.kind[j.index()] == BodyKind::Particle => bodies.contact_radius(j.index()),
+            _ => found.map_or(f64::INFINITY, |p| p.surface_radius_j),
+        };
+        let properties = pair_properties(radius_i, &motion_i, surface_radius_j, &motion_j, &geometry);
+        let previous = contact.state.penetration();
+        let response = law.evaluate(&geometry, &properties, &motion_i, &motion_j, &previous, self.dt);
+        contact.state = ContactHistory::Penetration(response.state);
+        contact.stored_energy = law.stored_energy(&properties, &response.state);
+        contact.energy = response.energy;
+        contact.touching = geometry.is_touching();
+        contact.point = if contact.touching { position_i + geometry.arm_i } else { DVec2::ZERO };
+        contact.overlap_fraction =
+            if contact.touching { geometry.depth / (2.0 * self.smaller_radius(i, j)) } else { 0.0 };
+        contact.wall_work = wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt);
+        contact.passes = 0;
+        contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
+    }
+
+    /// The overlap-area law for the pair (i, j), i the particle when one body is a wall.
+    fn evaluate_overlap_area(
+        &self,
+        law: &ContactLaw,
+        i: BodyId,
+        j: BodyId,
+        wall_first: bool,
+        contact: &mut PairContact,
+    ) {
+        let bodies = self.bodies;
+        let both_polygons =
+            bodies.shape[i.index()] == ShapeKind::Polygon && bodies.shape[j.index()] == ShapeKind::Polygon;
+        let overlap = if both_polygons {
+            polygon_overlap(bodies.world_vertices_of(i), bodies.world_vertices_of(j), contact)
+        } else {
+            area_contact(bodies.shape_view(i), bodies.shape_view(j))
+        };
         let (position_i, position_j) = (bodies.pose[i.index()].position, bodies.pose[j.index()].position);
         let geometry = overlap.map_or(gc2d_contact::ContactGeometry::SEPARATED, |g| gc2d_contact::ContactGeometry {
             area: g.area,
@@ -99,32 +235,79 @@ impl PairContext<'_> {
             arm_j: g.point - position_j,
         });
         let (motion_i, motion_j) = (self.motion(i), self.motion(j));
-        let response = self.law.evaluate(&geometry, &motion_i, &motion_j, &contact.state, self.dt);
-        contact.state = response.state;
+        let response = law.evaluate(&geometry, &motion_i, &motion_j, &contact.state.overlap_area(), self.dt);
+        contact.state = ContactHistory::OverlapArea(response.state);
+        contact.stored_energy = law.stored_energy(&response.state);
         contact.energy = response.energy;
         contact.touching = overlap.is_some();
         contact.point = overlap.map_or(DVec2::ZERO, |g| g.point);
         contact.overlap_fraction = overlap.map_or(0.0, |g| g.area / self.smaller_particle_area(i, j));
-        contact.wall_work = if motion_j.inv_mass == 0.0 {
-            let wall_point_velocity = motion_j.velocity + motion_j.angular_velocity * geometry.arm_j.perp();
-            response.force_on_i.dot(wall_point_velocity) * self.dt
-        } else {
-            0.0
-        };
-        let (sign, torque_a, torque_b) = if wall_first {
-            (-1.0, response.torque_on_j, response.torque_on_i)
-        } else {
-            (1.0, response.torque_on_i, response.torque_on_j)
-        };
-        contact.earlier_forces = [contact.force_on_a, contact.earlier_forces[0]];
-        contact.force_on_a = sign * response.force_on_i;
-        contact.torque_on_a = torque_a;
-        contact.torque_on_b = torque_b;
+        contact.wall_work = wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt);
+        contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
     }
 
     /// Area of the smaller particle of the pair at its current scale (walls do not count).
     fn smaller_particle_area(&self, i: BodyId, j: BodyId) -> f64 {
         self.bodies.overlap_reference_area(i.index()).min(self.bodies.overlap_reference_area(j.index()))
+    }
+
+    /// Contact radius of the smaller particle of the pair at its current scale (walls do not count), m.
+    fn smaller_radius(&self, i: BodyId, j: BodyId) -> f64 {
+        let radius = |id: BodyId| match self.bodies.kind[id.index()] {
+            BodyKind::Particle => self.bodies.contact_radius(id.index()),
+            BodyKind::Wall => f64::INFINITY,
+        };
+        radius(i).min(radius(j))
+    }
+}
+
+impl PairContact {
+    /// Stores this step's force and torques, expressed for body `a` of the pair (the law computed them for i, which
+    /// is `b` when `a` is a wall), and shifts the force history of the chatter diagnostic.
+    #[inline]
+    fn record_force(&mut self, wall_first: bool, force_on_i: DVec2, torque_on_i: f64, torque_on_j: f64) {
+        let (sign, torque_a, torque_b) =
+            if wall_first { (-1.0, torque_on_j, torque_on_i) } else { (1.0, torque_on_i, torque_on_j) };
+        self.earlier_forces = [self.force_on_a, self.earlier_forces[0]];
+        self.force_on_a = sign * force_on_i;
+        self.torque_on_a = torque_a;
+        self.torque_on_b = torque_b;
+    }
+}
+
+/// Work the real motion of body j, if it is a wall, does on particle i over the step through the force `force_on_i`
+/// at `arm_j` from the wall's reference point, J; 0 when j is a particle (its work is in the kinetic energy).
+#[inline]
+fn wall_work(motion_j: &BodyMotion, arm_j: DVec2, force_on_i: DVec2, dt: f64) -> f64 {
+    if motion_j.inv_mass == 0.0 {
+        let wall_point_velocity = motion_j.velocity + motion_j.angular_velocity * arm_j.perp();
+        force_on_i.dot(wall_point_velocity) * dt
+    } else {
+        0.0
+    }
+}
+
+/// The pair properties of a penetration contact between particle i of contact radius `radius_i` and body j whose
+/// outline has curvature radius `radius_j` at the contact (positive convex, negative concave, infinite flat):
+/// R* = 1/(1/R_i + 1/R_j) (a concave chamber wall makes R* larger than R_i), the masses as for two disks with
+/// the actual lever arms of the contact point.
+fn pair_properties(
+    radius_i: f64,
+    motion_i: &BodyMotion,
+    radius_j: f64,
+    motion_j: &BodyMotion,
+    geometry: &PenetrationGeometry,
+) -> PairProperties {
+    let curvature_j = if radius_j.is_finite() && radius_j != 0.0 { 1.0 / radius_j } else { 0.0 };
+    let rotational = |arm: DVec2, body: &BodyMotion| arm.length_squared() * body.inv_inertia;
+    let inv_mass = motion_i.inv_mass + motion_j.inv_mass;
+    PairProperties {
+        effective_radius: reciprocal_or_zero(1.0 / radius_i + curvature_j),
+        effective_mass: reciprocal_or_zero(inv_mass),
+        tangential_mass: reciprocal_or_zero(
+            inv_mass + rotational(geometry.arm_i, motion_i) + rotational(geometry.arm_j, motion_j),
+        ),
+        rolling_inertia: reciprocal_or_zero(motion_i.inv_inertia + motion_j.inv_inertia),
     }
 }
 
@@ -138,7 +321,7 @@ mod tests {
         let mut bodies = Bodies::default();
         let shape = square(1.0).unwrap();
         for y in [0.0, 1.0 + gap] {
-            bodies.push(BodyKind::Particle, &shape, Pose::new(DVec2::new(0.0, y), 0.0), 1.0, 1.0 / 6.0);
+            bodies.push(BodyKind::Particle, &(&shape).into(), Pose::new(DVec2::new(0.0, y), 0.0), 1.0, 1.0 / 6.0);
         }
         bodies.update_world_vertices();
         bodies
@@ -148,26 +331,26 @@ mod tests {
     /// then the overlap alone decides (`passes` = 0), with the same geometry the query would have led to.
     #[test]
     fn a_touching_pair_skips_the_closest_feature_query() {
-        let law = ContactLaw::elastic(1e7);
+        let law = InteractionTable::uniform(ContactLaw::elastic(1e7));
         let mut contact = PairContact::default();
         let apart = stacked(0.1);
-        PairContext { bodies: &apart, law: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
         assert!(!contact.touching);
         assert!(contact.passes >= 1 && contact.warm_start.is_some());
 
         let overlapping = stacked(-0.01);
-        PairContext { bodies: &overlapping, law: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
         assert!(contact.touching && contact.passes >= 1);
         let first_force = contact.force_on_a;
 
-        PairContext { bodies: &overlapping, law: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
         assert!(contact.touching);
         assert_eq!(contact.passes, 0);
         assert_eq!(contact.force_on_a, first_force, "same overlap, same elastic force");
         assert!(contact.point.x == 0.0 && (0.49..=0.5).contains(&contact.point.y), "{:?}", contact.point);
         assert!((contact.overlap_fraction - 0.01).abs() < 1e-12);
 
-        PairContext { bodies: &apart, law: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
         assert!(!contact.touching && contact.passes >= 1, "a pair that separated asks the query again");
         assert_eq!(contact.force_on_a, DVec2::ZERO);
     }

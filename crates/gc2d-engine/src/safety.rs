@@ -3,7 +3,9 @@
 
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::integrator::max_stable_time_step_elongated;
-use gc2d_geometry::contact_geometry;
+use crate::interactions::{ContactModel, InteractionTable};
+use gc2d_contact::PairProperties;
+use gc2d_geometry::area_contact;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -32,6 +34,9 @@ pub struct SafetyLimits {
     pub max_initial_overlap_fraction: f64,
     /// Run with a Δt above the stable bound anyway (for experiments on instability).
     pub allow_unsafe_time_step: bool,
+    /// The highest normal impact speed the scene expects, m/s: a Hertz contact stiffens with depth, so its stable
+    /// time step depends on how hard bodies can hit (a mill: about twice the rotor's tip speed).
+    pub max_impact_speed: f64,
 }
 
 impl Default for SafetyLimits {
@@ -42,18 +47,24 @@ impl Default for SafetyLimits {
             max_travel_fraction: 1.0,
             max_initial_overlap_fraction: INITIAL_OVERLAP_TOLERANCE,
             allow_unsafe_time_step: false,
+            max_impact_speed: DEFAULT_MAX_IMPACT_SPEED,
         }
     }
 }
 
+/// The impact speed a scene is assumed to stay below unless it says otherwise, m/s: well above the speeds of piles,
+/// silos and drums, which fall a few centimetres.
+pub const DEFAULT_MAX_IMPACT_SPEED: f64 = 10.0;
+
 /// A run that cannot start or cannot go on.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum SafetyError {
-    /// Δt above the bound (π/10)·sqrt(m/E) of eq. (2.9).
+    /// Δt above the bound of the stiffest contact model a particle meets: (π/10)·sqrt(m/E) of eq. (2.9) for the
+    /// overlap-area law, the bound of [`gc2d_contact::PenetrationLaw::max_time_step`] for penetration laws.
     #[error(
-        "time step {dt:.3e} s is above the stable bound {safe_dt:.3e} s = (π/10)·sqrt(m/E) for particle {particle} \
-         (m = π·r²·ρ with its inscribed radius r = {inscribed_radius:.3e} m, E = {e_modulus:.3e} N/m); \
-         use a time step of at most {safe_dt:.3e} s, or allow unsafe time steps explicitly"
+        "time step {dt:.3e} s is above the stable bound {safe_dt:.3e} s of particle {particle} (inscribed radius \
+         {inscribed_radius:.3e} m) against the stiffest contact model its material meets; use a time step of at most \
+         {safe_dt:.3e} s, or allow unsafe time steps explicitly"
     )]
     UnsafeTimeStep {
         /// The requested Δt, s.
@@ -64,8 +75,6 @@ pub enum SafetyError {
         particle: u32,
         /// Its inscribed radius, m.
         inscribed_radius: f64,
-        /// Young's modulus, N/m.
-        e_modulus: f64,
     },
     /// A position, velocity or kinetic energy became NaN or infinite.
     #[error(
@@ -164,26 +173,105 @@ pub enum SafetyError {
     },
 }
 
-/// The stable time step of the particles in `bodies` for Young's modulus `e_modulus`, and the particle that sets
-/// it; `None` when there are no particles.
+/// The particle whose time-step bound is the lowest, and that bound.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeStepBound {
+    /// The largest stable Δt, s.
+    pub dt: f64,
+    /// The particle that sets it.
+    pub particle: BodyId,
+}
+
+/// What the time-step bound of one particle depends on, at its current size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParticleInertia {
+    /// Radius of the largest circle about the centroid inside the particle, m.
+    pub inscribed_radius: f64,
+    /// Mass per area of its outline, kg/m² (the overlap-area law's bound uses the inscribed circle's mass).
+    pub area_density: f64,
+    /// Mass, kg.
+    pub mass: f64,
+    /// Moment of inertia, kg·m².
+    pub inertia: f64,
+    /// The radius penetration laws give it (a disk's radius, a polygon's equal-area radius), m.
+    pub contact_radius: f64,
+}
+
+/// The largest stable Δt of one particle against every contact model in `models`, s; `None` when none bounds it.
 ///
-/// gc2d-rs always uses the inscribed-circle mass m = π·r_in²·ρ (reference §3.6). For round particles it is within a
-/// few percent of the mass itself, and for elongated ones it is the bound the thesis asks for, so one rule serves all.
-pub fn stable_time_step(bodies: &Bodies, e_modulus: f64) -> Option<(f64, BodyId)> {
+/// The overlap-area law: (π/10)·sqrt(m/E) with the inscribed-circle mass m = π·r_in²·ρ (reference §3.6; for round
+/// particles within a few percent of the mass itself, for elongated ones the bound the thesis asks for). A
+/// penetration law: [`gc2d_contact::PenetrationLaw::max_time_step`] at `max_impact_speed` for the two partners that
+/// bound it, a flat wall (m* = m, R* = R) and an equal particle (m* = m/2, R* = R/2).
+pub fn particle_time_step<'m>(
+    models: impl IntoIterator<Item = &'m ContactModel>,
+    particle: &ParticleInertia,
+    max_impact_speed: f64,
+) -> Option<f64> {
+    let p = particle;
+    models
+        .into_iter()
+        .filter_map(|model| match model {
+            ContactModel::OverlapArea(law) => {
+                max_stable_time_step_elongated(p.inscribed_radius, p.area_density, law.elastic.e_modulus)
+            }
+            ContactModel::Penetration(law) => {
+                let lever = p.contact_radius * p.contact_radius / p.inertia;
+                let wall = PairProperties {
+                    effective_radius: p.contact_radius,
+                    effective_mass: p.mass,
+                    tangential_mass: 1.0 / (1.0 / p.mass + lever),
+                    rolling_inertia: p.inertia,
+                };
+                let twin = PairProperties {
+                    effective_radius: 0.5 * p.contact_radius,
+                    effective_mass: 0.5 * p.mass,
+                    tangential_mass: 0.5 / (1.0 / p.mass + lever),
+                    rolling_inertia: 0.5 * p.inertia,
+                };
+                [wall, twin].iter().filter_map(|pair| law.max_time_step(pair, max_impact_speed)).reduce(f64::min)
+            }
+        })
+        .reduce(f64::min)
+}
+
+/// The stable time step of the particles in `bodies`, each against the contact models its material can meet in
+/// `interactions` ([`particle_time_step`]); `None` when there are no particles.
+pub fn stable_time_step(
+    bodies: &Bodies,
+    interactions: &InteractionTable,
+    max_impact_speed: f64,
+) -> Option<TimeStepBound> {
+    let models = interactions.models_per_material();
     bodies
         .particles()
         .filter_map(|id| {
             let i = id.index();
-            let density = bodies.mass[i] / bodies.area[i];
-            let radius = bodies.inscribed_radius[i] * bodies.pose[i].scale;
-            max_stable_time_step_elongated(radius, density, e_modulus).map(|dt| (dt, id))
+            let scale = bodies.pose[i].scale;
+            let inertia = ParticleInertia {
+                inscribed_radius: bodies.inscribed_radius[i] * scale,
+                area_density: bodies.mass[i] / bodies.area[i],
+                mass: bodies.mass[i],
+                inertia: 1.0 / bodies.inverse_inertia[i],
+                contact_radius: bodies.contact_radius(i),
+            };
+            let models = models[bodies.material[i].index()].iter().copied();
+            particle_time_step(models, &inertia, max_impact_speed).map(|dt| TimeStepBound { dt, particle: id })
         })
-        .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+        .min_by(|x, y| x.dt.total_cmp(&y.dt).then(x.particle.cmp(&y.particle)))
 }
 
 /// Refuses `dt` above the stable bound unless `limits` allow it.
-pub fn check_time_step(bodies: &Bodies, e_modulus: f64, dt: f64, limits: &SafetyLimits) -> Result<(), SafetyError> {
-    let Some((safe_dt, particle)) = stable_time_step(bodies, e_modulus) else { return Ok(()) };
+pub fn check_time_step(
+    bodies: &Bodies,
+    interactions: &InteractionTable,
+    dt: f64,
+    limits: &SafetyLimits,
+) -> Result<(), SafetyError> {
+    let Some(TimeStepBound { dt: safe_dt, particle }) = stable_time_step(bodies, interactions, limits.max_impact_speed)
+    else {
+        return Ok(());
+    };
     if dt <= safe_dt || limits.allow_unsafe_time_step {
         return Ok(());
     }
@@ -193,7 +281,6 @@ pub fn check_time_step(bodies: &Bodies, e_modulus: f64, dt: f64, limits: &Safety
         safe_dt,
         particle: particle.0,
         inscribed_radius: bodies.inscribed_radius[i] * bodies.pose[i].scale,
-        e_modulus,
     })
 }
 
@@ -216,7 +303,8 @@ pub fn deepest_initial_overlap(bodies: &Bodies, tolerance: f64) -> Option<(BodyI
                 continue;
             }
             let (a, b) = (BodyId(i.min(j) as u32), BodyId(i.max(j) as u32));
-            let Some(geometry) = contact_geometry(bodies.world_vertices_of(a), bodies.world_vertices_of(b)) else {
+            let (particle, other) = if bodies.kind[a.index()] == BodyKind::Wall { (b, a) } else { (a, b) };
+            let Some(geometry) = area_contact(bodies.shape_view(particle), bodies.shape_view(other)) else {
                 continue;
             };
             let fraction = geometry.area / bodies.overlap_reference_area(i).min(bodies.overlap_reference_area(j));
@@ -229,11 +317,9 @@ pub fn deepest_initial_overlap(bodies: &Bodies, tolerance: f64) -> Option<(BodyI
 }
 
 /// The largest distance a point of particle `i` travels in a step of `dt` at its current velocities,
-/// (|v| + |ω|·R)·Δt with R the distance of its farthest vertex from the centroid (at the current scale).
+/// (|v| + |ω|·R)·Δt with R the distance of its farthest point from the centroid (at the current scale).
 pub fn step_travel(bodies: &Bodies, i: usize, dt: f64) -> f64 {
-    let reach_squared =
-        bodies.body_vertices[bodies.vertices[i].range()].iter().map(|v| v.length_squared()).fold(0.0, f64::max);
-    let reach = reach_squared.sqrt() * bodies.pose[i].scale;
+    let reach = bodies.reach[i] * bodies.pose[i].scale;
     (bodies.velocity[i].length() + bodies.angular_velocity[i].abs() * reach) * dt
 }
 

@@ -1,5 +1,6 @@
 //! Particle sources (gc2d's DROPSOURCE, reference §9.8): insert one particle per interval inside a time window.
 
+use crate::interactions::MaterialId;
 use crate::time_window::TimeWindow;
 use gc2d_geometry::{DVec2, ShapeRecipe};
 use serde::{Deserialize, Serialize};
@@ -30,8 +31,10 @@ pub struct DropSource {
     pub interval: f64,
     /// Shape of the inserted particles.
     pub recipe: ShapeRecipe,
-    /// Area density of the inserted particles, kg/m².
+    /// Density of the inserted particles (kg/m² or kg/m³ by the World's mass model).
     pub density: f64,
+    /// Material of the inserted particles.
+    pub material: MaterialId,
 }
 
 /// Attempts at a free spot per insertion before the insertion is skipped (and counted).

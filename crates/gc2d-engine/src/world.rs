@@ -6,16 +6,19 @@
 //! flag test, so a plain pile pays nothing for drag springs, moving walls, heating or sources.
 
 use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns};
+use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
+use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
 use crate::integrator::{BodyIntegrator, GearState, Integrator, IntegratorError, TimeStep};
+use crate::interactions::{InteractionError, InteractionTable, MaterialId};
 use crate::ledger::EnergyLedger;
 use crate::motion::WallMotion;
 use crate::narrowphase::{PairContact, PairContext};
 use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
+use crate::shape::{BodyShape, MassModel};
 use crate::sources::{DropHeight, DropSource, PLACEMENT_ATTEMPTS, SourceState};
-use gc2d_contact::{ContactLaw, ContactLawError};
-use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose, contact_geometry};
+use gc2d_geometry::{Aabb, DVec2, Pose, ShapeView, area_contact};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -30,8 +33,11 @@ pub struct WorldConfig {
     /// The integration scheme: Gear with c₀ = 3/16 by default (velocity-dependent forces), Gear with 3/20, or
     /// velocity Verlet as a second-order baseline.
     pub integrator: Integrator,
-    /// The contact law shared by all contacts (gc2d's material parameters are global).
-    pub contact_law: ContactLaw,
+    /// The contact model of every pair of materials (gc2d scenes: one material, [`InteractionTable::uniform`]).
+    pub interactions: InteractionTable,
+    /// How particle masses follow from shape and density. Default per unit thickness (gc2d).
+    #[serde(default)]
+    pub mass_model: MassModel,
     /// g(t); gravity points along −y.
     pub gravity: GravitySchedule,
     /// Global size scaling s(t), if the scene heats.
@@ -50,9 +56,9 @@ pub enum WorldError {
     /// Δt is not a usable number.
     #[error(transparent)]
     TimeStep(#[from] IntegratorError),
-    /// The contact law's parameters are out of range.
+    /// The interaction table is incomplete or a contact model's parameters are out of range.
     #[error(transparent)]
-    ContactLaw(#[from] ContactLawError),
+    Interactions(#[from] InteractionError),
     /// The run is unsafe or blew up.
     #[error(transparent)]
     Safety(#[from] SafetyError),
@@ -125,7 +131,6 @@ impl ForceAlternation {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 struct Stages {
     moving_walls: bool,
-    drag_springs: bool,
     heating: bool,
     variable_gravity: bool,
     sources: bool,
@@ -144,12 +149,15 @@ pub struct World {
     bodies: Bodies,
     broadphase: SortAndSweep<PairContact>,
     moving_walls: Vec<MovingWall>,
-    drag_springs: Vec<(BodyId, DragSpring)>,
+    /// Gravity, drag springs and any other body force, applied in this order.
+    body_forces: Vec<BodyForce>,
     sources: Vec<SourceState>,
     rng: ChaCha8Rng,
     ledger: EnergyLedger,
     stats: StepStats,
     stages: Stages,
+    /// Contact episodes and events, while an observer records them ([`Self::record_contact_events`]).
+    events: Option<ContactEventLog>,
     started: bool,
     /// How many of the forces F(n−1), F(n−2) the next step's [`Self::force_alternation`] will know: 2 in a new
     /// World, 1 after loading a checkpoint (which saves `force_on_a` but not the older history).
@@ -164,7 +172,7 @@ impl World {
     /// An empty World at t = 0. Validates Δt and the contact law.
     pub fn new(config: WorldConfig) -> Result<Self, WorldError> {
         let time_step = TimeStep::new(config.time_step)?;
-        config.contact_law.validate()?;
+        config.interactions.validate()?;
         let stages = Stages {
             heating: config.heating.is_some(),
             variable_gravity: !config.gravity.is_constant(),
@@ -180,22 +188,23 @@ impl World {
             bodies: Bodies::default(),
             broadphase: SortAndSweep::new(),
             moving_walls: Vec::new(),
-            drag_springs: Vec::new(),
+            body_forces: vec![BodyForce::Gravity],
             sources: Vec::new(),
             ledger: EnergyLedger::default(),
             stats: StepStats::default(),
             stages,
+            events: None,
             started: false,
             force_history_steps: FULL_FORCE_HISTORY,
             force_alternation: ForceAlternation::default(),
         })
     }
 
-    /// Adds a free particle of area density `density` (kg/m²) at `pose`, moving with `velocity` and
-    /// `angular_velocity` (CCW). Returns its id.
+    /// Adds a free particle of material 0 and density `density` (kg/m² or kg/m³ by the World's [`MassModel`]) at
+    /// `pose`, moving with `velocity` and `angular_velocity` (CCW). Returns its id.
     pub fn add_particle(
         &mut self,
-        shape: &ConvexPolygon,
+        shape: impl Into<BodyShape>,
         pose: Pose,
         density: f64,
         velocity: DVec2,
@@ -211,8 +220,10 @@ impl World {
         {
             return Err(WorldError::InvalidBody("particle pose and velocity must be finite numbers".into()));
         }
-        let mass = shape.mass_properties(density);
-        let id = self.bodies.push(BodyKind::Particle, shape, pose, mass.mass, mass.inertia);
+        let shape = shape.into();
+        shape.validate(true).map_err(|e| WorldError::InvalidBody(e.to_string()))?;
+        let mass = self.config.mass_model.mass_properties(&shape, density);
+        let id = self.bodies.push(BodyKind::Particle, &shape, pose, mass.mass, mass.inertia);
         let i = id.index();
         self.bodies.velocity[i] = velocity;
         self.bodies.angular_velocity[i] = angular_velocity;
@@ -240,14 +251,19 @@ impl World {
 
     /// Adds a wall (infinite mass) at `pose`. `surface_velocity` is gc2d's virtual tangential surface velocity
     /// (drums, §2.11); `motion` moves the wall (vibration, rotation, piston).
+    ///
+    /// Panics on a shape that fails [`BodyShape::validate`] (a negative radius): walls are built from validated
+    /// scenes.
     pub fn add_wall(
         &mut self,
-        shape: &ConvexPolygon,
+        shape: impl Into<BodyShape>,
         pose: Pose,
         surface_velocity: DVec2,
         motion: WallMotion,
     ) -> BodyId {
-        let id = self.bodies.push(BodyKind::Wall, shape, pose, f64::INFINITY, f64::INFINITY);
+        let shape = shape.into();
+        assert!(shape.validate(false).is_ok(), "invalid wall shape {shape:?}");
+        let id = self.bodies.push(BodyKind::Wall, &shape, pose, f64::INFINITY, f64::INFINITY);
         self.bodies.surface_velocity[id.index()] = surface_velocity;
         if !motion.is_static() {
             self.moving_walls.push(MovingWall { body: id, rest: pose, motion });
@@ -257,19 +273,46 @@ impl World {
         id
     }
 
+    /// Gives body `body` the material `material` (bodies start with material 0); the pair's contact model follows from
+    /// the two bodies' materials.
+    pub fn set_material(&mut self, body: BodyId, material: MaterialId) -> Result<(), WorldError> {
+        if material.index() >= self.config.interactions.material_count() {
+            return Err(WorldError::InvalidBody(format!(
+                "material {} is not in the interaction table, which has {} materials",
+                material.0,
+                self.config.interactions.material_count()
+            )));
+        }
+        let slot = self.bodies.material.get_mut(body.index());
+        *slot.ok_or_else(|| WorldError::InvalidBody(format!("no body {}", body.0)))? = material;
+        Ok(())
+    }
+
     /// Attaches a drag spring (reference §2.12) to a particle.
     pub fn add_drag_spring(&mut self, particle: BodyId, spring: DragSpring) -> Result<(), WorldError> {
         if self.bodies.kind.get(particle.index()) != Some(&BodyKind::Particle) {
             return Err(WorldError::InvalidBody(format!("drag spring on body {} which is not a particle", particle.0)));
         }
-        self.drag_springs.push((particle, spring));
-        self.stages.drag_springs = true;
+        let attached = AttachedSpring { particle, spring };
+        match self.body_forces.iter_mut().find_map(|f| match f {
+            BodyForce::DragSprings(springs) => Some(springs),
+            _ => None,
+        }) {
+            Some(springs) => springs.push(attached),
+            None => self.body_forces.push(BodyForce::DragSprings(vec![attached])),
+        }
         Ok(())
     }
 
     /// Adds a particle source.
     pub fn add_source(&mut self, source: DropSource) -> Result<(), WorldError> {
         source.recipe.validate().map_err(|e| WorldError::InvalidBody(format!("drop source shape: {e}")))?;
+        if source.material.index() >= self.config.interactions.material_count() {
+            return Err(WorldError::InvalidBody(format!(
+                "drop source material {} is not in the table",
+                source.material.0
+            )));
+        }
         if !(source.interval > 0.0 && source.density > 0.0 && source.width >= 0.0) {
             return Err(WorldError::InvalidBody(
                 "drop source needs a positive interval and density and a non-negative width".into(),
@@ -328,6 +371,23 @@ impl World {
         self.force_alternation
     }
 
+    /// Starts recording contact events from the next step on (see [`crate::events`]); recording costs nothing until
+    /// it is asked for. A World restored from a checkpoint of a recording run records again and keeps its open
+    /// episodes.
+    pub fn record_contact_events(&mut self) {
+        self.events.get_or_insert_with(ContactEventLog::default);
+    }
+
+    /// The contact events of the last step, in pair order; empty when not recording.
+    pub fn contact_events(&self) -> &[ContactEvent] {
+        self.events.as_ref().map_or(&[], |log| log.events())
+    }
+
+    /// The contact episodes still open (pairs touching now), with their totals so far; empty when not recording.
+    pub fn open_contact_episodes(&self) -> impl Iterator<Item = (BodyId, BodyId, &Episode)> {
+        self.events.iter().flat_map(|log| log.open()).map(|(&(a, b), episode)| (BodyId(a), BodyId(b), episode))
+    }
+
     /// Current g (magnitude; gravity points along −y).
     pub fn gravity(&self) -> f64 {
         self.config.gravity.magnitude(self.time)
@@ -340,7 +400,8 @@ impl World {
         self.bodies.heap_bytes()
             + self.broadphase.heap_bytes()
             + crate::bodies::vec_bytes(&self.moving_walls)
-            + crate::bodies::vec_bytes(&self.drag_springs)
+            + crate::bodies::vec_bytes(&self.body_forces)
+            + self.body_forces.iter().map(BodyForce::heap_bytes).sum::<usize>()
             + crate::bodies::vec_bytes(&self.sources)
     }
 
@@ -354,19 +415,16 @@ impl World {
         self.pairs().filter(|(_, _, c)| c.touching)
     }
 
-    /// The largest stable Δt of the particles now in the World, (π/10)·sqrt(m/E) with the inscribed-circle mass.
+    /// The largest stable Δt of the particles now in the World, each against the stiffest contact model its material
+    /// meets ([`safety::particle_time_step`]).
     pub fn stable_time_step(&self) -> Option<f64> {
-        safety::stable_time_step(&self.bodies, self.config.contact_law.elastic.e_modulus).map(|(dt, _)| dt)
+        safety::stable_time_step(&self.bodies, &self.config.interactions, self.config.safety.max_impact_speed)
+            .map(|bound| bound.dt)
     }
 
     /// Checks Δt against the stable bound (refused unless the safety limits allow it).
     pub fn check_time_step(&self) -> Result<(), SafetyError> {
-        safety::check_time_step(
-            &self.bodies,
-            self.config.contact_law.elastic.e_modulus,
-            self.config.time_step,
-            &self.config.safety,
-        )
+        safety::check_time_step(&self.bodies, &self.config.interactions, self.config.time_step, &self.config.safety)
     }
 
     /// Advances by one Δt. The first call checks the time step, refuses bodies that already overlap, and opens the
@@ -389,9 +447,12 @@ impl World {
         self.predict(t_next);
         self.bodies.update_world_vertices();
         self.broadphase.update(&self.bodies.aabb);
-        self.close_ended_pairs();
+        self.close_ended_pairs(t_next);
         self.evaluate_pairs();
         self.accumulate_contact_forces();
+        if self.events.is_some() {
+            self.log_contact_events(t_next);
+        }
         self.apply_body_forces(t_next);
         self.correct();
         if self.stages.moving_walls {
@@ -465,17 +526,62 @@ impl World {
         }
     }
 
-    /// Contacts whose boxes separated in one step may still have held energy: book it as opening residual.
-    fn close_ended_pairs(&mut self) {
-        let law = &self.config.contact_law;
+    /// Contacts whose boxes separated in one step may still have held energy: book it as opening residual. Their
+    /// open episodes end at `time`.
+    fn close_ended_pairs(&mut self, time: f64) {
+        if let Some(log) = &mut self.events {
+            log.start_step();
+        }
         for ended in self.broadphase.ended_pairs() {
-            self.ledger.opening_residual += law.stored_energy(&ended.payload.state);
+            self.ledger.opening_residual += ended.payload.stored_energy;
+            if let Some(log) = &mut self.events {
+                let (a, b) = (BodyId(ended.a()), BodyId(ended.b()));
+                let materials = [self.bodies.material[a.index()], self.bodies.material[b.index()]];
+                log.end(a, b, materials, time, wall_pivot(&self.moving_walls, &self.bodies, a, b));
+            }
+        }
+    }
+
+    /// Writes the step's contact events and adds the step to the open episodes, in pair order (see
+    /// [`crate::events`]). At first touch the impact speeds are those of the contact points along and across the
+    /// contact normal, at the predicted state the contact law saw.
+    fn log_contact_events(&mut self, time: f64) {
+        let Some(log) = &mut self.events else { return };
+        let context =
+            PairContext { bodies: &self.bodies, interactions: &self.config.interactions, dt: self.config.time_step };
+        let b = &self.bodies;
+        for pair in self.broadphase.pairs() {
+            let c = &pair.payload;
+            let (a, bb) = (BodyId(pair.a()), BodyId(pair.b()));
+            let open = log.is_open(a, bb);
+            if !c.touching && !open {
+                continue;
+            }
+            let step = PairStep {
+                a,
+                b: bb,
+                materials: [b.material[a.index()], b.material[bb.index()]],
+                touching: c.touching,
+                force_on_a: c.force_on_a,
+                point: c.point,
+                overlap_fraction: c.overlap_fraction,
+                dissipated: c.energy.dissipation(),
+            };
+            if c.touching && !open {
+                let (normal_speed, tangential_speed) = impact_speeds(&context, pair.a(), pair.b(), c.point);
+                log.begin(&step, time, normal_speed, tangential_speed);
+            }
+            log.accumulate(&step, self.config.time_step);
+            if !c.touching {
+                log.end(a, bb, step.materials, time, wall_pivot(&self.moving_walls, b, a, bb));
+            }
         }
     }
 
     /// Narrowphase and contact law for every pair, in parallel; each pair writes only its own record.
     fn evaluate_pairs(&mut self) {
-        let context = PairContext { bodies: &self.bodies, law: &self.config.contact_law, dt: self.config.time_step };
+        let context =
+            PairContext { bodies: &self.bodies, interactions: &self.config.interactions, dt: self.config.time_step };
         let evaluate = |pair: &mut PairEntry<PairContact>| context.evaluate(pair.a(), pair.b(), &mut pair.payload);
         if self.bodies.len() >= PARALLEL_MIN_BODIES {
             self.broadphase.pairs_mut().par_iter_mut().for_each(evaluate);
@@ -496,12 +602,11 @@ impl World {
         stats.max_overlap_fraction = 0.0;
         stats.multi_pass_queries = 0;
         let ledger = &mut self.ledger;
-        let law = &self.config.contact_law;
         let mut contact_stored = 0.0;
         let (mut alternation, mut force_scale) = (0.0, 0.0);
         for pair in self.broadphase.pairs() {
             let c = &pair.payload;
-            contact_stored += law.stored_energy(&c.state);
+            contact_stored += c.stored_energy;
             let [previous, before_previous] = c.earlier_forces;
             alternation += (c.force_on_a - 2.0 * previous + before_previous).length();
             force_scale += c.force_on_a.length() + previous.length();
@@ -533,27 +638,15 @@ impl World {
         self.force_history_steps = (self.force_history_steps + 1).min(FULL_FORCE_HISTORY);
     }
 
-    /// Gravity and drag springs.
+    /// The body forces, in list order, each booking its work in the ledger.
     fn apply_body_forces(&mut self, t_next: f64) {
-        let g = self.config.gravity.acceleration(t_next);
-        let b = &mut self.bodies;
-        for i in 0..b.len() {
-            if b.kind[i] == BodyKind::Particle && b.alive[i] {
-                b.force[i] += b.mass[i] * g;
-            }
-        }
-        if self.stages.drag_springs {
-            let dt = self.config.time_step;
-            for (id, spring) in &self.drag_springs {
-                let i = id.index();
-                if !b.alive[i] {
-                    continue;
-                }
-                let (force, torque) = spring.force_and_torque(b.pose[i], t_next);
-                b.force[i] += force;
-                b.torque[i] += torque;
-                self.ledger.work_drag += spring.driving_power(b.pose[i], t_next) * dt;
-            }
+        let step = BodyForceStep {
+            gravity: self.config.gravity.acceleration(t_next),
+            time: t_next,
+            dt: self.config.time_step,
+        };
+        for force in &self.body_forces {
+            force.apply(&mut self.bodies, &step, &mut self.ledger);
         }
     }
 
@@ -659,21 +752,21 @@ impl World {
             let x = source.position.x + if half > 0.0 { self.rng.random_range(-half..=half) } else { 0.0 };
             let pose = Pose { position: DVec2::new(x, y), angle, scale };
             pose.transform_into(shape.vertices(), world);
-            if !self.overlaps_any(world) {
-                return self.add_particle(&shape, pose, source.density, DVec2::ZERO, 0.0).ok();
+            if !self.overlaps_any(ShapeView::Polygon(world)) {
+                let id = self.add_particle(&shape, pose, source.density, DVec2::ZERO, 0.0).ok()?;
+                self.bodies.material[id.index()] = source.material;
+                return Some(id);
             }
         }
         None
     }
 
-    /// True when the polygon `world` overlaps any living body.
-    fn overlaps_any(&self, world: &[DVec2]) -> bool {
-        let aabb = Aabb::of_points(world);
+    /// True when the particle outline `shape` (world frame) overlaps any living body.
+    fn overlaps_any(&self, shape: ShapeView) -> bool {
+        let aabb = shape.aabb();
         let b = &self.bodies;
         (0..b.len()).any(|i| {
-            b.alive[i]
-                && b.aabb[i].overlaps(&aabb)
-                && contact_geometry(world, b.world_vertices_of(BodyId(i as u32))).is_some()
+            b.alive[i] && b.aabb[i].overlaps(&aabb) && area_contact(shape, b.shape_view(BodyId(i as u32))).is_some()
         })
     }
 
@@ -700,12 +793,7 @@ impl World {
                 potential += b.mass[i] * g * pose.position.y;
             }
         }
-        let drag_stored: f64 = self
-            .drag_springs
-            .iter()
-            .filter(|(id, _)| b.alive[id.index()])
-            .map(|(id, s)| s.stored_energy(b.pose[id.index()], self.time))
-            .sum();
+        let drag_stored: f64 = self.body_forces.iter().map(|f| f.stored_energy(b, self.time)).sum();
         let l = &mut self.ledger;
         l.kinetic_translational = translational;
         l.kinetic_rotational = rotational;
@@ -717,8 +805,7 @@ impl World {
 
     /// Energy stored in the contacts of the current pair list, J.
     fn contact_stored_energy(&self) -> f64 {
-        let law = &self.config.contact_law;
-        self.broadphase.pairs().iter().map(|p| law.stored_energy(&p.payload.state)).sum()
+        self.broadphase.pairs().iter().map(|p| p.payload.stored_energy).sum()
     }
 
     /// Stops the run on NaN (`finite` is false when some living body's state is not finite), on a tunnelling
@@ -792,6 +879,32 @@ impl World {
             })
         })
     }
+}
+
+/// The normal approach speed and the tangential speed of the contact points of pair {a, b} at `point`, m/s, at the
+/// state `context` sees; zeros when the pair's query finds no overlap.
+fn impact_speeds(context: &PairContext, a: u32, b: u32, point: DVec2) -> (f64, f64) {
+    let Some((i, j, normal)) = context.contact_normal(a, b) else { return (0.0, 0.0) };
+    let bodies = context.bodies;
+    let at = |id: BodyId| {
+        let motion = context.motion(id);
+        motion.velocity + motion.angular_velocity * (point - bodies.pose[id.index()].position).perp()
+    };
+    let relative = at(i) - at(j);
+    (-relative.dot(normal), relative.dot(normal.perp()).abs())
+}
+
+/// Which body of pair {a, b} is a wall turning about a pivot, and the pivot: `(true, P)` for a, `(false, P)` for b.
+fn wall_pivot(moving_walls: &[MovingWall], bodies: &Bodies, a: BodyId, b: BodyId) -> Option<(bool, DVec2)> {
+    [(a, true), (b, false)].into_iter().find_map(|(id, is_a)| {
+        if bodies.kind[id.index()] != BodyKind::Wall {
+            return None;
+        }
+        moving_walls.iter().find(|w| w.body == id).and_then(|w| match &w.motion {
+            WallMotion::Rotating(rotation) => Some((is_a, rotation.pivot)),
+            _ => None,
+        })
+    })
 }
 
 /// Steps of contact-force history the force-alternation diagnostic needs (F(n−1) and F(n−2)).

@@ -119,8 +119,8 @@ fn stiff_particles_are_refused_at_the_time_step_of_soft_ones() {
         let error = world.step().expect_err("the soft Δt must be refused for a stiff material");
         let safe = bound(r, e);
         match &error {
-            WorldError::Safety(SafetyError::UnsafeTimeStep { dt, safe_dt, particle, e_modulus, .. }) => {
-                assert_eq!((*dt, *particle, *e_modulus), (soft_dt, 0, e));
+            WorldError::Safety(SafetyError::UnsafeTimeStep { dt, safe_dt, particle, inscribed_radius }) => {
+                assert_eq!((*dt, *particle, *inscribed_radius), (soft_dt, 0, r));
                 assert!((safe_dt - safe).abs() < 1e-12 * safe, "bound {safe_dt:e}, expected {safe:e}");
             }
             other => panic!("E = {e:e}: expected UnsafeTimeStep, got {other:?}"),
@@ -516,7 +516,7 @@ fn fired_at_a_wall(speed: f64, thickness: f64, dt: f64, configure: impl FnOnce(&
     let mut world = world(config);
     add_static_wall(&mut world, &rectangle(thickness, 0.1).unwrap(), Pose::new(DVec2::ZERO, 0.0));
     let start = Pose::new(DVec2::new(-0.5 * thickness - 0.0051, 0.0), 0.0);
-    let p = world.add_particle(&square(0.01).unwrap(), start, RHO_THESIS, DVec2::new(speed, 0.0), 0.0).unwrap();
+    let p = world.add_particle(square(0.01).unwrap(), start, RHO_THESIS, DVec2::new(speed, 0.0), 0.0).unwrap();
     (world, p)
 }
 
@@ -588,7 +588,7 @@ fn dense_block(spacing: f64) -> World {
     for i in 0..4 {
         for j in 0..4 {
             let pose = Pose::new(DVec2::new(i as f64, j as f64) * spacing * side, 0.0);
-            world.add_particle(&square(side).unwrap(), pose, RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+            world.add_particle(square(side).unwrap(), pose, RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
         }
     }
     world

@@ -5,7 +5,7 @@ mod common;
 
 use common::*;
 use gc2d_engine::integrator::max_stable_time_step_elongated;
-use gc2d_engine::{SafetyError, World, WorldError};
+use gc2d_engine::{MaterialId, SafetyError, World, WorldError};
 use gc2d_geometry::{DVec2, Pose, rectangle, square};
 
 const SIDE: f64 = 0.01;
@@ -19,7 +19,7 @@ fn falling_square(dt: f64, allow_unsafe: bool) -> World {
     let mut config = config(dt, law(E_THESIS, 0.5, 0.5), G);
     config.safety.allow_unsafe_time_step = allow_unsafe;
     let mut world = world(config);
-    world.add_particle(&square(SIDE).unwrap(), Pose::new(DVec2::ZERO, 0.0), RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+    world.add_particle(square(SIDE).unwrap(), Pose::new(DVec2::ZERO, 0.0), RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
     world
 }
 
@@ -59,7 +59,7 @@ fn tunnelling_into_a_thin_wall_stops_with_the_time_bodies_and_a_time_step() {
     let mut world = world(config);
     let wall = add_static_wall(&mut world, &rectangle(0.002, 0.1).unwrap(), Pose::new(DVec2::ZERO, 0.0));
     let start = Pose::new(DVec2::new(-0.008, 0.0), 0.0);
-    let particle = world.add_particle(&square(SIDE).unwrap(), start, RHO_THESIS, DVec2::new(10.0, 0.0), 0.0).unwrap();
+    let particle = world.add_particle(square(SIDE).unwrap(), start, RHO_THESIS, DVec2::new(10.0, 0.0), 0.0).unwrap();
     let error = world.run_until(1.0).expect_err("the tunnelling must stop the run");
     let suggested = 0.5 * safe_time_step();
     match &error {
@@ -107,7 +107,7 @@ fn non_finite_numbers_never_pass_silently() {
     // A speed whose kinetic energy overflows.
     let mut world = common::world(relaxed.clone());
     world
-        .add_particle(&square(SIDE).unwrap(), Pose::new(DVec2::ZERO, 0.0), RHO_THESIS, DVec2::new(1e160, 0.0), 0.0)
+        .add_particle(square(SIDE).unwrap(), Pose::new(DVec2::ZERO, 0.0), RHO_THESIS, DVec2::new(1e160, 0.0), 0.0)
         .unwrap();
     let error = run_checking_finiteness(&mut world, 3).expect("an infinite kinetic energy must stop the run");
     assert!(matches!(error, WorldError::Safety(SafetyError::NotFinite { body: 0, .. })), "{error:?}");
@@ -116,7 +116,7 @@ fn non_finite_numbers_never_pass_silently() {
     let mut world = common::world(relaxed.clone());
     world
         .add_particle(
-            &square(SIDE).unwrap(),
+            square(SIDE).unwrap(),
             Pose::new(DVec2::new(1.7e308, 0.0), 0.0),
             RHO_THESIS,
             DVec2::new(1e308, 0.0),
@@ -168,6 +168,7 @@ fn a_source_inserting_a_particle_too_small_for_the_time_step_stops_the_run() {
                 rotation_randomization: Randomization::Const,
             },
             density: RHO_THESIS,
+            material: MaterialId::default(),
         })
         .unwrap();
     match world.step() {

@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use gc2d_engine::{DropHeight, DropSource, TimeWindow, World};
+use gc2d_engine::{DropHeight, DropSource, MaterialId, TimeWindow, World};
 use gc2d_geometry::{AngleMode, DVec2, Pose, Randomization, ShapeRecipe, contact_geometry, rectangle};
 
 const DT: f64 = 5e-6;
@@ -25,7 +25,16 @@ fn recipe() -> ShapeRecipe {
 }
 
 fn source(position: DVec2, width: f64, height: DropHeight, window: TimeWindow, interval: f64) -> DropSource {
-    DropSource { position, width, height, window, interval, recipe: recipe(), density: RHO_THESIS }
+    DropSource {
+        position,
+        width,
+        height,
+        window,
+        interval,
+        recipe: recipe(),
+        density: RHO_THESIS,
+        material: MaterialId::default(),
+    }
 }
 
 /// World vertices of body `i` at its current pose (the World's own copy is at the last predicted pose).

@@ -4,6 +4,7 @@
 use crate::RecordError;
 use crate::colour::{Rgba, WALL_GREY, force_colour};
 use crate::network::{ContactForce, collect_contact_forces, contact_segments, line_width};
+use crate::outline::{DrawnOutline, drawn_outline};
 use crate::quantities::{ColourBy, ColourRange, ParticleColours, mean_inscribed_radius};
 use crate::recorder::DEFAULT_FORCE_WIDTH_RADII;
 use gc2d_engine::{BodyId, BodyKind, World};
@@ -88,14 +89,14 @@ fn render(world: &World, options: &PngOptions) -> Result<Pixmap, RecordError> {
 
     let bodies = world.bodies();
     for i in (0..bodies.len()).filter(|&i| bodies.alive[i] && bodies.kind[i] == BodyKind::Wall) {
-        draw_polygon(&mut pixmap, &canvas, bodies.world_vertices_of(BodyId(i as u32)), WALL_GREY);
+        draw_outline(&mut pixmap, &canvas, &drawn_outline(bodies, BodyId(i as u32)), WALL_GREY);
     }
     let mut forces: Vec<ContactForce> = Vec::new();
     let max_force = collect_contact_forces(world, &mut forces);
     let mut colours = ParticleColours::default();
     colours.update(world, options.colour_by, options.colour_range, &forces);
     for id in bodies.particles() {
-        draw_polygon(&mut pixmap, &canvas, bodies.world_vertices_of(id), colours.colours[id.index()]);
+        draw_outline(&mut pixmap, &canvas, &drawn_outline(bodies, id), colours.colours[id.index()]);
     }
     if options.force_network {
         let max_width = options
@@ -115,18 +116,24 @@ fn body_bounds(world: &World) -> Option<Aabb> {
     Some(bounds.expanded(0.02 * (bounds.max - bounds.min).max_element()))
 }
 
-/// A filled polygon with a darker one-pixel outline.
-fn draw_polygon(pixmap: &mut Pixmap, canvas: &Canvas, vertices: &[DVec2], fill: Rgba) {
+/// A filled outline (a ring: the band between its circles) with a darker one-pixel edge.
+fn draw_outline(pixmap: &mut Pixmap, canvas: &Canvas, outline: &DrawnOutline, fill: Rgba) {
     let mut builder = PathBuilder::new();
-    for (k, &v) in vertices.iter().enumerate() {
-        let (x, y) = canvas.pixel(v);
-        if k == 0 { builder.move_to(x, y) } else { builder.line_to(x, y) }
+    let loops: Vec<&[DVec2]> = match outline {
+        DrawnOutline::Convex(vertices) => vec![vertices.as_ref()],
+        DrawnOutline::Ring { inner, outer } => vec![inner.as_slice(), outer.as_slice()],
+    };
+    for vertices in loops {
+        for (k, &v) in vertices.iter().enumerate() {
+            let (x, y) = canvas.pixel(v);
+            if k == 0 { builder.move_to(x, y) } else { builder.line_to(x, y) }
+        }
+        builder.close();
     }
-    builder.close();
     let Some(path) = builder.finish() else { return };
     let mut paint = Paint::default();
     paint.set_color(skia_colour(fill));
-    pixmap.fill_path(&path, &paint, FillRule::Winding, Transform::identity(), None);
+    pixmap.fill_path(&path, &paint, FillRule::EvenOdd, Transform::identity(), None);
     paint.set_color(skia_colour(fill.darkened(0.55)));
     let stroke = Stroke { width: 1.0, ..Stroke::default() };
     pixmap.stroke_path(&path, &paint, &stroke, Transform::identity(), None);

@@ -126,12 +126,23 @@ pub fn contact_pressures(world: &World, forces: &[ContactForce], out: &mut Vec<f
         out[f.b.index()] += f.magnitude;
     }
     for (i, p) in out.iter_mut().enumerate() {
-        let perimeter = perimeter(bodies.world_vertices_of(gc2d_engine::BodyId(i as u32)));
+        let perimeter = body_perimeter(bodies, gc2d_engine::BodyId(i as u32));
         *p = if bodies.kind[i] == BodyKind::Particle && bodies.alive[i] && perimeter > 0.0 {
             *p / perimeter
         } else {
             0.0
         };
+    }
+}
+
+/// Length of body `id`'s outline at its current pose and scale, m.
+fn body_perimeter(bodies: &gc2d_engine::Bodies, id: gc2d_engine::BodyId) -> f64 {
+    match bodies.shape_view(id) {
+        gc2d_geometry::ShapeView::Polygon(vertices) => perimeter(vertices),
+        gc2d_geometry::ShapeView::Disk { radius, .. } | gc2d_geometry::ShapeView::InnerCircle { radius, .. } => {
+            std::f64::consts::TAU * radius
+        }
+        gc2d_geometry::ShapeView::Capsule { a, b, radius } => std::f64::consts::TAU * radius + 2.0 * a.distance(b),
     }
 }
 

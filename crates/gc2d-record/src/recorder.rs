@@ -287,7 +287,9 @@ fn world_metadata(world: &World) -> BTreeMap<String, String> {
     let mut m = BTreeMap::new();
     m.insert("time_step".into(), world.time_step().to_string());
     m.insert("seed".into(), world.config().seed.to_string());
-    m.insert("e_modulus".into(), world.config().contact_law.elastic.e_modulus.to_string());
+    let moduli =
+        world.config().interactions.models().iter().filter_map(|m| m.overlap_area()).map(|l| l.elastic.e_modulus);
+    m.insert("e_modulus".into(), moduli.fold(0.0, f64::max).to_string());
     m.insert("bodies".into(), world.bodies().len().to_string());
     m
 }

@@ -6,6 +6,7 @@
 
 use crate::colour::{Rgba, WALL_GREY, force_colour};
 use crate::network::{ContactForce, contact_segments, line_width};
+use crate::outline::{DrawnOutline, drawn_outline};
 use foxglove::schemas::{
     Color, LinePrimitive, Point3, Pose, Quaternion, SceneEntity, SceneEntityDeletion, SceneUpdate, Timestamp,
     TriangleListPrimitive, Vector3, line_primitive, scene_entity_deletion,
@@ -56,29 +57,40 @@ impl SceneStyle {
         SceneUpdate { deletions: vec![clear], entities }
     }
 
-    /// One body as a filled polygon (fan triangulation) with a thin outline.
-    fn polygon_entity(&self, id: String, vertices: &[DVec2], fill: Rgba, fill_layer: Layer) -> SceneEntity {
+    /// One body as a filled shape with a thin outline: a convex outline as a fan of triangles, a ring (an inner
+    /// circle's wall) as the band of triangles between its two circles.
+    fn body_entity(&self, id: String, outline: &DrawnOutline, fill: Rgba, fill_layer: Layer) -> SceneEntity {
         let fill_z = self.z(fill_layer);
         let outline_z = self.z(if matches!(fill_layer, Layer::Walls) { Layer::Fills } else { Layer::Outlines });
-        let points: Vec<Point3> = vertices.iter().map(|&v| point(v)).collect();
         let mut entity = self.entity(id);
+        let (points, indices, loops): (Vec<Point3>, Vec<u32>, Vec<&[DVec2]>) = match outline {
+            DrawnOutline::Convex(vertices) => {
+                (vertices.iter().map(|&v| point(v)).collect(), fan_indices(vertices.len()), vec![vertices.as_ref()])
+            }
+            DrawnOutline::Ring { inner, outer } => {
+                let points = inner.iter().chain(outer).map(|&v| point(v)).collect();
+                (points, band_indices(inner.len()), vec![inner.as_slice(), outer.as_slice()])
+            }
+        };
         entity.triangles.push(TriangleListPrimitive {
             pose: Some(lifted_pose(fill_z)),
-            points: points.clone(),
+            points,
             color: Some(color(fill)),
             colors: Vec::new(),
-            indices: fan_indices(vertices.len()),
+            indices,
         });
-        entity.lines.push(LinePrimitive {
-            r#type: line_primitive::Type::LineLoop as i32,
-            pose: Some(lifted_pose(outline_z)),
-            thickness: OUTLINE_PIXELS,
-            scale_invariant: true,
-            points,
-            color: Some(color(fill.darkened(0.55))),
-            colors: Vec::new(),
-            indices: Vec::new(),
-        });
+        for outline_points in loops {
+            entity.lines.push(LinePrimitive {
+                r#type: line_primitive::Type::LineLoop as i32,
+                pose: Some(lifted_pose(outline_z)),
+                thickness: OUTLINE_PIXELS,
+                scale_invariant: true,
+                points: outline_points.iter().map(|&v| point(v)).collect(),
+                color: Some(color(fill.darkened(0.55))),
+                colors: Vec::new(),
+                indices: Vec::new(),
+            });
+        }
         entity
     }
 }
@@ -89,7 +101,7 @@ pub(crate) fn particles_update(world: &World, colours: &[Rgba], style: &SceneSty
     let entities = bodies
         .particles()
         .map(|id| {
-            style.polygon_entity(format!("p{}", id.0), bodies.world_vertices_of(id), colours[id.index()], Layer::Fills)
+            style.body_entity(format!("p{}", id.0), &drawn_outline(bodies, id), colours[id.index()], Layer::Fills)
         })
         .collect();
     style.replacing_all(entities)
@@ -102,7 +114,7 @@ pub(crate) fn walls_update(world: &World, style: &SceneStyle) -> SceneUpdate {
         .filter(|&i| bodies.kind[i] == BodyKind::Wall && bodies.alive[i])
         .map(|i| {
             let id = BodyId(i as u32);
-            style.polygon_entity(format!("w{i}"), bodies.world_vertices_of(id), WALL_GREY, Layer::Walls)
+            style.body_entity(format!("w{i}"), &drawn_outline(bodies, id), WALL_GREY, Layer::Walls)
         })
         .collect();
     style.replacing_all(entities)
@@ -144,6 +156,18 @@ pub(crate) fn contacts_update(
         });
     }
     style.replacing_all(vec![entity])
+}
+
+/// Triangle indices of the band between two closed loops of `n` points each, stored one after the other (inner
+/// then outer): two triangles per corner.
+pub(crate) fn band_indices(n: usize) -> Vec<u32> {
+    let n32 = n as u32;
+    (0..n32)
+        .flat_map(|k| {
+            let next = (k + 1) % n32;
+            [k, n32 + k, n32 + next, k, n32 + next, next]
+        })
+        .collect()
 }
 
 /// Indices of a fan triangulation of a convex polygon with `n` vertices: (0, k, k+1) for k = 1 … n−2.

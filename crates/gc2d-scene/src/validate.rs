@@ -1,11 +1,11 @@
-//! Semantic checks after parsing: value ranges, material names and the one-contact-law rule, shapes and wall macros.
+//! Semantic checks after parsing: value ranges, material names and the interaction table, shapes and wall macros.
 //! Every problem is reported with its field path; all found in one pass are returned together.
 
 use crate::build::blocks::{Lattice, MAX_INITIAL_PARTICLES};
 use crate::build::{shapes, walls};
 use crate::checks::{finite, finite_pair, non_negative, ordered_range, positive, window};
 use crate::error::{SceneError, suggest};
-use crate::schema::{Area, Gravity, Material, Particle, Scene, Source, defaults};
+use crate::schema::{Area, Gravity, InteractionLaw, MassModel, Material, Particle, Scene, Source, defaults};
 use crate::spans::field_path;
 use gc2d_contact::{Cohesion, ContactLaw, CundallStrack, NormalDamping, NormalElastic};
 use rand::SeedableRng;
@@ -24,9 +24,29 @@ impl<'a> Materials<'a> {
         }
     }
 
-    /// The first material, which also carries the scene's contact law.
+    /// The first material: the material of bodies that name none.
     pub fn first(&self) -> &Material {
         &self.0[0]
+    }
+
+    /// All materials, in scene order (their index is the engine's material id).
+    pub fn all(&self) -> &[Material] {
+        &self.0
+    }
+
+    /// The density of `material` in the unit `mass_model` reads: `density_kg_m2` or `density_kg_m3` (whose
+    /// presence validation checks).
+    pub fn density(material: &Material, mass_model: MassModel) -> f64 {
+        match mass_model {
+            MassModel::PerUnitThickness => material.density_kg_m2,
+            MassModel::SphereEquivalent => material.density_kg_m3.unwrap_or(f64::NAN),
+        }
+    }
+
+    /// The index of the material `name` refers to (the first when `None`), or an error as [`Self::resolve`] gives.
+    pub fn index_of(&self, name: Option<&str>, path: &str) -> Result<usize, SceneError> {
+        let material = self.resolve(name, path)?;
+        Ok(self.0.iter().position(|m| std::ptr::eq(m, material)).unwrap_or(0))
     }
 
     /// The names, in order.
@@ -51,14 +71,15 @@ impl<'a> Materials<'a> {
     }
 }
 
-/// The contact law of a material: E always, damping, friction and cohesion only where their coefficient is
-/// positive (a zero sub-model is left out and costs nothing).
-pub(crate) fn contact_law(material: &Material) -> ContactLaw {
+/// The overlap-area law of a pair of materials whose parameters are `youngs_modulus_n_m`, `gamma`, `mu` and
+/// `cohesion_n_m`: E always, damping, friction and cohesion only where their coefficient is positive (a zero
+/// sub-model is left out and costs nothing).
+pub(crate) fn overlap_area_law(youngs_modulus_n_m: f64, gamma: f64, mu: f64, cohesion_n_m: f64) -> ContactLaw {
     ContactLaw {
-        elastic: NormalElastic { e_modulus: material.youngs_modulus_n_m },
-        damping: (material.gamma > 0.0).then_some(NormalDamping { gamma: material.gamma }),
-        friction: (material.mu > 0.0).then_some(CundallStrack { mu: material.mu }),
-        cohesion: (material.cohesion_n_m > 0.0).then_some(Cohesion { k_coh: material.cohesion_n_m }),
+        elastic: NormalElastic { e_modulus: youngs_modulus_n_m },
+        damping: (gamma > 0.0).then_some(NormalDamping { gamma }),
+        friction: (mu > 0.0).then_some(CundallStrack { mu }),
+        cohesion: (cohesion_n_m > 0.0).then_some(Cohesion { k_coh: cohesion_n_m }),
     }
 }
 
@@ -72,6 +93,7 @@ impl Scene {
         check_gravity_and_heating(self, &mut errors);
         check_materials(self, &mut errors);
         let materials = Materials::of(self);
+        check_interactions(self, &materials, &mut errors);
         let mut rng = ChaCha8Rng::seed_from_u64(self.run.seed);
         for (i, item) in self.walls.iter().enumerate() {
             collect(&mut errors, walls::expand(item, &format!("walls[{i}]"), &mut rng).map(drop));
@@ -150,6 +172,7 @@ fn check_run(scene: &Scene, errors: &mut Vec<SceneError>) {
     }
     collect(errors, positive("run.max_overlap_fraction", run.max_overlap_fraction).map(drop));
     collect(errors, positive("run.max_energy_gain_fraction", run.max_energy_gain_fraction).map(drop));
+    collect(errors, positive("run.max_impact_speed_m_s", run.max_impact_speed_m_s).map(drop));
 }
 
 fn check_area(area: &Area, path: &str, errors: &mut Vec<SceneError>) {
@@ -182,8 +205,16 @@ fn check_gravity_and_heating(scene: &Scene, errors: &mut Vec<SceneError>) {
     }
 }
 
-/// Ranges of each material, unique names, and one contact law for all (the engine has a single global law).
+/// Ranges of each material and unique names.
 fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
+    if scene.materials.is_empty() && scene.mass_model == MassModel::SphereEquivalent {
+        errors.push(
+            SceneError::value("mass_model", "the SphereEquivalent mass model needs materials with `density_kg_m3`")
+                .with_help(
+                    "declare the scene's materials, e.g. `materials: [(name: \"steel\", density_kg_m3: 7850.0)]`",
+                ),
+        );
+    }
     for (i, material) in scene.materials.iter().enumerate() {
         let at = |field: &str| format!("materials[{i}].{field}");
         if material.name.is_empty() {
@@ -192,6 +223,30 @@ fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
             errors.push(SceneError::value(at("name"), format!("material `{}` is defined twice", material.name)));
         }
         collect(errors, positive(&at("density_kg_m2"), material.density_kg_m2).map(drop));
+        match (scene.mass_model, material.density_kg_m3) {
+            (MassModel::SphereEquivalent, Some(density)) => {
+                collect(errors, positive(&at("density_kg_m3"), density).map(drop));
+            }
+            (MassModel::SphereEquivalent, None) => errors.push(
+                SceneError::value(
+                    at("name"),
+                    format!(
+                        "material `{}` needs `density_kg_m3`: the scene's mass model is SphereEquivalent",
+                        material.name
+                    ),
+                )
+                .with_help("give the density in kg/m³, e.g. `density_kg_m3: 7850.0` for steel"),
+            ),
+            (MassModel::PerUnitThickness, Some(_)) => errors.push(
+                SceneError::value(
+                    at("density_kg_m3"),
+                    "`density_kg_m3` is read only by `mass_model: SphereEquivalent`; this scene uses PerUnitThickness \
+                     (`density_kg_m2`)",
+                )
+                .with_help("remove it, or set `mass_model: SphereEquivalent` at the top of the scene"),
+            ),
+            (MassModel::PerUnitThickness, None) => {}
+        }
         if !(material.youngs_modulus_n_m > 0.0 && material.youngs_modulus_n_m.is_finite()) {
             errors.push(SceneError::value(
                 at("youngs_modulus_n_m"),
@@ -210,29 +265,48 @@ fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
         }
         collect(errors, non_negative(&at("cohesion_n_m"), material.cohesion_n_m).map(drop));
     }
-    let Some(first) = scene.materials.first() else { return };
-    for (i, material) in scene.materials.iter().enumerate().skip(1) {
-        let differences = [
-            ("youngs_modulus_n_m", first.youngs_modulus_n_m, material.youngs_modulus_n_m),
-            ("gamma", first.gamma, material.gamma),
-            ("mu", first.mu, material.mu),
-            ("cohesion_n_m", first.cohesion_n_m, material.cohesion_n_m),
-        ];
-        for (field, expected, found) in differences {
-            if expected.to_bits() != found.to_bits() && !(expected.is_nan() || found.is_nan()) {
-                errors.push(
-                    SceneError::value(
-                        format!("materials[{i}].{field}"),
-                        format!(
-                            "material `{}` has {field} = {found}, but `{}` has {expected}: all materials must share \
-                             one contact law for now",
-                            material.name, first.name
-                        ),
-                    )
-                    .with_help("gc2d-rs has one contact law per scene; materials may differ only in density_kg_m2")
-                    .with_label("differs from the first material"),
-                );
+}
+
+/// The `interactions` entries: known material names, each pair once, parameters in range.
+fn check_interactions(scene: &Scene, materials: &Materials, errors: &mut Vec<SceneError>) {
+    let mut seen: Vec<[&str; 2]> = Vec::new();
+    for (i, interaction) in scene.interactions.iter().enumerate() {
+        let path = format!("interactions[{i}]");
+        let mut known = true;
+        for (k, name) in interaction.materials.iter().enumerate() {
+            let at = format!("{path}.materials.{k}");
+            if let Err(error) = materials.resolve(Some(name), &at) {
+                errors.push(error);
+                known = false;
             }
+        }
+        let [a, b] = [interaction.materials[0].as_str(), interaction.materials[1].as_str()];
+        let pair = if a <= b { [a, b] } else { [b, a] };
+        if known && seen.contains(&pair) {
+            errors.push(
+                SceneError::value(field_path(&path, "materials"), format!("the pair `{a}`–`{b}` is given a law twice"))
+                    .with_help("give each pair of materials one entry; the later one would silently win")
+                    .with_label("second entry for this pair"),
+            );
+        }
+        seen.push(pair);
+        let at = |field: &str| field_path(&field_path(&path, "law"), field);
+        if let InteractionLaw::OverlapArea { youngs_modulus_n_m, gamma, mu, cohesion_n_m } = &interaction.law {
+            if let Some(e) = youngs_modulus_n_m {
+                collect(errors, positive(&at("youngs_modulus_n_m"), *e).map(drop));
+            }
+            for (field, value) in [("gamma", gamma), ("mu", mu), ("cohesion_n_m", cohesion_n_m)] {
+                if let Some(value) = value {
+                    collect(errors, non_negative(&at(field), *value).map(drop));
+                }
+            }
+            continue;
+        }
+        let resolved = (materials.resolve(Some(a), ""), materials.resolve(Some(b), ""));
+        if let (Ok(a), Ok(b)) = resolved
+            && let Err(message) = crate::build::interactions::listed_model(&interaction.law, a, b)
+        {
+            errors.push(SceneError::value(field_path(&path, "law"), message).with_label("cannot be used"));
         }
     }
 }
@@ -246,7 +320,7 @@ fn check_particle(
 ) {
     let at = |field: &str| field_path(path, field);
     collect(errors, materials.resolve(particle.material.as_deref(), &at("material")).map(drop));
-    collect(errors, shapes::outline(&particle.shape, &at("shape"), rng).map(drop));
+    collect(errors, shapes::particle_outline(&particle.shape, &at("shape"), rng).map(drop));
     if let Some(position) = particle.position_m {
         collect(errors, finite_pair(&at("position_m"), position).map(drop));
     }

@@ -80,9 +80,34 @@ fn unknown_materials_suggest_a_declared_one() {
 }
 
 #[test]
-fn materials_must_share_one_contact_law() {
-    let text = "Scene(\n    materials: [\n        (name: \"sand\"),\n        (name: \"glass\", density_kg_m2: 2500, mu: 0.3),\n    ],\n)";
-    check("two_contact_laws", text, ErrorKind::Value, "materials[1].mu", (4, 50));
+fn interactions_name_declared_materials_once_each() {
+    let text = "Scene(\n    materials: [(name: \"sand\"), (name: \"steel\")],\n    interactions: [(materials: (\"sand\", \"stel\"), law: OverlapArea(mu: 0.3))],\n)";
+    let error = check("unknown_interaction_material", text, ErrorKind::Value, "interactions[0].materials.1", (3, 41));
+    assert!(error.message().ends_with("did you mean `steel`?"), "{}", error.message());
+    let text = "Scene(\n    materials: [(name: \"sand\"), (name: \"steel\")],\n    interactions: [\n        (materials: (\"sand\", \"steel\"), law: OverlapArea(mu: 0.3)),\n        (materials: (\"steel\", \"sand\"), law: OverlapArea(mu: 0.2)),\n    ],\n)";
+    check("duplicate_interaction", text, ErrorKind::Value, "interactions[1].materials", (5, 21));
+}
+
+#[test]
+fn hertz_needs_the_materials_youngs_modulus_in_pascal() {
+    let text = "Scene(\n    materials: [(name: \"steel\")],\n    interactions: [(materials: (\"steel\", \"steel\"), law: Hertz())],\n)";
+    let error = check("hertz_without_modulus", text, ErrorKind::Value, "interactions[0].law", (3, 57));
+    assert!(error.message().contains("`youngs_modulus_pa`"), "{}", error.message());
+}
+
+#[test]
+fn densities_follow_the_mass_model() {
+    let text = "Scene(\n    materials: [(name: \"steel\", density_kg_m3: 7850)],\n)";
+    check("density_of_the_other_model", text, ErrorKind::Value, "materials[0].density_kg_m3", (2, 48));
+    let text = "Scene(\n    mass_model: SphereEquivalent,\n    materials: [(name: \"steel\")],\n)";
+    check("sphere_density_missing", text, ErrorKind::Value, "materials[0].name", (3, 24));
+}
+
+#[test]
+fn wall_shapes_are_refused_for_particles() {
+    let text = "Scene(\n    particles: [(shape: Capsule(length_m: 0.01, radius_m: 0.002))],\n)";
+    let error = check("capsule_particle", text, ErrorKind::Value, "particles[0].shape", (2, 25));
+    assert!(error.message().contains("can only be a wall"), "{}", error.message());
 }
 
 #[test]

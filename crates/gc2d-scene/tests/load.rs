@@ -18,7 +18,7 @@ fn the_full_scene_builds_with_the_expected_counts() {
     let summary = scene.summary().unwrap_or_else(|e| panic!("{}", e.render_plain()));
     assert_eq!(summary.name, "full");
     assert_eq!(summary.materials, ["sand", "lead"]);
-    assert_eq!(summary.wall_polygons, 5 + 24 + 2 + 3 + 4);
+    assert_eq!(summary.wall_bodies, 5 + 24 + 2 + 3 + 4);
     assert_eq!(summary.moving_walls, 3);
     assert_eq!(summary.particles, 217);
     assert_eq!(summary.drag_springs, 1);
@@ -54,7 +54,8 @@ fn the_full_scene_builds_with_the_expected_counts() {
     assert_eq!(config.gravity.magnitude(0.0), 9.81);
     assert_relative_eq!(config.gravity.magnitude(1.1), 9.0, epsilon = 1e-12);
     assert!(config.heating.is_some() && config.domain.is_some());
-    assert_eq!(config.contact_law.damping.unwrap().gamma, 0.75);
+    let law = config.interactions.models()[0].overlap_area().unwrap();
+    assert_eq!(law.damping.unwrap().gamma, 0.75);
 }
 
 #[test]
@@ -79,7 +80,7 @@ fn defaults_apply() {
     assert_eq!(scene.gravity, Gravity::Constant(9.81));
     let world = scene.build().unwrap();
     assert_eq!(world.time_step(), FALLBACK_TIME_STEP);
-    let law = world.config().contact_law;
+    let law = world.config().interactions.models()[0].overlap_area().unwrap();
     assert_eq!(law.elastic.e_modulus, 1e7);
     assert_eq!(law.damping.unwrap().gamma, 0.5);
     assert_eq!(law.friction.unwrap().mu, 0.6);

@@ -6,7 +6,7 @@
 
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{SafetyLimits, WallMotion, World, WorldConfig};
+use gc2d_engine::{InteractionTable, MassModel, SafetyLimits, WallMotion, World, WorldConfig};
 use gc2d_geometry::{AngleMode, DVec2, Pose, Randomization, ShapeRecipe, rectangle};
 
 /// Δt of the thesis's pile runs, s.
@@ -23,12 +23,13 @@ pub fn thesis_config(seed: u64) -> WorldConfig {
     WorldConfig {
         time_step: TIME_STEP,
         integrator: Default::default(),
-        contact_law: ContactLaw {
+        interactions: InteractionTable::uniform(ContactLaw {
             elastic: NormalElastic { e_modulus: 1e7 },
             damping: Some(NormalDamping { gamma: 0.75 }),
             friction: Some(CundallStrack { mu: 0.6 }),
             cohesion: None,
-        },
+        }),
+        mass_model: MassModel::PerUnitThickness,
         gravity: GravitySchedule::constant(9.81),
         heating: None,
         safety: SafetyLimits::default(),

@@ -5,7 +5,7 @@
 
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{BodyId, Integrator, SafetyLimits, World, WorldConfig, WorldError};
+use gc2d_engine::{BodyId, Integrator, InteractionTable, MassModel, SafetyLimits, World, WorldConfig, WorldError};
 use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose, contact_geometry, rectangle};
 
 /// Young's modulus of almost all of the thesis's production runs, N/m (reference §2.14).
@@ -32,7 +32,8 @@ pub fn config(dt: f64, contact_law: ContactLaw, g: f64) -> WorldConfig {
     WorldConfig {
         time_step: dt,
         integrator: Integrator::default(),
-        contact_law,
+        interactions: InteractionTable::uniform(contact_law),
+        mass_model: MassModel::PerUnitThickness,
         gravity: GravitySchedule::constant(g),
         heating: None,
         safety: SafetyLimits::default(),

@@ -4,7 +4,10 @@
 
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping};
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{DropHeight, DropSource, SafetyLimits, TimeWindow, WallMotion, World, WorldConfig};
+use gc2d_engine::{
+    DropHeight, DropSource, InteractionTable, MassModel, MaterialId, SafetyLimits, TimeWindow, WallMotion, World,
+    WorldConfig,
+};
 use gc2d_geometry::{AngleMode, DVec2, Pose, Randomization, ShapeRecipe, rectangle, regular_polygon};
 
 /// Circumradius of the test particles, m.
@@ -30,7 +33,8 @@ pub fn empty_world() -> World {
     World::new(WorldConfig {
         time_step: TIME_STEP,
         integrator: Default::default(),
-        contact_law: contact_law(),
+        interactions: InteractionTable::uniform(contact_law()),
+        mass_model: MassModel::PerUnitThickness,
         gravity: GravitySchedule::default(),
         heating: None,
         safety: SafetyLimits::default(),
@@ -99,6 +103,7 @@ pub fn add_heptagon_source(world: &mut World) {
             interval: SOURCE_INTERVAL,
             recipe,
             density: DENSITY,
+            material: MaterialId::default(),
         })
         .unwrap();
 }

@@ -6,6 +6,7 @@
 //! World's own stream 0 drives the sources during the run; stream 2 samples source shapes for the time-step bound.
 
 pub(crate) mod blocks;
+pub(crate) mod interactions;
 pub(crate) mod safety;
 pub(crate) mod shapes;
 pub(crate) mod walls;
@@ -14,13 +15,15 @@ use crate::error::{ErrorKind, SceneError};
 use crate::schema::{Corrector, DropHeight, Gravity, GravityProfile, Scene, Source};
 use crate::spans::field_path;
 use crate::summary::Summary;
-use crate::validate::{Materials, contact_law};
+use crate::validate::Materials;
 use blocks::Lattice;
 use gc2d_engine::schedules::{
     DragSpring as EngineDragSpring, GravityProfile as EngineProfile, GravitySchedule, HeatingSchedule,
 };
-use gc2d_engine::{DropSource, GearC0, Integrator, SafetyLimits, TimeWindow, World, WorldConfig, WorldError};
-use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose};
+use gc2d_engine::{
+    BodyShape, DropSource, GearC0, Integrator, MaterialId, SafetyLimits, TimeWindow, World, WorldConfig, WorldError,
+};
+use gc2d_geometry::{Aabb, DVec2, Pose};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use safety::{PlacedBody, TimeStepBound};
@@ -33,11 +36,12 @@ const SOURCE_SAMPLE_STREAM: u64 = 2;
 
 /// A free particle ready for `World::add_particle`.
 struct PlannedParticle {
-    polygon: ConvexPolygon,
+    shape: BodyShape,
     pose: Pose,
     velocity: DVec2,
     angular_velocity: f64,
     density: f64,
+    material: MaterialId,
     drag_spring: Option<EngineDragSpring>,
     path: String,
 }
@@ -70,8 +74,9 @@ impl Scene {
 
 fn build(scene: &Scene) -> Result<Built, SceneError> {
     let materials = Materials::of(scene);
-    let law = contact_law(materials.first());
-    let e_modulus = law.elastic.e_modulus;
+    let table = interactions::interaction_table(scene, &materials)?;
+    let models = table.models_per_material();
+    let max_impact_speed = scene.run.max_impact_speed_m_s;
     let mut rng = ChaCha8Rng::seed_from_u64(scene.run.seed);
     rng.set_stream(BUILD_STREAM);
 
@@ -84,13 +89,24 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
 
     let mut bound = particles
         .iter()
-        .filter_map(|p| TimeStepBound::of(&p.polygon, p.density, e_modulus, &p.path))
+        .filter_map(|p| {
+            let models = &models[p.material.index()];
+            TimeStepBound::of(&p.shape, p.density, scene.mass_model, models, max_impact_speed, &p.path)
+        })
         .reduce(|a, b| if b.time_step < a.time_step { b } else { a });
     let mut sample_rng = ChaCha8Rng::seed_from_u64(scene.run.seed);
     sample_rng.set_stream(SOURCE_SAMPLE_STREAM);
     for (i, source) in sources.iter().enumerate() {
         let path = format!("sources[{i}]");
-        let source_bound = TimeStepBound::of_source(&source.recipe, source.density, e_modulus, &path, &mut sample_rng);
+        let source_bound = TimeStepBound::of_source(
+            &source.recipe,
+            source.density,
+            scene.mass_model,
+            &models[source.material.index()],
+            max_impact_speed,
+            &path,
+            &mut sample_rng,
+        );
         bound = TimeStepBound::min(bound, source_bound);
     }
     let time_step = safety::choose_time_step(scene.run.time_step_s, bound.as_ref(), scene.run.allow_unsafe_time_step)
@@ -101,13 +117,8 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
 
     let placed: Vec<PlacedBody> = walls
         .iter()
-        .map(|w| PlacedBody { polygon: &w.polygon, pose: w.pose, is_wall: true, path: &w.path })
-        .chain(particles.iter().map(|p| PlacedBody {
-            polygon: &p.polygon,
-            pose: p.pose,
-            is_wall: false,
-            path: &p.path,
-        }))
+        .map(|w| PlacedBody { shape: &w.shape, pose: w.pose, is_wall: true, path: &w.path })
+        .chain(particles.iter().map(|p| PlacedBody { shape: &p.shape, pose: p.pose, is_wall: false, path: &p.path }))
         .collect();
     if let Some(error) = SceneError::combine(safety::overlap_errors(&placed, scene.run.max_overlap_fraction)) {
         return Err(error);
@@ -119,7 +130,8 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
             Corrector::VelocityDependent => GearC0::VelocityDependent,
             Corrector::PositionDependent => GearC0::PositionDependent,
         }),
-        contact_law: law,
+        interactions: table,
+        mass_model: scene.mass_model,
         gravity: gravity(&scene.gravity),
         heating: scene.heating.map(|h| HeatingSchedule {
             window: TimeWindow::new(h.window_s[0], h.window_s[1]),
@@ -131,6 +143,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
             max_overlap_fraction: scene.run.max_overlap_fraction,
             max_energy_gain_fraction: scene.run.max_energy_gain_fraction,
             allow_unsafe_time_step: scene.run.allow_unsafe_time_step,
+            max_impact_speed,
             ..SafetyLimits::default()
         },
         domain: scene.run.domain.map(|d| Aabb {
@@ -142,19 +155,22 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
     let mut world = World::new(config).map_err(|e| engine_error(&e, ""))?;
     let moving_walls = walls.iter().filter(|w| !w.motion.is_static()).count();
     for wall in &walls {
-        world.add_wall(&wall.polygon, wall.pose, wall.surface_velocity, wall.motion);
+        let id = world.add_wall(wall.shape.clone(), wall.pose, wall.surface_velocity, wall.motion);
+        let material = materials.index_of(wall.material.as_deref(), &field_path(&wall.path, "material"))?;
+        world.set_material(id, MaterialId(material as u16)).map_err(|e| engine_error(&e, &wall.path))?;
     }
     let mut drag_springs = 0;
     for particle in &particles {
         let id = world
             .add_particle(
-                &particle.polygon,
+                particle.shape.clone(),
                 particle.pose,
                 particle.density,
                 particle.velocity,
                 particle.angular_velocity,
             )
             .map_err(|e| engine_error(&e, &particle.path))?;
+        world.set_material(id, particle.material).map_err(|e| engine_error(&e, &particle.path))?;
         if let Some(spring) = particle.drag_spring {
             world.add_drag_spring(id, spring).map_err(|e| engine_error(&e, &particle.path))?;
             drag_springs += 1;
@@ -168,8 +184,10 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
     let summary = Summary {
         name: scene.name.clone(),
         materials: materials.names(),
-        wall_polygons: walls.len(),
+        interactions: crate::summary::interaction_lines(&materials.names(), &world.config().interactions),
+        wall_bodies: walls.len(),
         moving_walls,
+        mass_model: scene.mass_model,
         particles: particles.len(),
         particle_mass_kg_m: world
             .bodies()
@@ -193,7 +211,10 @@ fn limiting_note(bound: &TimeStepBound) -> SceneError {
     SceneError::new(
         ErrorKind::TimeStep,
         bound.path.clone(),
-        format!("the lightest particle (inscribed radius {:.3e} m) comes from here", bound.inscribed_radius),
+        format!(
+            "the particle that limits the time step (inscribed radius {:.3e} m) comes from here",
+            bound.inscribed_radius
+        ),
     )
     .with_label("sets the bound")
 }
@@ -213,15 +234,18 @@ fn plan_particles(
     let mut planned = Vec::new();
     for (i, particle) in scene.particles.iter().enumerate() {
         let path = format!("particles[{i}]");
-        let material = materials.resolve(particle.material.as_deref(), &field_path(&path, "material"))?;
-        let shape = shapes::outline(&particle.shape, &field_path(&path, "shape"), rng)?;
+        let material_path = field_path(&path, "material");
+        let material = materials.resolve(particle.material.as_deref(), &material_path)?;
+        let material_id = MaterialId(materials.index_of(particle.material.as_deref(), &material_path)? as u16);
+        let shape = shapes::particle_outline(&particle.shape, &field_path(&path, "shape"), rng)?;
         let position = particle.position_m.map_or(shape.written_centroid, DVec2::from_array);
         planned.push(PlannedParticle {
-            polygon: shape.polygon,
+            shape: shape.shape,
             pose: Pose::new(position, particle.angle_rad + shape.drawn_angle),
             velocity: DVec2::from_array(particle.velocity_m_s),
             angular_velocity: particle.angular_velocity_rad_s,
-            density: material.density_kg_m2,
+            density: Materials::density(material, scene.mass_model),
+            material: material_id,
             drag_spring: particle.drag_spring.map(|s| EngineDragSpring {
                 stiffness: s.stiffness_n_m,
                 fixing_point: DVec2::from_array(s.fixing_point_m),
@@ -235,16 +259,19 @@ fn plan_particles(
     }
     for (i, block) in scene.blocks.iter().enumerate() {
         let path = format!("blocks[{i}]");
-        let material = materials.resolve(block.material.as_deref(), &field_path(&path, "material"))?;
+        let material_path = field_path(&path, "material");
+        let material = materials.resolve(block.material.as_deref(), &material_path)?;
+        let material_id = MaterialId(materials.index_of(block.material.as_deref(), &material_path)? as u16);
         let lattice = Lattice::of(block, &path)?;
         let recipe = shapes::shape_recipe(&block.shape, &field_path(&path, "shape"))?;
         for particle in blocks::generate(block, &lattice, &recipe, rng, &path)? {
             planned.push(PlannedParticle {
-                polygon: particle.polygon,
+                shape: particle.polygon.into(),
                 pose: Pose::new(particle.position, particle.angle),
                 velocity: particle.velocity,
                 angular_velocity: 0.0,
-                density: material.density_kg_m2,
+                density: Materials::density(material, scene.mass_model),
+                material: material_id,
                 drag_spring: None,
                 path: path.clone(),
             });
@@ -260,7 +287,9 @@ fn plan_sources(scene: &Scene, materials: &Materials) -> Result<Vec<DropSource>,
         .enumerate()
         .map(|(i, source)| {
             let path = format!("sources[{i}]");
-            let material = materials.resolve(source.material.as_deref(), &field_path(&path, "material"))?;
+            let material_path = field_path(&path, "material");
+            let material = materials.resolve(source.material.as_deref(), &material_path)?;
+            let material_id = MaterialId(materials.index_of(source.material.as_deref(), &material_path)? as u16);
             Ok(DropSource {
                 position: DVec2::from_array(source.position_m),
                 width: source.width_m,
@@ -271,7 +300,8 @@ fn plan_sources(scene: &Scene, materials: &Materials) -> Result<Vec<DropSource>,
                 window: TimeWindow::new(source.window_s[0], source.window_s[1]),
                 interval: source.interval_s,
                 recipe: shapes::shape_recipe(&source.shape, &field_path(&path, "shape"))?,
-                density: material.density_kg_m2,
+                density: Materials::density(material, scene.mass_model),
+                material: material_id,
             })
         })
         .collect()

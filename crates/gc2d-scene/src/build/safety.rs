@@ -2,8 +2,9 @@
 //! the overlap of the initial bodies (reference §3.6, §10.4).
 
 use crate::error::{ErrorKind, SceneError};
-use gc2d_engine::integrator::max_stable_time_step_elongated;
-use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose, ShapeRecipe, contact_geometry};
+use gc2d_engine::safety::{ParticleInertia, particle_time_step};
+use gc2d_engine::{BodyShape, ContactModel, MassModel, shape_view};
+use gc2d_geometry::{Aabb, DVec2, Pose, ShapeRecipe, area_contact};
 use rand_chacha::ChaCha8Rng;
 
 /// Shapes drawn per source to estimate the smallest particle it will insert.
@@ -29,12 +30,27 @@ pub struct TimeStepBound {
 }
 
 impl TimeStepBound {
-    /// The bound for one particle shape, `None` for unusable values.
-    pub fn of(polygon: &ConvexPolygon, density: f64, e_modulus: f64, path: &str) -> Option<Self> {
-        let radius = polygon.inscribed_radius();
-        max_stable_time_step_elongated(radius, density, e_modulus).map(|time_step| Self {
+    /// The bound for one particle of shape `shape` and density `density` under `mass_model` against the contact
+    /// `models` its material meets (the engine's [`particle_time_step`]), `None` for unusable values.
+    pub fn of(
+        shape: &BodyShape,
+        density: f64,
+        mass_model: MassModel,
+        models: &[&ContactModel],
+        max_impact_speed: f64,
+        path: &str,
+    ) -> Option<Self> {
+        let mass = mass_model.mass_properties(shape, density);
+        let inertia = ParticleInertia {
+            inscribed_radius: shape.inscribed_radius(),
+            area_density: area_density(mass_model, shape, density),
+            mass: mass.mass,
+            inertia: mass.inertia,
+            contact_radius: shape.equivalent_radius(),
+        };
+        particle_time_step(models.iter().copied(), &inertia, max_impact_speed).map(|time_step| Self {
             time_step,
-            inscribed_radius: radius,
+            inscribed_radius: inertia.inscribed_radius,
             path: path.to_owned(),
         })
     }
@@ -51,14 +67,27 @@ impl TimeStepBound {
     pub fn of_source(
         recipe: &ShapeRecipe,
         density: f64,
-        e_modulus: f64,
+        mass_model: MassModel,
+        models: &[&ContactModel],
+        max_impact_speed: f64,
         path: &str,
         rng: &mut ChaCha8Rng,
     ) -> Option<Self> {
         (0..SOURCE_SAMPLES)
             .filter_map(|_| recipe.draw(rng).ok())
-            .filter_map(|(polygon, _)| Self::of(&polygon, density, e_modulus, path))
+            .filter_map(|(polygon, _)| {
+                Self::of(&BodyShape::from(polygon), density, mass_model, models, max_impact_speed, path)
+            })
             .reduce(|a, b| if b.time_step < a.time_step { b } else { a })
+    }
+}
+
+/// A particle's mass per area of its shape, kg/m²: the density itself per unit thickness, m/A for sphere-equivalent
+/// masses (what the engine's time-step bound reads from a particle).
+fn area_density(mass_model: MassModel, shape: &BodyShape, density: f64) -> f64 {
+    match mass_model {
+        MassModel::PerUnitThickness => density,
+        MassModel::SphereEquivalent => mass_model.mass_properties(shape, density).mass / shape.area(),
     }
 }
 
@@ -81,8 +110,8 @@ pub fn choose_time_step(
             ErrorKind::TimeStep,
             "run.time_step_s",
             format!(
-                "time step {dt:.3e} s is above the stable bound {:.3e} s = (π/10)·sqrt(m/E) of the lightest particle \
-                 (m = π·r²·ρ with inscribed radius r = {:.3e} m, from `{}`)",
+                "time step {dt:.3e} s is above the stable bound {:.3e} s of the particle that limits it (inscribed \
+                 radius {:.3e} m, from `{}`) against the stiffest contact law its material meets",
                 bound.time_step, bound.inscribed_radius, bound.path
             ),
         )
@@ -106,7 +135,7 @@ fn round_down_to_two_digits(x: f64) -> f64 {
 /// A body placed for the overlap check.
 pub struct PlacedBody<'a> {
     /// Its outline.
-    pub polygon: &'a ConvexPolygon,
+    pub shape: &'a BodyShape,
     /// Where it is.
     pub pose: Pose,
     /// True for walls (walls may overlap each other).
@@ -123,8 +152,10 @@ const MAX_REPORTED_OVERLAPS: usize = 8;
 /// boxes overlap.
 pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneError> {
     let world: Vec<Vec<DVec2>> =
-        bodies.iter().map(|b| b.polygon.vertices().iter().map(|v| b.pose.apply(*v)).collect()).collect();
-    let boxes: Vec<Aabb> = world.iter().map(|w| Aabb::of_points(w)).collect();
+        bodies.iter().map(|b| b.shape.body_points().iter().map(|v| b.pose.apply(*v)).collect()).collect();
+    let view =
+        |k: usize| shape_view(bodies[k].shape.kind(), &world[k], bodies[k].shape.radius() * bodies[k].pose.scale);
+    let boxes: Vec<Aabb> = (0..bodies.len()).map(|k| view(k).aabb()).collect();
     let mut order: Vec<usize> = (0..bodies.len()).collect();
     order.sort_by(|&a, &b| boxes[a].min.x.total_cmp(&boxes[b].min.x).then(a.cmp(&b)));
     let mut active: Vec<usize> = Vec::new();
@@ -136,8 +167,9 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
             if (bodies[a].is_wall && bodies[b].is_wall) || !boxes[a].overlaps(&boxes[b]) {
                 continue;
             }
-            let Some(contact) = contact_geometry(&world[a], &world[b]) else { continue };
-            let particle_areas = [a, b].into_iter().filter(|&k| !bodies[k].is_wall).map(|k| bodies[k].polygon.area());
+            let (particle, other) = if bodies[a].is_wall { (b, a) } else { (a, b) };
+            let Some(contact) = area_contact(view(particle), view(other)) else { continue };
+            let particle_areas = [a, b].into_iter().filter(|&k| !bodies[k].is_wall).map(|k| bodies[k].shape.area());
             let smaller = particle_areas.fold(f64::INFINITY, f64::min);
             let fraction = contact.area / smaller;
             if fraction > max_fraction {
@@ -195,8 +227,9 @@ mod tests {
     fn overlaps_are_measured_against_the_smaller_particle() {
         let big = square(0.02).unwrap();
         let small = square(0.01).unwrap();
-        let body = |polygon, x: f64, is_wall, path| PlacedBody {
-            polygon,
+        let (big, small) = (BodyShape::from(big), BodyShape::from(small));
+        let body = |shape, x: f64, is_wall, path| PlacedBody {
+            shape,
             pose: Pose::new(DVec2::new(x, 0.0), 0.0),
             is_wall,
             path,

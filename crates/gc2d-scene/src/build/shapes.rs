@@ -4,16 +4,17 @@
 use crate::error::SceneError;
 use crate::schema::{CornerPositions, CountSpread, Orientation, Recipe, Shape, SizeSpread};
 use crate::spans::field_path;
+use gc2d_engine::BodyShape;
 use gc2d_geometry::{
     AngleMode, ConvexPolygon, DVec2, PolygonError, Randomization, ShapeError, ShapeRecipe, cut_rectangle,
     ellipse_polygon, rectangle, regular_polygon, rounded_rectangle, square, square_cut, square_round,
 };
 use rand_chacha::ChaCha8Rng;
 
-/// A body-frame polygon and how it sits as written.
+/// A body-frame shape and how it sits as written.
 pub(crate) struct Outline {
-    /// The polygon, centroid at the origin.
-    pub polygon: ConvexPolygon,
+    /// The shape, centroid at the origin.
+    pub shape: BodyShape,
     /// Where the written corners put the centroid: their centroid for `Polygon`, the origin for macro shapes.
     pub written_centroid: DVec2,
     /// Orientation drawn by a `Random` shape (0 for the others), radians CCW.
@@ -24,7 +25,7 @@ pub(crate) struct Outline {
 pub(crate) fn outline(shape: &Shape, path: &str, rng: &mut ChaCha8Rng) -> Result<Outline, SceneError> {
     let fixed = |result: Result<ConvexPolygon, ShapeError>| {
         result
-            .map(|polygon| Outline { polygon, written_centroid: DVec2::ZERO, drawn_angle: 0.0 })
+            .map(|polygon| Outline { shape: polygon.into(), written_centroid: DVec2::ZERO, drawn_angle: 0.0 })
             .map_err(|e| shape_error(&e, path))
     };
     match shape {
@@ -32,7 +33,7 @@ pub(crate) fn outline(shape: &Shape, path: &str, rng: &mut ChaCha8Rng) -> Result
             let corners: Vec<DVec2> = corners_m.iter().map(|c| DVec2::from_array(*c)).collect();
             let (polygon, written_centroid) =
                 ConvexPolygon::new(&corners).map_err(|e| polygon_error(&e, &field_path(path, "corners_m")))?;
-            Ok(Outline { polygon, written_centroid, drawn_angle: 0.0 })
+            Ok(Outline { shape: polygon.into(), written_centroid, drawn_angle: 0.0 })
         }
         Shape::Regular { corners, radius_m } => fixed(regular_polygon(*corners, *radius_m)),
         Shape::Ellipse { corners, semi_axes_m } => {
@@ -51,9 +52,42 @@ pub(crate) fn outline(shape: &Shape, path: &str, rng: &mut ChaCha8Rng) -> Result
         Shape::Random { recipe } => {
             let recipe = shape_recipe(recipe, path)?;
             let (polygon, angle) = recipe.draw(rng).map_err(|e| shape_error(&e, path))?;
-            Ok(Outline { polygon, written_centroid: DVec2::ZERO, drawn_angle: angle })
+            Ok(Outline { shape: polygon.into(), written_centroid: DVec2::ZERO, drawn_angle: angle })
         }
+        Shape::Disk { radius_m } => round(BodyShape::Disk { radius: *radius_m }, "radius_m", path),
+        Shape::Capsule { length_m, radius_m } => {
+            if !(*length_m >= 0.0 && length_m.is_finite()) {
+                return Err(SceneError::value(
+                    field_path(path, "length_m"),
+                    format!("{length_m}: a capsule's length must be a finite number ≥ 0 (m)"),
+                ));
+            }
+            round(BodyShape::Capsule { half_length: 0.5 * length_m, radius: *radius_m }, "radius_m", path)
+        }
+        Shape::InnerCircle { radius_m } => round(BodyShape::InnerCircle { radius: *radius_m }, "radius_m", path),
     }
+}
+
+/// The outline of a particle's `shape` at `path`: any shape but the wall-only capsule and inner circle.
+pub(crate) fn particle_outline(shape: &Shape, path: &str, rng: &mut ChaCha8Rng) -> Result<Outline, SceneError> {
+    let outline = outline(shape, path, rng)?;
+    outline.shape.validate(true).map_err(|e| {
+        SceneError::value(path, e.to_string())
+            .with_help("particles are polygons or disks; capsules and inner circles are walls")
+            .with_label("a wall shape")
+    })?;
+    Ok(outline)
+}
+
+/// A disk, capsule or inner circle whose radius is the field `radius_field` of the shape at `path`, checked.
+fn round(shape: BodyShape, radius_field: &str, path: &str) -> Result<Outline, SceneError> {
+    if !(shape.radius() > 0.0 && shape.radius().is_finite()) {
+        return Err(SceneError::value(
+            field_path(path, radius_field),
+            format!("{}: a radius must be a positive finite number (m)", shape.radius()),
+        ));
+    }
+    Ok(Outline { shape, written_centroid: DVec2::ZERO, drawn_angle: 0.0 })
 }
 
 /// The geometry crate's recipe for a scene recipe at `path`, validated.

@@ -7,7 +7,7 @@ use crate::error::SceneError;
 use crate::schema::{Motion, Shape, WallItem, Waveform};
 use crate::spans::field_path;
 use gc2d_engine::motion::{Piston, Rotation, Vibration, Waveform as EngineWaveform};
-use gc2d_engine::{TimeWindow, WallMotion};
+use gc2d_engine::{BodyShape, TimeWindow, WallMotion};
 use gc2d_geometry::{ConvexPolygon, DVec2, Pose};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::{FRAC_PI_2, TAU};
@@ -17,35 +17,41 @@ pub const MAX_DRUM_SEGMENTS: usize = 10_000;
 
 /// One wall polygon ready for `World::add_wall`.
 pub(crate) struct PlacedWall {
-    pub polygon: ConvexPolygon,
+    pub shape: BodyShape,
     pub pose: Pose,
     pub surface_velocity: DVec2,
     pub motion: WallMotion,
+    /// The material's name (`None`: the first material).
+    pub material: Option<String>,
     /// The field path of the scene entry it came from.
     pub path: String,
 }
 
 /// The wall polygons of one `walls` entry at `path`.
 pub(crate) fn expand(item: &WallItem, path: &str, rng: &mut ChaCha8Rng) -> Result<Vec<PlacedWall>, SceneError> {
-    match item {
-        WallItem::Wall { shape, position_m, angle_rad, surface_velocity_m_s, motion } => {
+    let mut walls = match item {
+        WallItem::Wall { shape, position_m, angle_rad, surface_velocity_m_s, motion, .. } => {
             let placement =
                 Placement { position: *position_m, angle: *angle_rad, surface_velocity: *surface_velocity_m_s };
             Ok(vec![single(shape, &placement, motion, path, rng)?])
         }
-        WallItem::Drum { centre_m, inner_radius_m, thickness_m, surface_speed_m_s, segments } => {
+        WallItem::Drum { centre_m, inner_radius_m, thickness_m, surface_speed_m_s, segments, .. } => {
             drum_walls(*centre_m, *inner_radius_m, *thickness_m, *surface_speed_m_s, *segments, path)
         }
-        WallItem::Funnel { outlet_m, opening_m, slope_rad, length_m, thickness_m } => {
+        WallItem::Funnel { outlet_m, opening_m, slope_rad, length_m, thickness_m, .. } => {
             funnel_walls(*outlet_m, *opening_m, *slope_rad, *length_m, *thickness_m, path)
         }
-        WallItem::Silo { x_range_m, y_range_m, thickness_m } => {
+        WallItem::Silo { x_range_m, y_range_m, thickness_m, .. } => {
             box_walls(*x_range_m, *y_range_m, *thickness_m, false, path)
         }
-        WallItem::Enclosure { x_range_m, y_range_m, thickness_m } => {
+        WallItem::Enclosure { x_range_m, y_range_m, thickness_m, .. } => {
             box_walls(*x_range_m, *y_range_m, *thickness_m, true, path)
         }
+    }?;
+    for wall in &mut walls {
+        wall.material = item.material().map(str::to_owned);
     }
+    Ok(walls)
 }
 
 /// Where a single wall sits and how its surface moves.
@@ -74,10 +80,11 @@ fn single(
     finite_pair(&field_path(path, "surface_velocity_m_s"), placement.surface_velocity)?;
     let position = placement.position.map_or(outline.written_centroid, DVec2::from_array);
     Ok(PlacedWall {
-        polygon: outline.polygon,
+        shape: outline.shape,
         pose: Pose::new(position, placement.angle),
         surface_velocity: DVec2::from_array(placement.surface_velocity),
         motion: motion(motion_spec, &field_path(path, "motion"))?,
+        material: None,
         path: path.to_owned(),
     })
 }
@@ -133,10 +140,11 @@ fn fixed_wall(corners: &[DVec2], surface_velocity: DVec2, path: &str) -> Result<
             .with_help("the dimensions are too extreme for a wall polygon")
     })?;
     Ok(PlacedWall {
-        polygon,
+        shape: polygon.into(),
         pose: Pose::new(centroid, 0.0),
         surface_velocity,
         motion: WallMotion::Static,
+        material: None,
         path: path.to_owned(),
     })
 }
@@ -243,6 +251,14 @@ fn box_walls(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The polygon of a macro wall (the macros make polygons only).
+    fn polygon_of(wall: &PlacedWall) -> &ConvexPolygon {
+        match &wall.shape {
+            BodyShape::Polygon(polygon) => polygon,
+            other => panic!("a macro wall is a polygon, got {other:?}"),
+        }
+    }
     use approx::assert_relative_eq;
     use rand::SeedableRng;
 
@@ -253,13 +269,13 @@ mod tests {
         let centre = DVec2::new(0.1, 0.2);
         let mut area = 0.0;
         for wall in &walls {
-            area += wall.polygon.area();
+            area += polygon_of(wall).area();
             let radial = (wall.pose.position - centre).normalize();
             assert_relative_eq!(wall.surface_velocity.length(), 0.3, epsilon = 1e-12);
             assert!(wall.surface_velocity.dot(radial).abs() < 1e-12);
             // CCW: the tangent is the radial direction turned by +90°.
             assert!(gc2d_geometry::cross(radial, wall.surface_velocity) > 0.0);
-            for v in wall.polygon.vertices() {
+            for v in polygon_of(wall).vertices() {
                 let r = (wall.pose.apply(*v) - centre).length();
                 assert!((r - 0.05).abs() < 1e-12 || (r - 0.06).abs() < 1e-12, "{r}");
             }
@@ -271,7 +287,7 @@ mod tests {
     #[test]
     fn funnel_slabs_leave_the_opening_free_and_rise_at_the_slope() {
         let walls = funnel_walls([0.0, 0.3], 0.02, 1.0, 0.1, 0.005, "walls[1]").unwrap();
-        let world = |w: &PlacedWall| w.polygon.vertices().iter().map(|v| w.pose.apply(*v)).collect::<Vec<_>>();
+        let world = |w: &PlacedWall| polygon_of(w).vertices().iter().map(|v| w.pose.apply(*v)).collect::<Vec<_>>();
         let (left, right) = (world(&walls[0]), world(&walls[1]));
         let max_x_left = left.iter().map(|v| v.x).fold(f64::MIN, f64::max);
         let min_x_right = right.iter().map(|v| v.x).fold(f64::MAX, f64::min);
@@ -279,20 +295,23 @@ mod tests {
         assert_relative_eq!(min_x_right, 0.01, epsilon = 1e-12);
         let top = right.iter().map(|v| v.y).fold(f64::MIN, f64::max);
         assert_relative_eq!(top, 0.3 + 0.1 * 1f64.sin(), epsilon = 1e-12);
-        assert_relative_eq!(walls[0].polygon.area(), 0.1 * 0.005, max_relative = 1e-12);
+        assert_relative_eq!(polygon_of(&walls[0]).area(), 0.1 * 0.005, max_relative = 1e-12);
     }
 
     #[test]
     fn silo_is_open_and_box_is_closed() {
         let (x_range_m, y_range_m, thickness_m) = ([0.0, 0.1], [0.0, 0.4], 0.01);
         let mut rng = ChaCha8Rng::seed_from_u64(0);
-        let open = expand(&WallItem::Silo { x_range_m, y_range_m, thickness_m }, "walls[0]", &mut rng).unwrap();
+        let open = expand(&WallItem::Silo { x_range_m, y_range_m, thickness_m, material: None }, "walls[0]", &mut rng)
+            .unwrap();
         assert_eq!(open.len(), 3);
-        assert_relative_eq!(open[0].polygon.area(), 0.12 * 0.01, max_relative = 1e-12);
-        let walls = expand(&WallItem::Enclosure { x_range_m, y_range_m, thickness_m }, "walls[0]", &mut rng).unwrap();
+        assert_relative_eq!(polygon_of(&open[0]).area(), 0.12 * 0.01, max_relative = 1e-12);
+        let walls =
+            expand(&WallItem::Enclosure { x_range_m, y_range_m, thickness_m, material: None }, "walls[0]", &mut rng)
+                .unwrap();
         assert_eq!(walls.len(), 4);
         assert_relative_eq!(walls[3].pose.position.y, 0.405, epsilon = 1e-12);
-        let reversed = WallItem::Silo { x_range_m: [0.1, 0.0], y_range_m, thickness_m };
+        let reversed = WallItem::Silo { x_range_m: [0.1, 0.0], y_range_m, thickness_m, material: None };
         let error = expand(&reversed, "walls[0]", &mut rng).err().unwrap();
         assert_eq!(error.path(), "walls[0].x_range_m");
     }

@@ -5,7 +5,7 @@
 use crate::AUTOMATIC_TIME_STEP_FRACTION;
 use gc2d_engine::motion::Waveform as EngineWaveform;
 use gc2d_engine::schedules::GravityProfile as EngineGravityProfile;
-use gc2d_engine::{DropHeight as EngineDropHeight, TimeWindow};
+use gc2d_engine::{DropHeight as EngineDropHeight, MassModel, TimeWindow};
 use gc2d_geometry::{AngleMode, DVec2, Randomization};
 
 use super::{
@@ -53,7 +53,9 @@ pub fn to_scene(import: &GsiImport, name: &str) -> Result<GsiConversion, GsiErro
             frequency_hz: heating.frequency.value,
             slope: heating.slope.value,
         }),
+        mass_model: MassModel::PerUnitThickness,
         materials: vec![material(general)],
+        interactions: Vec::new(),
         walls: source.walls.iter().map(|wall| converter.wall(wall)).collect(),
         particles: source.particles.iter().map(|particle| converter.particle(particle)).collect(),
         blocks: source.blocks.iter().map(block).collect(),
@@ -241,6 +243,7 @@ impl Converter {
             angle_rad: 0.0,
             surface_velocity_m_s: wall.surface_velocity.value.to_array(),
             motion,
+            material: None,
         }
     }
 

@@ -6,14 +6,17 @@
 //! Positions and vectors are `(x, y)` pairs, `[f64; 2]` in Rust. Angles are radians, counter-clockwise from +x.
 
 mod bodies;
+mod interactions;
 mod shapes;
 mod walls;
 
 pub use bodies::{Block, DragSpring, DropHeight, GridType, Particle, Source};
+pub use interactions::{Damping, Friction, FrictionStiffness, Interaction, InteractionLaw, Rolling};
 pub use shapes::{CornerPositions, CountSpread, Orientation, Recipe, Shape, SizeSpread};
 pub use walls::{Motion, WallItem, Waveform};
 
 use crate::source::SourceText;
+pub use gc2d_engine::MassModel;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
@@ -39,9 +42,18 @@ pub struct Scene {
     /// Global particle size cycling s(t) (gsi `HEAT_*`). Default: none.
     #[serde(default)]
     pub heating: Option<Heating>,
+    /// How particle masses follow from shape and density: `PerUnitThickness` (gc2d; densities in kg/m²) or
+    /// `SphereEquivalent` (spheres moving in the plane; densities in kg/m³, `density_kg_m3`). Default
+    /// `PerUnitThickness`.
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub mass_model: MassModel,
     /// Named materials. Default: one material named `default` with the default values.
     #[serde(default)]
     pub materials: Vec<Material>,
+    /// The contact law of material pairs that do not use the overlap-area law mixed from their two materials.
+    /// Default: none (every pair mixes).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub interactions: Vec<Interaction>,
     /// Walls: single polygons and the wall-builder macros (drum, funnel, silo, box).
     #[serde(default)]
     pub walls: Vec<WallItem>,
@@ -66,8 +78,9 @@ pub struct Scene {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Run {
-    /// Δt in s. Default (omitted): 0.15 of the stable bound (π/10)·sqrt(m/E) of the lightest particle, rounded down
-    /// to two significant digits, or 1e-4 s when the scene has no particles.
+    /// Δt in s. Default (omitted): 0.15 of the stable bound of the particles (each against the stiffest contact law
+    /// its material meets: (π/10)·sqrt(m/E) for the overlap-area law), rounded down to two significant digits, or
+    /// 1e-4 s when the scene has no particles.
     #[serde(default)]
     pub time_step_s: Option<f64>,
     /// Simulated time at which the run ends, s. Default 1.
@@ -97,6 +110,15 @@ pub struct Run {
     /// Gear corrector coefficient c₀. Default `VelocityDependent` (3/16).
     #[serde(default)]
     pub corrector: Corrector,
+    /// The highest normal impact speed the scene expects, m/s: a Hertz contact stiffens with depth, so its time-step
+    /// bound depends on how hard bodies hit (a mill: about twice the rotor's tip speed). Default 10.
+    #[serde(default = "defaults::max_impact_speed", skip_serializing_if = "is_default_max_impact_speed")]
+    pub max_impact_speed_m_s: f64,
+}
+
+/// True for the default impact speed, which the scene as written out leaves away.
+fn is_default_max_impact_speed(value: &f64) -> bool {
+    *value == defaults::max_impact_speed()
 }
 
 impl Default for Run {
@@ -112,6 +134,7 @@ impl Default for Run {
             max_overlap_fraction: defaults::max_overlap_fraction(),
             max_energy_gain_fraction: defaults::max_energy_gain_fraction(),
             corrector: Corrector::default(),
+            max_impact_speed_m_s: defaults::max_impact_speed(),
         }
     }
 }
@@ -195,16 +218,21 @@ pub struct Heating {
     pub slope: f64,
 }
 
-/// A named material. gc2d has one contact law per scene, so E, γ, μ and k_coh must be equal across materials for
-/// now; only the density may differ.
+/// A named material. Two bodies interact by the law the scene's `interactions` give their pair, or else by the
+/// overlap-area law with E, γ, μ and k_coh mixed from their two materials (docs/model.md, "Materials and mixing
+/// rules"); walls have materials too.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
     /// The name particles, blocks and sources refer to.
     pub name: String,
-    /// Area density ρ, kg/m². Default 5000 (the thesis's value, eq. 3.5).
+    /// Area density ρ, kg/m², of the `PerUnitThickness` mass model. Default 5000 (the thesis's value, eq. 3.5).
     #[serde(default = "defaults::density")]
     pub density_kg_m2: f64,
+    /// Density ρ, kg/m³, of the `SphereEquivalent` mass model (required there, refused with the other model).
+    /// Default: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density_kg_m3: Option<f64>,
     /// Young's modulus E (2D), N/m. Default 1e7.
     #[serde(default = "defaults::youngs_modulus")]
     pub youngs_modulus_n_m: f64,
@@ -217,6 +245,17 @@ pub struct Material {
     /// Cohesion k_coh, N/m. Default 0.
     #[serde(default)]
     pub cohesion_n_m: f64,
+    /// Young's modulus E (3D), Pa, of the Hertz and Mindlin laws (required by pairs that use them). Default none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus_pa: Option<f64>,
+    /// Poisson's ratio ν of the Hertz and Mindlin laws. Default 0.3.
+    #[serde(default = "defaults::poisson_ratio", skip_serializing_if = "is_default_poisson_ratio")]
+    pub poisson_ratio: f64,
+}
+
+/// True for the default Poisson ratio, which the scene as written out leaves away.
+fn is_default_poisson_ratio(value: &f64) -> bool {
+    *value == defaults::poisson_ratio()
 }
 
 impl Material {
@@ -225,12 +264,20 @@ impl Material {
         Self {
             name: name.to_owned(),
             density_kg_m2: defaults::density(),
+            density_kg_m3: None,
             youngs_modulus_n_m: defaults::youngs_modulus(),
             gamma: defaults::gamma(),
             mu: defaults::mu(),
             cohesion_n_m: 0.0,
+            youngs_modulus_pa: None,
+            poisson_ratio: defaults::poisson_ratio(),
         }
     }
+}
+
+/// True for a field at its type's default, which the scene as written out leaves away.
+fn is_default<T: Default + PartialEq>(value: &T) -> bool {
+    *value == T::default()
 }
 
 /// Default values of omitted fields (serde's `default = "…"` needs functions).
@@ -251,6 +298,9 @@ pub(crate) mod defaults {
     }
     pub fn max_energy_gain_fraction() -> f64 {
         gc2d_engine::SafetyLimits::default().max_energy_gain_fraction
+    }
+    pub fn max_impact_speed() -> f64 {
+        gc2d_engine::safety::DEFAULT_MAX_IMPACT_SPEED
     }
     pub fn gravity_steps() -> u32 {
         5
@@ -278,6 +328,9 @@ pub(crate) mod defaults {
     }
     pub fn mu() -> f64 {
         0.6
+    }
+    pub fn poisson_ratio() -> f64 {
+        0.3
     }
     pub fn half_pi() -> f64 {
         std::f64::consts::FRAC_PI_2

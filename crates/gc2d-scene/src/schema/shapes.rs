@@ -77,6 +77,25 @@ pub enum Shape {
         /// Corners per rounding, 2 to 16.
         corners_per_rounding: usize,
     },
+    /// An exact circle (particles and walls), centred on its position.
+    Disk {
+        /// Radius, m.
+        radius_m: f64,
+    },
+    /// A segment of length `length_m` along x swept by `radius_m`: a stadium (walls only: rotor blades, rounded
+    /// wall ends). The rotation turns it about its centre.
+    Capsule {
+        /// Distance between the centres of the two round ends, m (0 gives a disk-shaped wall).
+        length_m: f64,
+        /// Radius, m (half the width).
+        radius_m: f64,
+    },
+    /// The boundary of a circular chamber or drum (walls only): solid everywhere outside the circle, so particles
+    /// stay inside it.
+    InnerCircle {
+        /// Radius of the chamber, m.
+        radius_m: f64,
+    },
     /// A random polygon drawn from a recipe with the scene's seed (particles only).
     Random {
         /// How to draw it.

@@ -27,6 +27,9 @@ pub enum WallItem {
         /// How the wall moves. Default `Static`.
         #[serde(default)]
         motion: Motion,
+        /// The walls' material (its name). Default: the first material.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        material: Option<String>,
     },
     /// A rotating drum after gc2d's `gc2d_drum` (D.7): `segments` trapezoidal walls between radius r and r + d
     /// around the centre. The walls do not move; each carries the tangential surface velocity `surface_speed_m_s`
@@ -42,6 +45,9 @@ pub enum WallItem {
         surface_speed_m_s: f64,
         /// Number of wall segments N, 3 to 10 000.
         segments: usize,
+        /// The walls' material (its name). Default: the first material.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        material: Option<String>,
     },
     /// A funnel: two straight slabs that rise symmetrically from the edges of an opening (the point source of the
     /// poured piles, §8.3).
@@ -56,6 +62,9 @@ pub enum WallItem {
         length_m: f64,
         /// Thickness of each slab, m (added outside the funnel).
         thickness_m: f64,
+        /// The walls' material (its name). Default: the first material.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        material: Option<String>,
     },
     /// A silo outline (§7.1): a floor and two side walls around the inner rectangle, open at the top.
     Silo {
@@ -65,6 +74,9 @@ pub enum WallItem {
         y_range_m: [f64; 2],
         /// Wall thickness, m (added outside the inner rectangle).
         thickness_m: f64,
+        /// The walls' material (its name). Default: the first material.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        material: Option<String>,
     },
     /// A closed box, written `Box(…)`: a floor, two side walls and a lid around the inner rectangle.
     #[serde(rename = "Box")]
@@ -75,6 +87,9 @@ pub enum WallItem {
         y_range_m: [f64; 2],
         /// Wall thickness, m (added outside the inner rectangle).
         thickness_m: f64,
+        /// The walls' material (its name). Default: the first material.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        material: Option<String>,
     },
 }
 
@@ -136,4 +151,17 @@ pub enum Waveform {
     Tapping,
     /// `TRIANGLE`: up to W at half period and back.
     Triangle,
+}
+
+impl WallItem {
+    /// The material the entry names, if any (its walls then have it; else the scene's first material).
+    pub fn material(&self) -> Option<&str> {
+        match self {
+            WallItem::Wall { material, .. }
+            | WallItem::Drum { material, .. }
+            | WallItem::Funnel { material, .. }
+            | WallItem::Silo { material, .. }
+            | WallItem::Enclosure { material, .. } => material.as_deref(),
+        }
+    }
 }

@@ -6,7 +6,7 @@
 
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{BodyId, Integrator, SafetyLimits, World, WorldConfig};
+use gc2d_engine::{BodyId, Integrator, InteractionTable, MassModel, SafetyLimits, World, WorldConfig};
 use gc2d_geometry::{ConvexPolygon, DVec2, Pose, rectangle, regular_polygon, square};
 use std::f64::consts::PI;
 
@@ -108,7 +108,8 @@ fn new_world_with(
     let config = WorldConfig {
         time_step: dt,
         integrator,
-        contact_law: law,
+        interactions: InteractionTable::uniform(law),
+        mass_model: MassModel::PerUnitThickness,
         gravity: GravitySchedule::constant(g),
         heating: None,
         safety,
@@ -439,7 +440,7 @@ fn simulate_clamped(integrator: Integrator, dt: f64) -> Result<Observation, Stri
     let (mut l_bottom, mut l_top) = (f64::NAN, f64::NAN);
     for (a, b, contact) in world.contacts() {
         let wall = if a == id { b } else { a };
-        let length = contact.state.constants.map_or(f64::NAN, |k| k.length);
+        let length = contact.state.overlap_area().constants.map_or(f64::NAN, |k| k.length);
         if world.bodies().pose[wall.index()].position.y < 0.0 {
             l_bottom = length;
         } else {

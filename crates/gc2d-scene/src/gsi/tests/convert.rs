@@ -99,7 +99,7 @@ fn the_piston_general_display_and_block_map_to_run_material_view_and_block() {
     );
     assert_eq!((recipe.corner_positions, recipe.orientation), (CornerPositions::Rand1, Orientation::Equal));
     let summary = round_trip(scene).summary().unwrap_or_else(|e| panic!("{}", e.render_plain()));
-    assert_eq!((summary.wall_polygons, summary.moving_walls, summary.particles), (4, 1, 1251));
+    assert_eq!((summary.wall_bodies, summary.moving_walls, summary.particles), (4, 1, 1251));
     let semi_axes = parse_gsi(PISTON, &ImportOptions { part_size: crate::gsi::PartSizeConvention::SemiAxes });
     let semi_axes = to_scene(&semi_axes.unwrap(), "piston").unwrap();
     assert_eq!(semi_axes.scene.blocks[0].shape.semi_axes_m, [0.003, 0.003]);

@@ -1,0 +1,199 @@
+//! Exact disks under penetration laws, through the whole engine: the Hertz contact time and elasticity, the realised
+//! restitution of a damped linear spring and of the steel e(v) law, the sliding-to-rolling transition, and an
+//! elastic disk gas in a circular chamber.
+
+mod common;
+
+use common::{G, step};
+use gc2d_contact::{
+    CundallStrack, ImpactLaw, NormalSpring, PenetrationDamping, PenetrationLaw, TangentialSpring, TangentialStiffness,
+};
+use gc2d_engine::schedules::GravitySchedule;
+use gc2d_engine::{
+    BodyShape, ContactModel, Integrator, InteractionTable, MassModel, MaterialId, MaterialPair, SafetyLimits,
+    WallMotion, World, WorldConfig,
+};
+use gc2d_geometry::{DVec2, Pose, rectangle};
+use std::f64::consts::PI;
+
+/// Steel after the mill thesis: ρ = 7700 kg/m³, E = 196.2 GPa, ν = 0.3.
+const STEEL_DENSITY: f64 = 7700.0;
+const STEEL_E: f64 = 196.2e9;
+const STEEL_NU: f64 = 0.3;
+
+/// E* of two steel bodies, Pa.
+fn steel_effective_modulus() -> f64 {
+    1.0 / (2.0 * (1.0 - STEEL_NU * STEEL_NU) / STEEL_E)
+}
+
+/// A World with one material whose bodies interact by `law`, sphere-equivalent masses, gravity `g`.
+fn world_with(law: PenetrationLaw, dt: f64, g: f64) -> World {
+    world_of(law, dt, g, MassModel::SphereEquivalent)
+}
+
+/// A World with one material whose bodies interact by `law`, masses by `mass_model`, gravity `g`.
+fn world_of(law: PenetrationLaw, dt: f64, g: f64, mass_model: MassModel) -> World {
+    let config = WorldConfig {
+        time_step: dt,
+        integrator: Integrator::default(),
+        interactions: InteractionTable::new(
+            1,
+            &[MaterialPair { a: MaterialId(0), b: MaterialId(0), model: ContactModel::Penetration(law) }],
+        )
+        .unwrap(),
+        mass_model,
+        gravity: GravitySchedule::constant(g),
+        heating: None,
+        safety: SafetyLimits::default(),
+        domain: None,
+        seed: 1,
+    };
+    World::new(config).expect("valid configuration")
+}
+
+/// A steel disk of radius `radius` at `position` moving with `velocity`; its slot.
+fn add_disk(world: &mut World, radius: f64, position: DVec2, velocity: DVec2) -> usize {
+    let pose = Pose::new(position, 0.0);
+    world.add_particle(BodyShape::Disk { radius }, pose, STEEL_DENSITY, velocity, 0.0).unwrap().index()
+}
+
+/// What one impact did: its contact time and the relative speed after it.
+struct Impact {
+    contact_time: f64,
+    relative_speed_after: f64,
+}
+
+/// Steps until the bodies have touched and separated again; `relative_speed` gives the velocity of one body relative
+/// to the other (or to the wall) along the line of impact.
+fn impact(world: &mut World, relative_speed: impl Fn(&World) -> f64) -> Impact {
+    let (mut first, mut last) = (None, None);
+    for _ in 0..2_000_000 {
+        step(world);
+        if world.contacts().next().is_some() {
+            first.get_or_insert(world.time());
+            last = Some(world.time());
+        } else if last.is_some() {
+            let contact_time = last.unwrap() - first.unwrap() + world.time_step();
+            return Impact { contact_time, relative_speed_after: relative_speed(world) };
+        }
+    }
+    panic!("the bodies did not separate");
+}
+
+/// Hertz's contact time of two spheres: t_c = 2.868·(m*²/(R*·E*²·v))^{1/5} (Johnson, Contact Mechanics, §11.4),
+/// with the constant 2.868 = 2·∫₀¹ dx/√(1 − x^{5/2})·(15/16)^{2/5}.
+fn hertz_contact_time(effective_mass: f64, effective_radius: f64, effective_modulus: f64, speed: f64) -> f64 {
+    let integral = {
+        // ∫₀¹ dx/√(1 − x^{5/2}) by the substitution x = (1 − u²)^{2/5}, which removes the end singularity:
+        // dx = −(4/5)·u·(1 − u²)^{−3/5} du and √(1 − x^{5/2}) = u, so the integrand is (4/5)(1 − u²)^{−3/5}, smooth
+        // enough on [0, 1) for a fine midpoint rule.
+        let n = 2_000_000;
+        (0..n).map(|k| (k as f64 + 0.5) / n as f64).map(|u| 0.8 * (1.0 - u * u).powf(-0.6)).sum::<f64>() / n as f64
+    };
+    let constant = 2.0 * integral * (15.0f64 / 16.0).powf(0.4);
+    constant
+        * (effective_mass * effective_mass / (effective_radius * effective_modulus * effective_modulus * speed))
+            .powf(0.2)
+}
+
+#[test]
+fn hertz_head_on_of_steel_spheres_takes_the_analytic_contact_time_and_is_elastic() {
+    let (radius, speed): (f64, f64) = (0.025, 0.01);
+    let e_star = steel_effective_modulus();
+    let mass = STEEL_DENSITY * 4.0 / 3.0 * PI * radius.powi(3);
+    let expected = hertz_contact_time(0.5 * mass, 0.5 * radius, e_star, speed);
+    let law = PenetrationLaw::elastic(NormalSpring::Hertz { effective_modulus_pa: e_star });
+    let mut world = world_with(law, expected / 4000.0, 0.0);
+    let gap = 1e-8;
+    let a = add_disk(&mut world, radius, DVec2::new(-radius - gap, 0.0), DVec2::new(0.5 * speed, 0.0));
+    let b = add_disk(&mut world, radius, DVec2::new(radius + gap, 0.0), DVec2::new(-0.5 * speed, 0.0));
+    let relative = |w: &World| w.bodies().velocity[a].x - w.bodies().velocity[b].x;
+    let result = impact(&mut world, relative);
+    let time_error = (result.contact_time - expected).abs() / expected;
+    assert!(
+        time_error < 0.005,
+        "contact time {} s against Hertz's {expected} s ({time_error:.2e})",
+        result.contact_time
+    );
+    let restitution = -result.relative_speed_after / speed;
+    assert!((restitution - 1.0).abs() < 1e-5, "e = {restitution}");
+}
+
+#[test]
+fn linear_spring_realises_its_target_restitution_at_every_speed() {
+    let radius: f64 = 0.0025;
+    let stiffness = 1e6;
+    let mass = STEEL_DENSITY * 4.0 / 3.0 * PI * radius.powi(3);
+    let period = PI * (0.5 * mass / stiffness).sqrt();
+    for target in [0.1, 0.5, 0.9, 0.99] {
+        for speed in [0.1, 1.0, 5.0] {
+            let law = PenetrationLaw {
+                damping: Some(PenetrationDamping::Restitution(target)),
+                ..PenetrationLaw::elastic(NormalSpring::Linear { stiffness_n_m: stiffness })
+            };
+            let mut world = world_with(law, period / 1000.0, 0.0);
+            let gap = 1e-9;
+            let a = add_disk(&mut world, radius, DVec2::new(-radius - gap, 0.0), DVec2::new(0.5 * speed, 0.0));
+            let b = add_disk(&mut world, radius, DVec2::new(radius + gap, 0.0), DVec2::new(-0.5 * speed, 0.0));
+            let relative = |w: &World| w.bodies().velocity[a].x - w.bodies().velocity[b].x;
+            let restitution = -impact(&mut world, relative).relative_speed_after / speed;
+            let error = (restitution - target).abs() / target;
+            assert!(error < 0.005, "target e = {target} at {speed} m/s: realised {restitution} ({error:.2e})");
+        }
+    }
+}
+
+#[test]
+fn steel_impact_law_is_realised_on_a_steel_wall_from_slow_to_fast() {
+    let radius: f64 = 0.0025;
+    let e_star = steel_effective_modulus();
+    let law = PenetrationLaw {
+        damping: Some(PenetrationDamping::VelocityDependent(ImpactLaw::SteelReichardt)),
+        ..PenetrationLaw::elastic(NormalSpring::Hertz { effective_modulus_pa: e_star })
+    };
+    for speed in [0.1, 0.5, 1.0, 3.0, 10.0, 30.0, 50.0] {
+        let mass = STEEL_DENSITY * 4.0 / 3.0 * PI * radius.powi(3);
+        let contact_time = hertz_contact_time(mass, radius, e_star, speed);
+        let mut world = world_with(law, contact_time / 400.0, 0.0);
+        let wall = rectangle(0.02, 0.01).unwrap();
+        world.add_wall(&wall, Pose::new(DVec2::new(0.0, -0.005), 0.0), DVec2::ZERO, WallMotion::Static);
+        let ball = add_disk(&mut world, radius, DVec2::new(0.0, radius + 1e-9), DVec2::new(0.0, -speed));
+        let restitution = impact(&mut world, |w| w.bodies().velocity[ball].y).relative_speed_after / speed;
+        let expected = (0.985 / (speed + 0.9494).powf(0.291)).min(1.0);
+        let error = (restitution - expected).abs() / expected;
+        assert!(error < 0.02, "at {speed} m/s: e = {restitution}, the law's {expected} ({error:.2e})");
+    }
+}
+
+/// A disk launched sliding without spin on a floor: Coulomb friction slows it and spins it up until it rolls, at
+/// v = v0/(1 + m·R²/I) after t = (v0 − v)/(μ·g): 2/3·v0 after v0/(3μg) per unit thickness (I = ½mR²), 5/7·v0 after
+/// 2v0/(7μg) as a sphere (I = 2/5·mR²).
+#[test]
+fn a_sliding_disk_starts_to_roll_at_the_analytic_speed_and_time() {
+    let (radius, v0, mu) = (0.0025, 0.5, 0.3);
+    for (mass_model, fraction) in [(MassModel::PerUnitThickness, 2.0 / 3.0), (MassModel::SphereEquivalent, 5.0 / 7.0)] {
+        let law = PenetrationLaw {
+            damping: Some(PenetrationDamping::Restitution(0.1)),
+            tangential: Some(TangentialSpring {
+                mu,
+                stiffness: TangentialStiffness::CundallStrack { stiffness_ratio: CundallStrack::STIFFNESS_FACTOR },
+                damping_ratio: 0.0,
+            }),
+            ..PenetrationLaw::elastic(NormalSpring::Linear { stiffness_n_m: 1e5 })
+        };
+        let mut world = world_of(law, 1e-6, G, mass_model);
+        let floor = rectangle(1.0, 0.01).unwrap();
+        world.add_wall(&floor, Pose::new(DVec2::new(0.45, -0.005), 0.0), DVec2::ZERO, WallMotion::Static);
+        let disk = add_disk(&mut world, radius, DVec2::new(0.0, radius), DVec2::new(v0, 0.0));
+        let slip = |w: &World| w.bodies().velocity[disk].x + w.bodies().angular_velocity[disk] * radius;
+        while slip(&world) > 1e-4 * v0 {
+            step(&mut world);
+            assert!(world.time() < 1.0, "still sliding after 1 s");
+        }
+        let expected_time = (1.0 - fraction) * v0 / (mu * G);
+        let speed = world.bodies().velocity[disk].x;
+        assert!((speed - fraction * v0).abs() < 0.01 * fraction * v0, "{mass_model:?}: rolls at {speed} m/s");
+        let time_error = (world.time() - expected_time).abs() / expected_time;
+        assert!(time_error < 0.01, "{mass_model:?}: rolls after {} s, expected {expected_time} s", world.time());
+    }
+}

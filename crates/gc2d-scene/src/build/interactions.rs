@@ -1,0 +1,168 @@
+//! The scene's materials and `interactions` to the engine's interaction table: the listed law for a listed pair,
+//! and the overlap-area law mixed from the two materials for every other pair (docs/model.md, "Materials and mixing
+//! rules").
+
+use crate::error::SceneError;
+use crate::schema::{Damping, Friction, FrictionStiffness, InteractionLaw, Material, Rolling, Scene};
+use crate::validate::{Materials, overlap_area_law};
+use gc2d_contact::penetration::{effective_modulus, effective_shear_modulus};
+use gc2d_contact::{
+    CundallStrack, ImpactLaw, NormalSpring, PenetrationDamping, PenetrationLaw, RestitutionTable, RollingResistance,
+    TangentialSpring, TangentialStiffness,
+};
+use gc2d_engine::{ContactModel, InteractionTable, MaterialId, MaterialPair};
+
+/// The contact model of every pair of the scene's materials, material ids in scene order.
+pub(crate) fn interaction_table(scene: &Scene, materials: &Materials) -> Result<InteractionTable, SceneError> {
+    let all = materials.all();
+    let mut pairs = Vec::with_capacity(all.len() * (all.len() + 1) / 2);
+    for a in 0..all.len() {
+        for b in a..all.len() {
+            let listed = scene.interactions.iter().find(|entry| {
+                let [x, y] = [entry.materials[0].as_str(), entry.materials[1].as_str()];
+                (x == all[a].name && y == all[b].name) || (x == all[b].name && y == all[a].name)
+            });
+            let model = match listed {
+                Some(entry) => listed_model(&entry.law, &all[a], &all[b])
+                    .map_err(|message| SceneError::value(interaction_path(scene, entry), message))?,
+                None => mixed_model(&all[a], &all[b]),
+            };
+            pairs.push(MaterialPair { a: MaterialId(a as u16), b: MaterialId(b as u16), model });
+        }
+    }
+    InteractionTable::new(all.len(), &pairs).map_err(|e| SceneError::value("interactions", e.to_string()))
+}
+
+/// The overlap-area law of two materials with no entry of their own: each parameter mixed by [`mix`], the
+/// modulus by [`mix_stiffness`].
+fn mixed_model(a: &Material, b: &Material) -> ContactModel {
+    ContactModel::OverlapArea(overlap_area_law(
+        mix_stiffness(a.youngs_modulus_n_m, b.youngs_modulus_n_m),
+        mix(a.gamma, b.gamma),
+        mix(a.mu, b.mu),
+        mix(a.cohesion_n_m, b.cohesion_n_m),
+    ))
+}
+
+/// The field path of an `interactions` entry, for errors.
+fn interaction_path(scene: &Scene, entry: &crate::schema::Interaction) -> String {
+    let index = scene.interactions.iter().position(|e| std::ptr::eq(e, entry)).unwrap_or(0);
+    format!("interactions[{index}].law")
+}
+
+/// The law of a listed pair, its left-out parameters mixed; an error says what the materials lack or which
+/// parameter is out of range.
+pub(crate) fn listed_model(law: &InteractionLaw, a: &Material, b: &Material) -> Result<ContactModel, String> {
+    let model = match law {
+        InteractionLaw::OverlapArea { youngs_modulus_n_m, gamma, mu, cohesion_n_m } => {
+            ContactModel::OverlapArea(overlap_area_law(
+                youngs_modulus_n_m.unwrap_or_else(|| mix_stiffness(a.youngs_modulus_n_m, b.youngs_modulus_n_m)),
+                gamma.unwrap_or_else(|| mix(a.gamma, b.gamma)),
+                mu.unwrap_or_else(|| mix(a.mu, b.mu)),
+                cohesion_n_m.unwrap_or_else(|| mix(a.cohesion_n_m, b.cohesion_n_m)),
+            ))
+        }
+        InteractionLaw::Linear { stiffness_n_m, damping, friction, rolling, tensile_clamp } => {
+            ContactModel::Penetration(PenetrationLaw {
+                normal: NormalSpring::Linear { stiffness_n_m: *stiffness_n_m },
+                damping: penetration_damping(damping)?,
+                tangential: friction.map(|f| tangential(&f, false, a, b)).transpose()?,
+                rolling: rolling.map(|r| rolling_resistance(&r)),
+                tensile_clamp: *tensile_clamp,
+            })
+        }
+        InteractionLaw::Hertz { damping, friction, rolling, tensile_clamp } => {
+            let (e_a, e_b) = (hertz_modulus(a)?, hertz_modulus(b)?);
+            ContactModel::Penetration(PenetrationLaw {
+                normal: NormalSpring::Hertz {
+                    effective_modulus_pa: effective_modulus(e_a, a.poisson_ratio, e_b, b.poisson_ratio),
+                },
+                damping: penetration_damping(damping)?,
+                tangential: friction.map(|f| tangential(&f, true, a, b)).transpose()?,
+                rolling: rolling.map(|r| rolling_resistance(&r)),
+                tensile_clamp: *tensile_clamp,
+            })
+        }
+    };
+    model.validate().map_err(|e| e.to_string())?;
+    Ok(model)
+}
+
+/// A material's 3D Young's modulus, which Hertz and Mindlin need.
+fn hertz_modulus(material: &Material) -> Result<f64, String> {
+    material.youngs_modulus_pa.ok_or_else(|| {
+        format!(
+            "material `{}` has no `youngs_modulus_pa`, which this law needs (with `poisson_ratio`, default 0.3)",
+            material.name
+        )
+    })
+}
+
+/// The engine's damping of a scene `Damping`.
+fn penetration_damping(damping: &Damping) -> Result<Option<PenetrationDamping>, String> {
+    Ok(match damping {
+        Damping::None => None,
+        Damping::Ratio(ratio) => Some(PenetrationDamping::DampingRatio(*ratio)),
+        Damping::Restitution(e) => Some(PenetrationDamping::Restitution(*e)),
+        Damping::SteelReichardt => Some(PenetrationDamping::VelocityDependent(ImpactLaw::SteelReichardt)),
+        &Damping::PowerLaw { a, b, c } => Some(PenetrationDamping::VelocityDependent(ImpactLaw::PowerLaw { a, b, c })),
+        Damping::Table(points) => {
+            let table = RestitutionTable::new(points).map_err(|e| format!("damping table: {e}"))?;
+            Some(PenetrationDamping::VelocityDependent(ImpactLaw::Table(table)))
+        }
+    })
+}
+
+/// The engine's tangential spring of a scene `Friction`; the stiffness defaults to Mindlin under Hertz and to the
+/// area law's ratio 2/7 under the linear spring.
+fn tangential(friction: &Friction, hertz: bool, a: &Material, b: &Material) -> Result<TangentialSpring, String> {
+    let stiffness = match friction.stiffness {
+        Some(FrictionStiffness::Ratio(stiffness_ratio)) => TangentialStiffness::CundallStrack { stiffness_ratio },
+        Some(FrictionStiffness::Mindlin) => mindlin(a, b)?,
+        None if hertz => mindlin(a, b)?,
+        None => TangentialStiffness::CundallStrack { stiffness_ratio: CundallStrack::STIFFNESS_FACTOR },
+    };
+    Ok(TangentialSpring { mu: friction.mu, stiffness, damping_ratio: friction.damping_ratio })
+}
+
+/// Mindlin's stiffness with G* of the two materials.
+fn mindlin(a: &Material, b: &Material) -> Result<TangentialStiffness, String> {
+    let (e_a, e_b) = (hertz_modulus(a)?, hertz_modulus(b)?);
+    Ok(TangentialStiffness::Mindlin {
+        effective_shear_modulus_pa: effective_shear_modulus(e_a, a.poisson_ratio, e_b, b.poisson_ratio),
+    })
+}
+
+/// The engine's rolling resistance of a scene `Rolling`.
+fn rolling_resistance(rolling: &Rolling) -> RollingResistance {
+    RollingResistance {
+        mu_r: rolling.mu_r,
+        stiffness_ratio: rolling.stiffness_ratio,
+        damping_ratio: rolling.damping_ratio,
+    }
+}
+
+/// A coefficient of a pair of materials: the common value when both agree (bit for bit, so a one-material scene
+/// keeps its law exactly), else the arithmetic mean.
+pub(crate) fn mix(a: f64, b: f64) -> f64 {
+    if a == b { a } else { 0.5 * (a + b) }
+}
+
+/// A stiffness of a pair of materials: the common value when both agree, else the harmonic mean 2·E_a·E_b/(E_a +
+/// E_b) (two half-contacts in series, each as stiff as its own material).
+pub(crate) fn mix_stiffness(a: f64, b: f64) -> f64 {
+    if a == b { a } else { 2.0 * a * b / (a + b) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equal_values_mix_to_themselves_and_unequal_ones_to_their_means() {
+        assert_eq!(mix(0.3, 0.3), 0.3);
+        assert_eq!(mix(0.2, 0.6), 0.4);
+        assert_eq!(mix_stiffness(1e7, 1e7), 1e7);
+        assert!((mix_stiffness(1e7, 3e7) - 1.5e7).abs() < 1e-6);
+    }
+}
