@@ -134,12 +134,14 @@ fn parry_shape(shape: ShapeView) -> (ParryPose, Box<dyn Shape>) {
 }
 
 /// Our penetration against parry's contact: depth and normal always, the contact point where it is unique
-/// (`points`). `size` scales the absolute tolerances; `relative` is the tolerance parry's own query allows.
+/// (`points`). `size` scales the absolute tolerances; `relative` is the depth tolerance parry's own query allows,
+/// `normal` its normal tolerance (an ill-conditioned normal of a very shallow contact is allowed `relative`/depth).
 fn check_against_parry(
     i: ShapeView,
     j: ShapeView,
     size: f64,
     relative: f64,
+    normal: f64,
     points: bool,
 ) -> Result<(), TestCaseError> {
     let ours = penetration(i, j);
@@ -154,18 +156,24 @@ fn check_against_parry(
         (None, Some(c)) => prop_assert!(-c.dist <= tolerance, "we see no contact, parry sees depth {}", -c.dist),
         (Some(p), Some(c)) => {
             prop_assert!((p.depth + c.dist).abs() <= tolerance, "depth {} vs parry {}", p.depth, -c.dist);
-            // A nearly flat contact's normal is ill-conditioned only when the depth is tiny; compare where it matters.
-            if p.depth > 1e-6 * size {
-                prop_assert!(
-                    (p.normal + c.normal1).length() <= relative * size / p.depth.min(size) + 1e-9,
-                    "normal {:?} vs parry {:?}",
-                    p.normal,
-                    -c.normal1
-                );
-            }
+            let normal_error = (p.normal + c.normal1).length();
+            prop_assert!(
+                normal_error <= normal + tolerance / p.depth.min(size),
+                "normal {:?} vs parry {:?}",
+                p.normal,
+                -c.normal1
+            );
             if points {
+                // The contact point moves with the normal by up to the radius: parry's normal of a contact 1e-5
+                // deep carries ~1e-12 of rounding from the nearly equal points it is taken from (ours uses the
+                // edge's normal), which shows here.
                 let mid = 0.5 * (c.point1 + c.point2);
-                prop_assert!((p.point - mid).length() <= tolerance, "point {:?} vs parry {:?}", p.point, mid);
+                prop_assert!(
+                    (p.point - mid).length() <= tolerance + 2.0 * size * normal_error,
+                    "point {:?} vs parry {:?}",
+                    p.point,
+                    mid
+                );
             }
             prop_assert!((p.normal.length() - 1.0).abs() < 1e-12);
         }
@@ -210,6 +218,12 @@ fn check_bracket(i: ShapeView, j: ShapeView, lower: f64, upper: f64, size: f64) 
     if let Some(c) = area_contact(i, j) {
         prop_assert!((c.normal.length() - 1.0).abs() < 1e-12);
         prop_assert!(c.chord_length > 0.0 && c.point.is_finite());
+        // The chord ends lie on both outlines (crossings), or on the smaller body's (containment).
+        let half = 0.5 * c.chord_length * c.normal.perp();
+        let on = |shape: ShapeView| {
+            [c.point + half, c.point - half].iter().all(|&end| distance_to_outline(end, shape) <= 1e-9 * size)
+        };
+        prop_assert!(on(i) || on(j), "chord ends on neither outline: {c:?}");
     }
     Ok(())
 }
@@ -310,7 +324,7 @@ proptest! {
     #[test]
     fn disk_disk_matches_parry_and_the_lens(ci in point(1.0), cj in point(1.0), ri in 0.1..1.5f64, rj in 0.1..1.5f64) {
         let (i, j) = (ShapeView::Disk { center: ci, radius: ri }, ShapeView::Disk { center: cj, radius: rj });
-        check_against_parry(i, j, 1.0, 1e-12, true)?;
+        check_against_parry(i, j, 1.0, 1e-12, 1e-12, true)?;
         check_surface_points(i, j, 1.0)?;
         let d = (ci - cj).length();
         let expected = textbook_lens(ri, rj, d);
@@ -327,7 +341,9 @@ proptest! {
     #[test]
     fn disk_polygon_matches_parry_and_the_bracket(poly in convex_polygon(1.0), c in point(1.0), r in 0.05..1.5f64) {
         let (i, j) = (ShapeView::Disk { center: c, radius: r }, ShapeView::Polygon(&poly));
-        check_against_parry(i, j, 1.0, 1e-12, true)?;
+        // parry's normal comes from the difference of two nearly equal points when the centre is close to the
+        // outline (1e-16/distance of rounding: 4e-12 seen); ours is the edge's own normal there.
+        check_against_parry(i, j, 1.0, 1e-12, 1e-10, true)?;
         check_surface_points(i, j, 1.0)?;
         let lower = clip_area(&poly, &circle_polygon(c, r, false));
         let upper = clip_area(&poly, &circle_polygon(c, r, true));
@@ -348,7 +364,8 @@ proptest! {
         c in point(1.0), r in 0.05..1.5f64, a in point(1.0), b in point(1.0), rho in 0.05..1.0f64,
     ) {
         let (i, j) = (ShapeView::Disk { center: c, radius: r }, ShapeView::Capsule { a, b, radius: rho });
-        check_against_parry(i, j, 1.0, 1e-12, true)?;
+        // As for polygons: off the core's side our normal is the core's own, parry's a difference of points.
+        check_against_parry(i, j, 1.0, 1e-12, 1e-10, true)?;
         check_surface_points(i, j, 1.0)?;
         let lower = clip_area(&capsule_polygon(a, b, rho, false), &circle_polygon(c, r, false));
         let upper = clip_area(&capsule_polygon(a, b, rho, true), &circle_polygon(c, r, true));
@@ -362,9 +379,20 @@ proptest! {
         poly in convex_polygon(1.0), a in point(1.0), b in point(1.0), rho in 0.05..1.0f64,
     ) {
         let (i, j) = (ShapeView::Polygon(&poly), ShapeView::Capsule { a, b, radius: rho });
-        // parry's GJK/EPA for support-map pairs stops at a relative accuracy of ~1e-7; contact points of flat faces
-        // are not unique, so only depth and normal are compared, and the surface points checked on the outlines.
-        check_against_parry(i, j, 1.0, 1e-6, false)?;
+        // parry's GJK/EPA for support-map pairs stops at a relative accuracy of ~1e-7 in distance, which leaves
+        // the normal of a vertex–cap contact uncertain to ~√(1e-9) (1.5e-5 seen where ours matched a 200 000-
+        // direction brute force to 1e-13); contact points of flat faces are not unique. So depth and normal are
+        // compared to parry loosely, and tightly against the support functions: along our normal the two bodies
+        // overlap by exactly our depth, and along no sampled direction by less.
+        check_against_parry(i, j, 1.0, 1e-6, 1e-4, false)?;
+        if let Some(p) = penetration(i, j) {
+            let overlap = |u: DVec2| {
+                a.dot(u).max(b.dot(u)) + rho - poly.iter().map(|q| q.dot(u)).fold(f64::INFINITY, f64::min)
+            };
+            prop_assert!((overlap(p.normal) - p.depth).abs() <= 1e-12, "{} vs {}", overlap(p.normal), p.depth);
+            let least = (0..720).map(|k| overlap(DVec2::from_angle(TAU * k as f64 / 720.0))).fold(f64::INFINITY, f64::min);
+            prop_assert!(p.depth <= least + 1e-12, "depth {} above the sampled least overlap {least}", p.depth);
+        }
         check_surface_points(i, j, 1.0)?;
         let lower = clip_area(&poly, &capsule_polygon(a, b, rho, false));
         let upper = clip_area(&poly, &capsule_polygon(a, b, rho, true));
@@ -376,9 +404,17 @@ proptest! {
         let (i, j) = (ShapeView::Disk { center: c, radius: r }, ShapeView::InnerCircle { center: centre, radius: big });
         let expected = PI * r * r - textbook_lens(r, big, (c - centre).length());
         let area = area_contact(i, j).map_or(0.0, |c| c.area);
-        // The textbook formula (acos, then πr² − lens) is itself the less accurate side in shallow overlaps (see
-        // `shallow_overlaps_match_high_precision_values`): its absolute error, ~1e-13·r·R, is allowed for.
-        prop_assert!((area - expected).abs() <= 1e-10 * expected + 1e-13 * r * big, "{area} vs {expected}");
+        // The textbook formula (acos of a cancelling quotient, then πr² − lens) is itself the less accurate side
+        // in shallow overlaps (5e-5 off at depth 3.5e-6 where ours matched 50-digit arithmetic to 2e-11; see also
+        // `shallow_overlaps_match_high_precision_values`), so it is the reference only from 5 % of r deep; the
+        // polygon bracket is rigorous everywhere but loose.
+        if (c - centre).length() + r - big > 0.05 * r {
+            prop_assert!((area - expected).abs() <= 1e-10 * expected + 1e-13 * big * big, "{area} vs {expected}");
+        }
+        let (inner_disk, outer_disk) = (circle_polygon(c, r, false), circle_polygon(c, r, true));
+        let lower = area_of(&inner_disk) - clip_area(&circle_polygon(centre, big, true), &inner_disk);
+        let upper = area_of(&outer_disk) - clip_area(&circle_polygon(centre, big, false), &outer_disk);
+        check_bracket(i, j, lower, upper, 1.0)?;
         if let Some(p) = penetration(i, j) {
             prop_assert!(((c - centre).length() + r - big - p.depth).abs() <= 1e-15);
             prop_assert_eq!(p.surface_radius_j, -big);

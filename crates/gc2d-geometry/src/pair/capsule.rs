@@ -308,11 +308,26 @@ pub(crate) fn disk_capsule_penetration(c: DVec2, r: f64, a: DVec2, b: DVec2, rho
         return disk_disk_penetration(c, r, a, rho);
     }
     let (q, t) = closest_on_segment(c, a, b);
-    let offset = c - q;
-    let distance = offset.length();
-    let normal = if distance > 0.0 { offset / distance } else { (b - a).perp().normalize() };
     let on_cap = t <= 0.0 || t >= 1.0;
+    let (distance, normal) = if on_cap {
+        let offset = c - q;
+        let distance = offset.length();
+        (distance, if distance > 0.0 { offset / distance } else { (b - a).perp().normalize() })
+    } else {
+        // Off the side: the core's own normal and the distance to its line (no rounded foot point).
+        side_distance(c, a, b)
+    };
     PairPenetration::new(r + rho - distance, normal, c - r * normal, r, if on_cap { rho } else { f64::INFINITY })
+}
+
+/// Distance from `p` to the line through the segment s0–s1 (s0 ≠ s1) and the unit normal of that line pointing
+/// towards `p` (the left normal when `p` lies on it).
+fn side_distance(p: DVec2, s0: DVec2, s1: DVec2) -> (f64, DVec2) {
+    let e = s1 - s0;
+    let length = e.length();
+    let side = cross(e, p - s0) / length;
+    let left = e.perp() / length;
+    if side >= 0.0 { (side, left) } else { (-side, -left) }
 }
 
 /// Polygon i against capsule j. Core segment apart from the polygon: depth ρ − their distance, normal from the
@@ -328,26 +343,37 @@ pub(crate) fn polygon_capsule_penetration(polygon: &[DVec2], a: DVec2, b: DVec2,
     let n = polygon.len();
     // Nearest points of polygon and core, assuming they do not cross: vertex–segment and end–edge candidates.
     let (mut best, mut on_polygon, mut on_core) = (f64::INFINITY, polygon[0], a);
-    let (mut polygon_vertex, mut core_end) = (true, true);
+    let (mut polygon_vertex, mut core_end, mut edge) = (true, true, 0);
     for k in 0..n {
         let (p, q) = (polygon[k], polygon[if k + 1 == n { 0 } else { k + 1 }]);
         let (point, t) = closest_on_segment(p, a, b);
         let distance = (p - point).length();
         if distance < best {
-            (best, on_polygon, on_core, polygon_vertex, core_end) = (distance, p, point, true, t <= 0.0 || t >= 1.0);
+            (best, on_polygon, on_core) = (distance, p, point);
+            (polygon_vertex, core_end) = (true, t <= 0.0 || t >= 1.0);
         }
         for end in [a, b] {
             let (point, t) = closest_on_segment(end, p, q);
             let distance = (end - point).length();
             if distance < best {
-                (best, on_polygon, on_core, polygon_vertex, core_end) =
-                    (distance, point, end, t <= 0.0 || t >= 1.0, true);
+                (best, on_polygon, on_core) = (distance, point, end);
+                (polygon_vertex, core_end, edge) = (t <= 0.0 || t >= 1.0, true, k);
             }
         }
     }
     let (core_depth, axis, kind) = least_overlap_axis(polygon, a, b);
     if core_depth <= 0.0 && best > 0.0 {
-        let normal = (on_polygon - on_core) / best;
+        // A flat feature on either side gives the normal exactly: the core's (polygon vertex off the core's side)
+        // or the polygon edge's (core end off an edge); only vertex–end pairs take the difference of the points.
+        let (best, normal) = if !core_end {
+            side_distance(on_polygon, a, b)
+        } else if !polygon_vertex {
+            let (distance, towards_end) =
+                side_distance(on_core, polygon[edge], polygon[if edge + 1 == n { 0 } else { edge + 1 }]);
+            (distance, -towards_end)
+        } else {
+            (best, (on_polygon - on_core) / best)
+        };
         let radius_i = if polygon_vertex { 0.0 } else { f64::INFINITY };
         let radius_j = if core_end { rho } else { f64::INFINITY };
         return PairPenetration::new(rho - best, normal, on_polygon, radius_i, radius_j);
@@ -408,4 +434,92 @@ fn least_overlap_axis(polygon: &[DVec2], a: DVec2, b: DVec2) -> (f64, DVec2, Axi
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    fn v(x: f64, y: f64) -> DVec2 {
+        DVec2::new(x, y)
+    }
+
+    /// ∫ 2√(r² − s²) ds from s1 to s2: the area of a disk between two parallel lines.
+    fn band(r: f64, s1: f64, s2: f64) -> f64 {
+        let f = |s: f64| s * (r * r - s * s).sqrt() + r * r * (s / r).asin();
+        f(s2) - f(s1)
+    }
+
+    #[test]
+    fn a_ball_straddling_a_blade_takes_the_longer_side_as_chord() {
+        let (a, b, rho) = (v(-1.0, 0.0), v(1.0, 0.0), 0.1);
+        let (c, r) = (v(0.0, 0.05), 0.5);
+        let contact = disk_capsule_area_contact(c, r, a, b, rho).unwrap();
+        assert_relative_eq!(contact.area, band(r, -0.15, 0.05), max_relative = 1e-13);
+        assert_relative_eq!(contact.normal, DVec2::Y, epsilon = 1e-15);
+        assert_relative_eq!(contact.point, v(0.0, 0.1), epsilon = 1e-15);
+        assert_relative_eq!(contact.chord_length, 2.0 * (r * r - 0.05f64 * 0.05).sqrt(), max_relative = 1e-14);
+        let p = disk_capsule_penetration(c, r, a, b, rho).unwrap().penetration;
+        assert_relative_eq!(p.depth, 0.55, max_relative = 1e-15);
+        assert_eq!((p.normal, p.surface_radius_j), (DVec2::Y, f64::INFINITY));
+    }
+
+    #[test]
+    fn a_ball_inside_a_blade_is_pushed_out_across_the_core() {
+        let (a, b, rho) = (v(-1.0, 0.0), v(1.0, 0.0), 0.1);
+        let contact = disk_capsule_area_contact(v(0.3, 0.02), 0.05, a, b, rho).unwrap();
+        assert_relative_eq!(contact.area, PI * 0.05 * 0.05, max_relative = 1e-13);
+        assert_relative_eq!(contact.normal, DVec2::Y, epsilon = 1e-14);
+        assert_relative_eq!(contact.point, v(0.3, 0.02), epsilon = 1e-15);
+        assert_relative_eq!(contact.chord_length, 0.1, max_relative = 1e-15);
+    }
+
+    #[test]
+    fn a_ball_on_a_cap_meets_the_end_disk() {
+        let (a, b, rho) = (v(-1.0, 0.0), v(1.0, 0.0), 0.1);
+        let c = b + 0.2 * DVec2::from_angle(0.4);
+        let contact = disk_capsule_area_contact(c, 0.15, a, b, rho).unwrap();
+        assert_relative_eq!(contact.area, super::super::circles::lens_area(0.15, rho, 0.2), max_relative = 1e-13);
+        assert_relative_eq!(contact.normal, DVec2::from_angle(0.4), epsilon = 1e-14);
+        let p = disk_capsule_penetration(c, 0.15, a, b, rho).unwrap().penetration;
+        assert_relative_eq!(p.depth, 0.05, max_relative = 1e-13);
+        assert_eq!(p.surface_radius_j, rho);
+    }
+
+    #[test]
+    fn a_square_crossed_by_the_core_is_pushed_along_the_least_overlap() {
+        let (a, b, rho) = (v(-1.0, 0.0), v(1.0, 0.0), 0.1);
+        let square = [v(-0.2, -0.05), v(0.2, -0.05), v(0.2, 0.35), v(-0.2, 0.35)];
+        let p = polygon_capsule_penetration(&square, a, b, rho).unwrap().penetration;
+        assert_relative_eq!(p.depth, 0.15, max_relative = 1e-14);
+        assert_relative_eq!(p.normal, DVec2::Y, epsilon = 1e-15);
+        assert_relative_eq!(p.point, v(0.0, 0.025), epsilon = 1e-15);
+        assert_eq!(p.surface_radius_j, f64::INFINITY);
+        let contact = polygon_capsule_area_contact(&square, a, b, rho).unwrap();
+        assert_relative_eq!(contact.area, 0.06, max_relative = 1e-14);
+        assert_relative_eq!(contact.normal, DVec2::Y, epsilon = 1e-15);
+        assert_relative_eq!(contact.point, v(0.0, 0.1), epsilon = 1e-15);
+        assert_relative_eq!(contact.chord_length, 0.4, max_relative = 1e-14);
+        // The square's corner on the blade's side: a vertex contact.
+        let tilted: Vec<DVec2> = square.iter().map(|&p| DVec2::from_angle(0.3).rotate(p) + v(0.1, 0.12)).collect();
+        let q = polygon_capsule_penetration(&tilted, a, b, rho).unwrap();
+        assert_eq!(q.surface_radius_i, 0.0);
+        assert_relative_eq!(q.penetration.normal, DVec2::Y, epsilon = 1e-15);
+    }
+
+    #[test]
+    fn degenerate_capsules_and_clipping() {
+        assert_eq!(disk_capsule_intersection_area(v(0.0, 0.0), 1.0, v(0.5, 0.0), v(0.5, 0.0), 0.0), 0.0);
+        assert_relative_eq!(
+            disk_capsule_intersection_area(v(0.0, 0.0), 1.0, v(0.5, 0.0), v(0.5, 0.0), 0.2),
+            PI * 0.04,
+            max_relative = 1e-14
+        );
+        let mut out = [DVec2::ZERO; 5];
+        let square = [v(0.0, 0.0), v(1.0, 0.0), v(1.0, 1.0), v(0.0, 1.0)];
+        assert_eq!(clip_half_plane(&square, v(2.0, 0.0), DVec2::X, &mut out), 0);
+        let n = clip_half_plane(&square, v(0.5, 0.0), DVec2::X, &mut out);
+        assert_relative_eq!(polygon_area(&out[..n]), 0.5, max_relative = 1e-15);
+    }
 }

@@ -465,4 +465,21 @@ mod tests {
         assert_eq!(q.surface_radius_j, 0.0);
         assert!(disk_polygon_penetration(v(1.3, 0.5), 0.2, &square).is_none());
     }
+
+    #[test]
+    fn a_disk_across_a_strip_takes_the_farthest_crossing_pair() {
+        // Four crossings: (±x_top, 0.05) and (±x_bottom, −0.05); the farthest pair is a diagonal, and the area
+        // gradient (the overlap shrinks as the disk moves up) orients the normal upwards, as for polygons.
+        let strip = rect(-1.0, -0.05, 1.0, 0.05);
+        let (c, r) = (v(0.0, 0.01), 0.5);
+        let a = disk_polygon_area_contact(c, r, &strip).unwrap();
+        let (top, bottom) = ((r * r - 0.04f64 * 0.04).sqrt(), (r * r - 0.06f64 * 0.06).sqrt());
+        assert_relative_eq!(a.chord_length, ((top + bottom).powi(2) + 0.01).sqrt(), max_relative = 1e-14);
+        // Two diagonals tie; the first found is kept.
+        assert_relative_eq!(a.point.x.abs(), 0.5 * (top - bottom), epsilon = 1e-15);
+        assert_relative_eq!(a.point.y, 0.0, epsilon = 1e-15);
+        assert!(a.normal.y > 0.99);
+        let b = polygon_disk_area_contact(&strip, c, r).unwrap();
+        assert_eq!((b.area, b.point, b.normal), (a.area, a.point, -a.normal));
+    }
 }
