@@ -14,7 +14,7 @@
 #[path = "support/thesis_material.rs"]
 mod thesis_material;
 
-use gc2d_engine::{DropHeight, DropSource, MaterialId, TimeWindow, WallMotion, World};
+use gc2d_engine::{DropHeight, DropSource, MaterialId, ParticleRecipe, TimeWindow, WallMotion, World};
 use gc2d_geometry::{DVec2, Pose, rectangle};
 use std::time::Instant;
 
@@ -52,7 +52,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         height: DropHeight::Absolute,
         window: TimeWindow::new(0.0, POURING_ENDS),
         interval: INSERTION_INTERVAL,
-        recipe: thesis_material::thesis_recipe(),
+        recipe: ParticleRecipe::Polygon(thesis_material::thesis_recipe()),
         density: thesis_material::DENSITY,
         material: MaterialId::default(),
     })?;

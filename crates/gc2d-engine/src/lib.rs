@@ -36,7 +36,7 @@ pub use ledger::EnergyLedger;
 pub use motion::WallMotion;
 pub use narrowphase::{ContactHistory, PairContact};
 pub use safety::{SafetyError, SafetyLimits};
-pub use shape::{BodyShape, BodyShapeError, MassModel, ShapeKind, shape_view};
+pub use shape::{BodyShape, BodyShapeError, DiskRecipe, MassModel, ParticleRecipe, ShapeKind, shape_view};
 pub use sources::{DropHeight, DropSource};
 pub use time_window::TimeWindow;
 pub use world::{ForceAlternation, StepStats, World, WorldConfig, WorldError};

@@ -6,7 +6,8 @@
 //! disk's or an inner circle's centre, a capsule's two segment ends) plus a radius, so one transform pass moves them
 //! all; [`ShapeKind`] says how to read them.
 
-use gc2d_geometry::{ConvexPolygon, DVec2, MassProperties, ShapeView};
+use gc2d_geometry::{ConvexPolygon, DVec2, MassProperties, Randomization, ShapeError, ShapeRecipe, ShapeView};
+use rand::Rng;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -169,6 +170,64 @@ impl BodyShape {
         match *self {
             BodyShape::Disk { radius } => radius,
             _ => (self.area() / PI).sqrt(),
+        }
+    }
+}
+
+/// How a source or a block draws each new particle: a random polygon or a disk of scattered radius.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum ParticleRecipe {
+    /// A random convex polygon by gc2d's rules (reference §1.2).
+    Polygon(ShapeRecipe),
+    /// A disk.
+    Disk(DiskRecipe),
+}
+
+/// A disk whose radius is drawn around `radius` with the size rule of gc2d's recipes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct DiskRecipe {
+    /// Nominal radius, m.
+    pub radius: f64,
+    /// How the radius scatters (`Const`, `Equal`, `Gauss`).
+    pub size_randomization: Randomization,
+    /// Relative spread of the radius, in [0, 1) when it scatters.
+    pub size_variation: f64,
+}
+
+impl ParticleRecipe {
+    /// Checks that every draw gives a valid shape.
+    pub fn validate(&self) -> Result<(), ShapeError> {
+        match self {
+            ParticleRecipe::Polygon(recipe) => recipe.validate(),
+            ParticleRecipe::Disk(disk) => {
+                if !(disk.radius > 0.0 && disk.radius.is_finite()) {
+                    return Err(ShapeError::InvalidValue {
+                        parameter: "radius",
+                        value: disk.radius,
+                        reason: "must be a finite positive length",
+                    });
+                }
+                if disk.size_randomization != Randomization::Const && !(0.0..1.0).contains(&disk.size_variation) {
+                    return Err(ShapeError::InvalidValue {
+                        parameter: "size_variation",
+                        value: disk.size_variation,
+                        reason: "the relative size spread must lie in [0, 1)",
+                    });
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// Draws one shape and its orientation (radians CCW; 0 for disks) from `rng`. A polygon draws exactly what
+    /// [`ShapeRecipe::draw`] draws; a disk draws its radius only when it scatters.
+    pub fn draw<R: Rng + ?Sized>(&self, rng: &mut R) -> Result<(BodyShape, f64), ShapeError> {
+        match self {
+            ParticleRecipe::Polygon(recipe) => recipe.draw(rng).map(|(polygon, angle)| (polygon.into(), angle)),
+            ParticleRecipe::Disk(disk) => {
+                let radius = disk.size_randomization.draw_size(disk.radius, disk.size_variation, rng);
+                Ok((BodyShape::Disk { radius }, 0.0))
+            }
         }
     }
 }

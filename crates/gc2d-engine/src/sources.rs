@@ -1,8 +1,9 @@
 //! Particle sources (gc2d's DROPSOURCE, reference §9.8): insert one particle per interval inside a time window.
 
 use crate::interactions::MaterialId;
+use crate::shape::ParticleRecipe;
 use crate::time_window::TimeWindow;
-use gc2d_geometry::{DVec2, ShapeRecipe};
+use gc2d_geometry::DVec2;
 use serde::{Deserialize, Serialize};
 
 /// Where a source puts the new particle's centroid vertically.
@@ -15,8 +16,8 @@ pub enum DropHeight {
     AboveHighest,
 }
 
-/// A particle source. Each insertion draws a shape from `recipe`, places it at a uniformly random x within
-/// `width` around `position.x`, and starts it at rest.
+/// A particle source. Each insertion draws a shape from `recipe` (a polygon or a disk), places it at a uniformly
+/// random x within `width` around `position.x`, and starts it at rest.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DropSource {
     /// Centre of the insertion line, m.
@@ -30,7 +31,7 @@ pub struct DropSource {
     /// Time between two insertions, s.
     pub interval: f64,
     /// Shape of the inserted particles.
-    pub recipe: ShapeRecipe,
+    pub recipe: ParticleRecipe,
     /// Density of the inserted particles (kg/m² or kg/m³ by the World's mass model).
     pub density: f64,
     /// Material of the inserted particles.

@@ -16,7 +16,7 @@ use crate::motion::WallMotion;
 use crate::narrowphase::{PairContact, PairContext};
 use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
-use crate::shape::{BodyShape, MassModel};
+use crate::shape::{BodyShape, MassModel, shape_view};
 use crate::sources::{DropHeight, DropSource, PLACEMENT_ATTEMPTS, SourceState};
 use gc2d_geometry::{Aabb, DVec2, Pose, ShapeView, area_contact};
 use rand::{Rng, SeedableRng};
@@ -746,14 +746,15 @@ impl World {
             }
         };
         let scale = self.config.heating.map_or(1.0, |h| h.scale(self.time));
+        let points = shape.body_points();
         let mut world = [DVec2::ZERO; gc2d_geometry::MAX_VERTICES];
-        let world = &mut world[..shape.len()];
+        let world = &mut world[..points.len()];
         for _ in 0..PLACEMENT_ATTEMPTS {
             let x = source.position.x + if half > 0.0 { self.rng.random_range(-half..=half) } else { 0.0 };
             let pose = Pose { position: DVec2::new(x, y), angle, scale };
-            pose.transform_into(shape.vertices(), world);
-            if !self.overlaps_any(ShapeView::Polygon(world)) {
-                let id = self.add_particle(&shape, pose, source.density, DVec2::ZERO, 0.0).ok()?;
+            pose.transform_into(&points, world);
+            if !self.overlaps_any(shape_view(shape.kind(), world, shape.radius() * scale)) {
+                let id = self.add_particle(shape.clone(), pose, source.density, DVec2::ZERO, 0.0).ok()?;
                 self.bodies.material[id.index()] = source.material;
                 return Some(id);
             }

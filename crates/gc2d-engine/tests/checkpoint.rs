@@ -6,8 +6,8 @@ use gc2d_engine::checkpoint::{CHECKPOINT_FORMAT_VERSION, CHECKPOINT_MAGIC, PROGR
 use gc2d_engine::motion::{Piston, Vibration, Waveform};
 use gc2d_engine::schedules::{DragSpring, GravityProfile, GravitySchedule, HeatingSchedule};
 use gc2d_engine::{
-    CheckpointError, DropHeight, DropSource, GearC0, Integrator, InteractionTable, MassModel, MaterialId, SafetyLimits,
-    TimeWindow, WallMotion, World, WorldConfig,
+    CheckpointError, DropHeight, DropSource, GearC0, Integrator, InteractionTable, MassModel, MaterialId,
+    ParticleRecipe, SafetyLimits, TimeWindow, WallMotion, World, WorldConfig,
 };
 use gc2d_geometry::{Aabb, AngleMode, DVec2, Pose, Randomization, ShapeRecipe, rectangle, regular_polygon, square};
 
@@ -90,7 +90,7 @@ fn scene() -> World {
             height: DropHeight::AboveHighest,
             window: TimeWindow::new(0.0, 1.0),
             interval: 0.02,
-            recipe: ShapeRecipe {
+            recipe: ParticleRecipe::Polygon(ShapeRecipe {
                 semi_axes: DVec2::new(0.006, 0.005),
                 size_variation: 0.2,
                 size_randomization: Randomization::Equal,
@@ -100,7 +100,7 @@ fn scene() -> World {
                 angle_mode: AngleMode::Rand1,
                 rotation: 0.0,
                 rotation_randomization: Randomization::Equal,
-            },
+            }),
             density: 800.0,
             material: MaterialId::default(),
         })
@@ -348,7 +348,7 @@ fn checkpoint_layout_is_pinned() {
     run(&mut world, 1);
     let payload = checkpoint_bytes(&world).len() - payload_offset();
     assert_eq!(
-        payload, 20490,
+        payload, 20491,
         "the checkpoint layout changed: bump CHECKPOINT_FORMAT_VERSION (now {CHECKPOINT_FORMAT_VERSION}) and pin the \
          new payload length"
     );

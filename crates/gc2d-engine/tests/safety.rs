@@ -144,7 +144,7 @@ fn non_finite_numbers_never_pass_silently() {
 
 #[test]
 fn a_source_inserting_a_particle_too_small_for_the_time_step_stops_the_run() {
-    use gc2d_engine::{DropHeight, DropSource, TimeWindow};
+    use gc2d_engine::{DropHeight, DropSource, ParticleRecipe, TimeWindow};
     use gc2d_geometry::{AngleMode, Randomization, ShapeRecipe};
     // The World starts empty, so the first step has nothing to check; the inserted square sets the bound.
     let mut world = world(config(1.5 * safe_time_step(), law(E_THESIS, 0.5, 0.5), G));
@@ -155,7 +155,7 @@ fn a_source_inserting_a_particle_too_small_for_the_time_step_stops_the_run() {
             height: DropHeight::Absolute,
             window: TimeWindow::new(0.0, 1.0),
             interval: 0.01,
-            recipe: ShapeRecipe {
+            recipe: ParticleRecipe::Polygon(ShapeRecipe {
                 // SPECIAL_RECTANGLE with 4 corners on semi-axes a gives a square of side a·√2.
                 semi_axes: DVec2::splat(SIDE / 2f64.sqrt()),
                 size_variation: 0.0,
@@ -166,7 +166,7 @@ fn a_source_inserting_a_particle_too_small_for_the_time_step_stops_the_run() {
                 angle_mode: AngleMode::SpecialRectangle,
                 rotation: 0.0,
                 rotation_randomization: Randomization::Const,
-            },
+            }),
             density: RHO_THESIS,
             material: MaterialId::default(),
         })

@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use gc2d_engine::{DropHeight, DropSource, MaterialId, TimeWindow, World};
+use gc2d_engine::{DropHeight, DropSource, MaterialId, ParticleRecipe, TimeWindow, World};
 use gc2d_geometry::{AngleMode, DVec2, Pose, Randomization, ShapeRecipe, contact_geometry, rectangle};
 
 const DT: f64 = 5e-6;
@@ -31,7 +31,7 @@ fn source(position: DVec2, width: f64, height: DropHeight, window: TimeWindow, i
         height,
         window,
         interval,
-        recipe: recipe(),
+        recipe: ParticleRecipe::Polygon(recipe()),
         density: RHO_THESIS,
         material: MaterialId::default(),
     }

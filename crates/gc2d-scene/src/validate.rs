@@ -108,7 +108,7 @@ impl Scene {
                 &mut errors,
                 materials.resolve(block.material.as_deref(), &field_path(&path, "material")).map(drop),
             );
-            collect(&mut errors, shapes::shape_recipe(&block.shape, &field_path(&path, "shape")).map(drop));
+            collect(&mut errors, shapes::particle_recipe(&block.shape, &field_path(&path, "shape")).map(drop));
             collect(
                 &mut errors,
                 ordered_range(&field_path(&path, "speed_range_m_s"), block.speed_range_m_s, false).map(drop),
@@ -341,7 +341,7 @@ fn check_particle(
 fn check_source(source: &Source, path: &str, materials: &Materials, errors: &mut Vec<SceneError>) {
     let at = |field: &str| field_path(path, field);
     collect(errors, materials.resolve(source.material.as_deref(), &at("material")).map(drop));
-    collect(errors, shapes::shape_recipe(&source.shape, &at("shape")).map(drop));
+    collect(errors, shapes::particle_recipe(&source.shape, &at("shape")).map(drop));
     collect(errors, finite_pair(&at("position_m"), source.position_m).map(drop));
     collect(errors, non_negative(&at("width_m"), source.width_m).map(drop));
     collect(errors, window(&at("window_s"), source.window_s).map(drop));

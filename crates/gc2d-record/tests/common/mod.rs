@@ -5,8 +5,8 @@
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping};
 use gc2d_engine::schedules::GravitySchedule;
 use gc2d_engine::{
-    DropHeight, DropSource, InteractionTable, MassModel, MaterialId, SafetyLimits, TimeWindow, WallMotion, World,
-    WorldConfig,
+    DropHeight, DropSource, InteractionTable, MassModel, MaterialId, ParticleRecipe, SafetyLimits, TimeWindow,
+    WallMotion, World, WorldConfig,
 };
 use gc2d_geometry::{AngleMode, DVec2, Pose, Randomization, ShapeRecipe, rectangle, regular_polygon};
 
@@ -101,7 +101,7 @@ pub fn add_heptagon_source(world: &mut World) {
             height: DropHeight::AboveHighest,
             window: TimeWindow::new(0.0, f64::INFINITY),
             interval: SOURCE_INTERVAL,
-            recipe,
+            recipe: ParticleRecipe::Polygon(recipe),
             density: DENSITY,
             material: MaterialId::default(),
         })

@@ -5,7 +5,7 @@ use crate::checks::{finite_pair, ordered_range, positive};
 use crate::error::SceneError;
 use crate::schema::{Block, GridType};
 use crate::spans::field_path;
-use gc2d_geometry::{DVec2, ShapeRecipe, truncated_gaussian};
+use gc2d_geometry::{DVec2, truncated_gaussian};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
@@ -90,7 +90,7 @@ fn count_points(length: f64, spacing: f64) -> usize {
 /// One particle of a block, before it is added to the World.
 pub(crate) struct BlockParticle {
     pub position: DVec2,
-    pub polygon: gc2d_geometry::ConvexPolygon,
+    pub shape: gc2d_engine::BodyShape,
     pub angle: f64,
     pub velocity: DVec2,
 }
@@ -100,7 +100,7 @@ pub(crate) struct BlockParticle {
 pub(crate) fn generate(
     block: &Block,
     lattice: &Lattice,
-    recipe: &ShapeRecipe,
+    recipe: &gc2d_engine::ParticleRecipe,
     rng: &mut ChaCha8Rng,
     path: &str,
 ) -> Result<Vec<BlockParticle>, SceneError> {
@@ -122,13 +122,13 @@ pub(crate) fn generate(
                 DVec2::new(2.0 * fx - 1.0, 2.0 * fy - 1.0) * half
             }
         };
-        let (polygon, angle) =
+        let (shape, angle) =
             recipe.draw(rng).map_err(|e| SceneError::value(field_path(path, "shape"), e.to_string()))?;
         let magnitude = uniform_in(speed, rng);
         let heading = uniform_in(direction, rng);
         particles.push(BlockParticle {
             position: point + scatter,
-            polygon,
+            shape,
             angle,
             velocity: magnitude * DVec2::from_angle(heading),
         });
@@ -159,6 +159,7 @@ mod tests {
                 corner_spread: Default::default(),
                 corner_positions: Default::default(),
                 orientation: Default::default(),
+                disk: false,
             },
             material: None,
             speed_range_m_s: [0.0, 0.0],

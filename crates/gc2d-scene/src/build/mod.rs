@@ -263,10 +263,10 @@ fn plan_particles(
         let material = materials.resolve(block.material.as_deref(), &material_path)?;
         let material_id = MaterialId(materials.index_of(block.material.as_deref(), &material_path)? as u16);
         let lattice = Lattice::of(block, &path)?;
-        let recipe = shapes::shape_recipe(&block.shape, &field_path(&path, "shape"))?;
+        let recipe = shapes::particle_recipe(&block.shape, &field_path(&path, "shape"))?;
         for particle in blocks::generate(block, &lattice, &recipe, rng, &path)? {
             planned.push(PlannedParticle {
-                shape: particle.polygon.into(),
+                shape: particle.shape,
                 pose: Pose::new(particle.position, particle.angle),
                 velocity: particle.velocity,
                 angular_velocity: 0.0,
@@ -299,7 +299,7 @@ fn plan_sources(scene: &Scene, materials: &Materials) -> Result<Vec<DropSource>,
                 },
                 window: TimeWindow::new(source.window_s[0], source.window_s[1]),
                 interval: source.interval_s,
-                recipe: shapes::shape_recipe(&source.shape, &field_path(&path, "shape"))?,
+                recipe: shapes::particle_recipe(&source.shape, &field_path(&path, "shape"))?,
                 density: Materials::density(material, scene.mass_model),
                 material: material_id,
             })

@@ -3,8 +3,8 @@
 
 use crate::error::{ErrorKind, SceneError};
 use gc2d_engine::safety::{ParticleInertia, particle_time_step};
-use gc2d_engine::{BodyShape, ContactModel, MassModel, shape_view};
-use gc2d_geometry::{Aabb, DVec2, Pose, ShapeRecipe, area_contact};
+use gc2d_engine::{BodyShape, ContactModel, MassModel, ParticleRecipe, shape_view};
+use gc2d_geometry::{Aabb, DVec2, Pose, area_contact};
 use rand_chacha::ChaCha8Rng;
 
 /// Shapes drawn per source to estimate the smallest particle it will insert.
@@ -65,7 +65,7 @@ impl TimeStepBound {
 
     /// The bound of the smallest of [`SOURCE_SAMPLES`] shapes drawn from a source's recipe.
     pub fn of_source(
-        recipe: &ShapeRecipe,
+        recipe: &ParticleRecipe,
         density: f64,
         mass_model: MassModel,
         models: &[&ContactModel],
@@ -75,9 +75,7 @@ impl TimeStepBound {
     ) -> Option<Self> {
         (0..SOURCE_SAMPLES)
             .filter_map(|_| recipe.draw(rng).ok())
-            .filter_map(|(polygon, _)| {
-                Self::of(&BodyShape::from(polygon), density, mass_model, models, max_impact_speed, path)
-            })
+            .filter_map(|(shape, _)| Self::of(&shape, density, mass_model, models, max_impact_speed, path))
             .reduce(|a, b| if b.time_step < a.time_step { b } else { a })
     }
 }

@@ -4,7 +4,7 @@
 use crate::error::SceneError;
 use crate::schema::{CornerPositions, CountSpread, Orientation, Recipe, Shape, SizeSpread};
 use crate::spans::field_path;
-use gc2d_engine::BodyShape;
+use gc2d_engine::{BodyShape, DiskRecipe, ParticleRecipe};
 use gc2d_geometry::{
     AngleMode, ConvexPolygon, DVec2, PolygonError, Randomization, ShapeError, ShapeRecipe, cut_rectangle,
     ellipse_polygon, rectangle, regular_polygon, rounded_rectangle, square, square_cut, square_round,
@@ -127,6 +127,41 @@ pub(crate) fn shape_recipe(recipe: &Recipe, path: &str) -> Result<ShapeRecipe, S
     };
     shape_recipe.validate().map_err(|e| shape_error(&e, path))?;
     Ok(shape_recipe)
+}
+
+/// What a block or source draws from the scene recipe at `path`: a disk recipe when it says `disk: true` (equal
+/// semi-axes, the corner and orientation fields at their defaults), else the polygon recipe, validated.
+pub(crate) fn particle_recipe(recipe: &Recipe, path: &str) -> Result<ParticleRecipe, SceneError> {
+    if !recipe.disk {
+        return shape_recipe(recipe, path).map(ParticleRecipe::Polygon);
+    }
+    let [a, b] = recipe.semi_axes_m;
+    if a != b {
+        return Err(SceneError::value(
+            field_path(path, "semi_axes_m"),
+            format!("({a}, {b}): a disk recipe needs equal semi-axes, its radius"),
+        )
+        .with_help("write the radius twice, e.g. `semi_axes_m: (0.0025, 0.0025)`"));
+    }
+    let defaults = Recipe::new(recipe.semi_axes_m);
+    let polygon_only = [
+        ("corners", recipe.corners != defaults.corners),
+        ("corner_spread", recipe.corner_spread != defaults.corner_spread),
+        ("corner_positions", recipe.corner_positions != defaults.corner_positions),
+        ("orientation", recipe.orientation != defaults.orientation),
+    ];
+    if let Some((field, _)) = polygon_only.iter().find(|(_, set)| *set) {
+        return Err(SceneError::value(field_path(path, field), format!("`{field}` does not apply to disks"))
+            .with_help("remove it, or set `disk: false` to draw polygons"));
+    }
+    let polygon = shape_recipe(&Recipe { disk: false, ..*recipe }, path)?;
+    let disk = ParticleRecipe::Disk(DiskRecipe {
+        radius: a,
+        size_randomization: polygon.size_randomization,
+        size_variation: polygon.size_variation,
+    });
+    disk.validate().map_err(|e| shape_error(&e, path))?;
+    Ok(disk)
 }
 
 /// A generator's error at the field it names.

@@ -364,6 +364,7 @@ fn recipe(shape: &GsiShape) -> Recipe {
             Randomization::Equal => Orientation::Equal,
             Randomization::Gauss => Orientation::Gauss(rotation),
         },
+        disk: false,
     }
 }
 

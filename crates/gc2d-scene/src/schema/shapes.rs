@@ -125,6 +125,10 @@ pub struct Recipe {
     /// The orientation (`PART_ROT`, `RANDOM_ROT`). Default `Const(0.0)`.
     #[serde(default)]
     pub orientation: Orientation,
+    /// Draw exact disks instead of polygons: the radius is `semi_axes_m`'s (both must be equal), scattered by
+    /// `size_spread` (one draw per disk); the corner and orientation fields do not apply. Default false.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub disk: bool,
 }
 
 impl Recipe {
@@ -137,6 +141,7 @@ impl Recipe {
             corner_spread: CountSpread::Const,
             corner_positions: CornerPositions::Regular,
             orientation: Orientation::default(),
+            disk: false,
         }
     }
 }
