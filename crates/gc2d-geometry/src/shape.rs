@@ -214,3 +214,94 @@ fn pair_penetration(i: ShapeView, j: ShapeView) -> Option<PairPenetration> {
         _ => None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use std::f64::consts::PI;
+
+    fn v(x: f64, y: f64) -> DVec2 {
+        DVec2::new(x, y)
+    }
+
+    const SQUARE: [DVec2; 4] = [DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0), DVec2::new(1.0, 1.0), DVec2::new(0.0, 1.0)];
+
+    fn disk(x: f64, y: f64, radius: f64) -> ShapeView<'static> {
+        ShapeView::Disk { center: v(x, y), radius }
+    }
+
+    #[test]
+    fn touching_is_no_contact() {
+        let square = ShapeView::Polygon(&SQUARE);
+        for (i, j) in [
+            (disk(0.0, 2.0, 1.0), disk(0.0, 0.0, 1.0)),
+            (disk(0.5, 1.5, 0.5), square),
+            (disk(2.0, 0.5, 1.0), square),
+            (disk(0.0, 0.5, 0.5), ShapeView::InnerCircle { center: v(0.0, 0.0), radius: 1.0 }),
+            (disk(0.5, 2.0, 0.5), ShapeView::Capsule { a: v(-1.0, 1.0), b: v(1.0, 1.0), radius: 0.5 }),
+            (square, ShapeView::Capsule { a: v(-1.0, 2.0), b: v(2.0, 2.0), radius: 1.0 }),
+        ] {
+            assert!(area_contact(i, j).is_none(), "{i:?} {j:?}");
+            assert!(penetration(i, j).is_none(), "{i:?} {j:?}");
+        }
+        // A square with its corners exactly on a chamber's circle: inside, no contact.
+        let chamber = ShapeView::InnerCircle { center: v(0.5, 0.5), radius: 0.5f64.sqrt() };
+        assert!(area_contact(square, chamber).is_none_or(|c| c.area < 1e-15));
+    }
+
+    #[test]
+    fn coincident_and_exactly_placed_centres_stay_finite() {
+        let square = ShapeView::Polygon(&SQUARE);
+        // Coincident disks: containment, +y.
+        let c = area_contact(disk(0.3, 0.3, 1.0), disk(0.3, 0.3, 0.5)).unwrap();
+        assert_eq!(c.normal, DVec2::Y);
+        assert_relative_eq!(c.area, PI * 0.25);
+        assert_eq!(penetration(disk(0.3, 0.3, 1.0), disk(0.3, 0.3, 0.5)).unwrap().normal, DVec2::Y);
+        // A disk centred on a polygon vertex and on an edge.
+        for (x, y) in [(1.0, 1.0), (0.5, 0.0), (0.0, 0.25)] {
+            let area = area_contact(disk(x, y, 0.1), square).unwrap();
+            let expected = if x == 1.0 { PI * 0.01 / 4.0 } else { PI * 0.01 / 2.0 };
+            assert_relative_eq!(area.area, expected, max_relative = 1e-12);
+            let p = penetration(disk(x, y, 0.1), square).unwrap();
+            assert_relative_eq!(p.depth, 0.1, max_relative = 1e-15);
+            assert!(p.normal.is_finite() && (p.normal.length() - 1.0).abs() < 1e-15);
+        }
+        // A disk centred on a capsule's core and at a capsule's end point.
+        let blade = ShapeView::Capsule { a: v(0.0, 0.0), b: v(1.0, 0.0), radius: 0.2 };
+        for (x, y) in [(0.5, 0.0), (1.0, 0.0)] {
+            let p = penetration(disk(x, y, 0.1), blade).unwrap();
+            assert_relative_eq!(p.depth, 0.3, max_relative = 1e-15);
+            assert!(area_contact(disk(x, y, 0.1), blade).is_some_and(|c| c.normal.is_finite()));
+        }
+        // A disk at a chamber's centre bigger than the chamber.
+        let c = area_contact(disk(0.0, 0.0, 2.0), ShapeView::InnerCircle { center: v(0.0, 0.0), radius: 1.0 }).unwrap();
+        assert_relative_eq!(c.area, 3.0 * PI, max_relative = 1e-14);
+    }
+
+    #[test]
+    fn a_wall_given_first_is_answered_flipped() {
+        let blade = ShapeView::Capsule { a: v(0.0, 0.0), b: v(1.0, 0.0), radius: 0.2 };
+        let ball = disk(0.4, 0.25, 0.1);
+        let (forward, backward) = (penetration(ball, blade).unwrap(), penetration(blade, ball).unwrap());
+        assert_eq!(backward.normal, -forward.normal);
+        assert_eq!((backward.depth, backward.point), (forward.depth, forward.point));
+        assert_eq!((forward.surface_radius_j, backward.surface_radius_j), (f64::INFINITY, 0.1));
+        let (a, b) = (area_contact(ball, blade).unwrap(), area_contact(blade, ball).unwrap());
+        assert_eq!((b.area, b.point, b.chord_length, b.normal), (a.area, a.point, a.chord_length, -a.normal));
+        let chamber = ShapeView::InnerCircle { center: v(0.0, 0.0), radius: 1.0 };
+        let square = [v(0.5, 0.5), v(0.8, 0.5), v(0.8, 0.8), v(0.5, 0.8)];
+        let p = penetration(chamber, ShapeView::Polygon(&square)).unwrap();
+        assert_relative_eq!(p.depth, 0.8 * 2f64.sqrt() - 1.0, max_relative = 1e-14);
+        assert_relative_eq!(p.normal, v(1.0, 1.0).normalize(), epsilon = 1e-15);
+        assert_eq!(p.surface_radius_j, 0.0);
+    }
+
+    #[test]
+    fn boxes_cover_the_shapes() {
+        assert_eq!(disk(1.0, 2.0, 0.5).aabb(), Aabb { min: v(0.5, 1.5), max: v(1.5, 2.5) });
+        let chamber = ShapeView::InnerCircle { center: v(0.0, 0.0), radius: 2.0 };
+        assert_eq!(chamber.aabb(), Aabb { min: v(-2.0, -2.0), max: v(2.0, 2.0) });
+        assert_eq!(ShapeView::Polygon(&SQUARE).aabb(), Aabb { min: v(0.0, 0.0), max: v(1.0, 1.0) });
+    }
+}

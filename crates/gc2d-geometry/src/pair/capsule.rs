@@ -264,13 +264,14 @@ pub(crate) fn disk_capsule_area_contact(c: DVec2, r: f64, a: DVec2, b: DVec2, rh
     }
     let mut crossings = Crossings::new();
     disk_stadium_crossings(c, r, &stadium, &mut crossings);
-    let away = c - closest_on_segment(c, a, b).0;
-    let inner = if PI * r * r <= stadium.area() {
-        Inner::Disk { center: c, radius: r }
-    } else {
-        Inner::Capsule { a, b, radius: rho }
-    };
-    area_contact_from_crossings(area, crossings.as_slice(), away, inner)
+    area_contact_from_crossings(area, crossings.as_slice(), || {
+        let inner = if PI * r * r <= stadium.area() {
+            Inner::Disk { center: c, radius: r }
+        } else {
+            Inner::Capsule { a, b, radius: rho }
+        };
+        (c - closest_on_segment(c, a, b).0, inner)
+    })
 }
 
 /// Polygon i against capsule j for the area law.
@@ -287,14 +288,15 @@ pub(crate) fn polygon_capsule_area_contact(polygon: &[DVec2], a: DVec2, b: DVec2
     }
     let mut crossings = Crossings::new();
     polygon_stadium_crossings(polygon, &stadium, &mut crossings);
-    let centroid = polygon_centroid(polygon);
-    let away = centroid - closest_on_segment(centroid, a, b).0;
-    let inner = if polygon_area(polygon) <= stadium.area() {
-        Inner::Polygon(polygon)
-    } else {
-        Inner::Capsule { a, b, radius: rho }
-    };
-    area_contact_from_crossings(area, crossings.as_slice(), away, inner)
+    area_contact_from_crossings(area, crossings.as_slice(), || {
+        let centroid = polygon_centroid(polygon);
+        let inner = if polygon_area(polygon) <= stadium.area() {
+            Inner::Polygon(polygon)
+        } else {
+            Inner::Capsule { a, b, radius: rho }
+        };
+        (centroid - closest_on_segment(centroid, a, b).0, inner)
+    })
 }
 
 /// Disk i against capsule j: depth r + ρ − distance from the centre to the core segment, normal from the nearest

@@ -327,8 +327,9 @@ pub(crate) fn disk_polygon_area_contact(center: DVec2, radius: f64, polygon: &[D
         return None;
     }
     crossings.flip();
-    let away = center - polygon_centroid(polygon);
-    area_contact_from_crossings(area, crossings.as_slice(), away, smaller(center, radius, polygon))
+    area_contact_from_crossings(area, crossings.as_slice(), || {
+        (center - polygon_centroid(polygon), smaller(center, radius, polygon))
+    })
 }
 
 /// Polygon i against disk j: the same overlap and crossings as [`disk_polygon_area_contact`], entries and exits
@@ -342,8 +343,9 @@ pub(crate) fn polygon_disk_area_contact(polygon: &[DVec2], center: DVec2, radius
     if area <= 0.0 {
         return None;
     }
-    let away = polygon_centroid(polygon) - center;
-    area_contact_from_crossings(area, crossings.as_slice(), away, smaller(center, radius, polygon))
+    area_contact_from_crossings(area, crossings.as_slice(), || {
+        (polygon_centroid(polygon) - center, smaller(center, radius, polygon))
+    })
 }
 
 /// Polygon i in a chamber j: the part of the polygon outside the circle; the polygon enters the solid where it
@@ -358,8 +360,9 @@ pub(crate) fn polygon_inner_area_contact(polygon: &[DVec2], center: DVec2, radiu
         return None;
     }
     crossings.flip();
-    let away = center - polygon_centroid(polygon);
-    area_contact_from_crossings(area, crossings.as_slice(), away, Inner::Polygon(polygon))
+    area_contact_from_crossings(area, crossings.as_slice(), || {
+        (center - polygon_centroid(polygon), Inner::Polygon(polygon))
+    })
 }
 
 /// Disk i against polygon j, exact: outside, depth r − distance to the nearest outline point (a vertex: surface

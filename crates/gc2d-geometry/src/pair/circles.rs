@@ -132,12 +132,12 @@ pub(crate) fn disk_disk_area_contact(ci: DVec2, ri: f64, cj: DVec2, rj: f64) -> 
         if ri <= rj { Inner::Disk { center: ci, radius: ri } } else { Inner::Disk { center: cj, radius: rj } };
     match circle_pair(ci, ri, cj, rj) {
         CirclePair::Apart => None,
-        CirclePair::Nested => area_contact_from_crossings(PI * ri.min(rj).powi(2), &[], ci - cj, smaller),
+        CirclePair::Nested => area_contact_from_crossings(PI * ri.min(rj).powi(2), &[], || (ci - cj, smaller)),
         CirclePair::Crossing(c) => {
             // Walking i counter-clockwise, it enters j at the crossing on the left of the axis j → i.
             let (left, right) = c.points();
             let crossings = [Crossing { point: left, entry: true }, Crossing { point: right, entry: false }];
-            area_contact_from_crossings(lens_of(&c, ri, rj), &crossings, ci - cj, smaller)
+            area_contact_from_crossings(lens_of(&c, ri, rj), &crossings, || (ci - cj, smaller))
         }
     }
 }
@@ -151,14 +151,14 @@ pub(crate) fn disk_inner_area_contact(ci: DVec2, ri: f64, cj: DVec2, rj: f64) ->
     }
     let disk = Inner::Disk { center: ci, radius: ri };
     match circle_pair(ci, ri, cj, rj) {
-        CirclePair::Apart => area_contact_from_crossings(PI * ri * ri, &[], cj - ci, disk),
+        CirclePair::Apart => area_contact_from_crossings(PI * ri * ri, &[], || (cj - ci, disk)),
         CirclePair::Nested if ri <= rj => None,
-        CirclePair::Nested => area_contact_from_crossings(PI * (ri * ri - rj * rj), &[], cj - ci, disk),
+        CirclePair::Nested => area_contact_from_crossings(PI * (ri * ri - rj * rj), &[], || (cj - ci, disk)),
         CirclePair::Crossing(c) => {
             // Walking i counter-clockwise, it enters the solid at the crossing on the right of the axis j → i.
             let (left, right) = c.points();
             let crossings = [Crossing { point: right, entry: true }, Crossing { point: left, entry: false }];
-            area_contact_from_crossings(outside_of(&c, ri, rj), &crossings, cj - ci, disk)
+            area_contact_from_crossings(outside_of(&c, ri, rj), &crossings, || (cj - ci, disk))
         }
     }
 }

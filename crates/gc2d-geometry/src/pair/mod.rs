@@ -196,11 +196,12 @@ impl Inner<'_> {
 ///   the area gradient perp(Σ exits − Σ entries), `away`, +y, +x (the first that is not negligible decides);
 /// - none, or a chord shorter than 1e-9·√A: containment; the normal is unit(`away`) (+y when `away` is negligible)
 ///   and the chord is `inner`'s width across it, through `inner`'s centre.
-pub(crate) fn area_contact_from_crossings(
+///
+/// `fallback` gives (`away`, `inner`) and is called only when a rule needs them (they cost O(n) for a polygon).
+pub(crate) fn area_contact_from_crossings<'a>(
     area: f64,
     crossings: &[Crossing],
-    away: DVec2,
-    inner: Inner<'_>,
+    fallback: impl Fn() -> (DVec2, Inner<'a>),
 ) -> Option<AreaContact> {
     if !(area.is_finite() && area > 0.0) {
         return None;
@@ -213,7 +214,7 @@ pub(crate) fn area_contact_from_crossings(
             Some((entry.point, exit.point))
         }
         [] | [_] => None,
-        _ => farthest_crossings(crossings, away),
+        _ => farthest_crossings(crossings, || fallback().0),
     }
     .filter(|(c1, c2)| (*c2 - *c1).length() > min_chord);
     let contact = match chord {
@@ -223,6 +224,7 @@ pub(crate) fn area_contact_from_crossings(
             AreaContact { area, chord_length, point: 0.5 * (c1 + c2), normal: chord.perp() / chord_length }
         }
         None => {
+            let (away, inner) = fallback();
             let normal =
                 if away.length() > NEGLIGIBLE_DIRECTION_FRACTION * area.sqrt() { away.normalize() } else { DVec2::Y };
             // perp(tangent) = normal, so that normal = perp(c2 − c1)/|c2 − c1| as for every other kind.
@@ -236,7 +238,7 @@ pub(crate) fn area_contact_from_crossings(
 }
 
 /// The two crossings farthest apart, ordered by the orientation chain of [`area_contact_from_crossings`].
-fn farthest_crossings(crossings: &[Crossing], away: DVec2) -> Option<(DVec2, DVec2)> {
+fn farthest_crossings(crossings: &[Crossing], away: impl Fn() -> DVec2) -> Option<(DVec2, DVec2)> {
     let origin = crossings[0].point;
     let mut gradient_chord = DVec2::ZERO;
     let mut best: Option<(DVec2, DVec2)> = None;
@@ -258,11 +260,19 @@ fn farthest_crossings(crossings: &[Crossing], away: DVec2) -> Option<(DVec2, DVe
     let (p, q) = best?;
     let chord = q - p;
     let negligible = NEGLIGIBLE_DIRECTION_FRACTION * chord.length();
-    let references = [(chord.dot(gradient_chord), gradient_chord.length()), (chord.perp().dot(away), away.length())]
-        .into_iter()
-        .filter(|&(_, reference)| reference > negligible)
-        .chain([(chord.perp().y, 1.0), (chord.perp().x, 1.0)]);
-    let decisive = references.into_iter().find(|&(alignment, reference)| alignment.abs() > negligible * reference);
+    // (alignment of the candidate normal perp(chord) with a reference direction, that reference's length): a
+    // reference decides when it is not negligible against the chord and the alignment not negligible against it.
+    let decides =
+        |(alignment, reference): (f64, f64)| reference > negligible && alignment.abs() > negligible * reference;
+    let by_gradient = (chord.dot(gradient_chord), gradient_chord.length());
+    let decisive = if decides(by_gradient) {
+        Some(by_gradient)
+    } else {
+        let away = away();
+        [(chord.perp().dot(away), away.length()), (chord.perp().y, 1.0), (chord.perp().x, 1.0)]
+            .into_iter()
+            .find(|&reference| decides(reference))
+    };
     match decisive {
         Some((alignment, _)) if alignment < 0.0 => Some((q, p)),
         _ => Some((p, q)),
