@@ -511,6 +511,17 @@ mod tests {
     }
 
     #[test]
+    fn a_blade_inside_a_polygon_overlaps_by_its_whole_area() {
+        // The end half-disks lie inside the polygon with their centres on the clipping lines: each arc is exactly
+        // half a turn, whatever side the rounding puts its end points on.
+        let square = [v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)];
+        for (a, b) in [(v(-0.5, 0.0), v(0.5, 0.0)), (v(-0.3, -0.2), v(0.4, 0.35)), (v(0.1, 0.7), v(0.1, -0.6))] {
+            let area = polygon_capsule_intersection_area(&square, a, b, 0.2);
+            assert_relative_eq!(area, 0.4 * (b - a).length() + PI * 0.04, max_relative = 1e-14);
+        }
+    }
+
+    #[test]
     fn degenerate_capsules_and_clipping() {
         assert_eq!(disk_capsule_intersection_area(v(0.0, 0.0), 1.0, v(0.5, 0.0), v(0.5, 0.0), 0.0), 0.0);
         assert_relative_eq!(

@@ -111,7 +111,7 @@ struct Walk {
     twice_straight: f64,
     /// Circular segments, added (inside) or subtracted (outside).
     arcs: f64,
-    /// Angle subtended at the centre by the outside pieces since the last exit (or since the start).
+    /// Pseudo-angle ([`pseudo_turn`]) swept at the centre by the outside pieces since the last exit (or the start).
     chain: f64,
     /// The exit point whose arc is still open.
     open_exit: Option<DVec2>,
@@ -129,7 +129,7 @@ impl Walk {
     }
 
     fn outside_piece(&mut self, u: DVec2, v: DVec2) {
-        self.chain += subtended(u - self.center, v - self.center);
+        self.chain += pseudo_turn(u - self.center, v - self.center);
         // Outside pieces follow an exit, or come before the walk's first exit (the prefix).
         if self.keep_inside {
         } else if self.open_exit.is_some() {
@@ -159,10 +159,18 @@ impl Walk {
         }
     }
 
-    /// The arc counter-clockwise from `exit` to `entry`, whose outside chain subtends `chain`.
+    /// The arc counter-clockwise from `exit` to `entry`, whose outside chain subtends `chain` (in pseudo-angle
+    /// units, 4 per turn). The end points fix the angle up to a whole turn, which matters only when they (nearly)
+    /// coincide: then the chain tells an empty arc (chain ≈ 0) from a full one (chain ≈ 4).
     fn arc(&mut self, exit: DVec2, entry: DVec2, chain: f64) {
         let direct = subtended(exit - self.center, entry - self.center);
-        let angle = (direct + TAU * ((chain - direct) / TAU).round()).clamp(0.0, TAU);
+        let mut angle = if direct < 0.0 { direct + TAU } else { direct };
+        if angle > 1.5 * PI && chain < 2.0 {
+            angle -= TAU;
+        } else if angle < 0.5 * PI && chain > 2.0 {
+            angle += TAU;
+        }
+        let angle = angle.clamp(0.0, TAU);
         let segment = circular_segment_area(self.radius, angle);
         let (u, v) = (exit - self.origin, entry - self.origin);
         if self.keep_inside {
@@ -183,13 +191,39 @@ impl Walk {
             }
         }
         self.twice_straight += self.prefix;
-        // No crossing and every vertex outside: the chain is the polygon's winding about the centre (0 or 2π).
-        if !self.crossed && self.chain > PI {
+        // No crossing and every vertex outside: the chain is the polygon's winding about the centre (0 or 4).
+        if !self.crossed && self.chain > 2.0 {
             let disk = PI * self.radius * self.radius;
             self.arcs += if self.keep_inside { disk } else { -disk };
         }
         let area = 0.5 * self.twice_straight + self.arcs;
         if area.is_finite() { area.max(0.0) } else { 0.0 }
+    }
+}
+
+/// A monotone stand-in for the polar angle of `v` (≠ 0), 0..4 per turn (the "diamond angle"): cheaper than
+/// `atan2`, and enough to count the whole turns of an outside chain. p(−v) = p(v) + 2 (mod 4), so a step of less
+/// than half a turn is a pseudo-step of less than 2.
+fn pseudo_angle(v: DVec2) -> f64 {
+    if v.y >= 0.0 {
+        if v.x >= 0.0 { v.y / (v.x + v.y) } else { 1.0 - v.x / (v.y - v.x) }
+    } else if v.x < 0.0 {
+        2.0 - v.y / (-v.x - v.y)
+    } else {
+        3.0 + v.x / (v.x - v.y)
+    }
+}
+
+/// The pseudo-angle swept from `u` to `v` (relative to the centre) by a straight step of less than half a turn,
+/// in (−2, 2].
+fn pseudo_turn(u: DVec2, v: DVec2) -> f64 {
+    let step = pseudo_angle(v) - pseudo_angle(u);
+    if step > 2.0 {
+        step - 4.0
+    } else if step <= -2.0 {
+        step + 4.0
+    } else {
+        step
     }
 }
 
