@@ -14,7 +14,7 @@ pub struct Particle {
     pub id: u32,
     /// Centre of mass, m.
     pub centroid: DVec2,
-    /// World-frame vertices, counter-clockwise.
+    /// World-frame vertices, counter-clockwise (a disk traced as a fine polygon).
     pub vertices: Vec<DVec2>,
     /// Current area (scaled by the pose's size factor), m².
     pub area: f64,
@@ -98,7 +98,8 @@ impl Snapshot {
                 continue;
             }
             let id = gc2d_engine::BodyId(slot as u32);
-            let vertices = bodies.world_vertices_of(id).to_vec();
+            // Disks, capsules and chamber circles are traced as fine polygons (a chamber by its circle).
+            let vertices = bodies.shape_view(id).traced_outline().boundary().to_vec();
             match bodies.kind[slot] {
                 BodyKind::Particle => {
                     let scale = bodies.pose[slot].scale;

@@ -15,6 +15,7 @@
 //! [`randomize`] (reference §1.2, §1.8).
 
 pub mod closest;
+pub mod outline;
 pub mod overlap;
 pub mod pair;
 pub mod polygon;
@@ -26,6 +27,7 @@ pub mod shapes;
 
 pub use closest::{Feature, FeaturePair, Separation, closest_features};
 pub use glam::DVec2;
+pub use outline::{CIRCLE_SEGMENTS, TracedOutline};
 pub use overlap::{ContactGeometry, ContactKind, OverlapPolygon, contact_geometry, overlap_polygon};
 pub use pair::capsule::{disk_capsule_intersection_area, polygon_capsule_intersection_area};
 pub use pair::circle_polygon::{circle_polygon_intersection_area, polygon_outside_circle_area};

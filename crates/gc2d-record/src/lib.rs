@@ -13,7 +13,6 @@ mod error;
 pub mod layout;
 mod mcap_file;
 pub mod network;
-mod outline;
 pub mod png;
 pub mod quantities;
 pub mod recorder;

@@ -4,11 +4,10 @@
 use crate::RecordError;
 use crate::colour::{Rgba, WALL_GREY, force_colour};
 use crate::network::{ContactForce, collect_contact_forces, contact_segments, line_width};
-use crate::outline::{DrawnOutline, drawn_outline};
 use crate::quantities::{ColourBy, ColourRange, ParticleColours, mean_inscribed_radius};
 use crate::recorder::DEFAULT_FORCE_WIDTH_RADII;
 use gc2d_engine::{BodyId, BodyKind, World};
-use gc2d_geometry::{Aabb, DVec2};
+use gc2d_geometry::{Aabb, DVec2, TracedOutline};
 use std::path::Path;
 use tiny_skia::{Color, FillRule, LineCap, Paint, PathBuilder, Pixmap, Stroke, Transform};
 
@@ -89,14 +88,14 @@ fn render(world: &World, options: &PngOptions) -> Result<Pixmap, RecordError> {
 
     let bodies = world.bodies();
     for i in (0..bodies.len()).filter(|&i| bodies.alive[i] && bodies.kind[i] == BodyKind::Wall) {
-        draw_outline(&mut pixmap, &canvas, &drawn_outline(bodies, BodyId(i as u32)), WALL_GREY);
+        draw_outline(&mut pixmap, &canvas, &bodies.shape_view(BodyId(i as u32)).traced_outline(), WALL_GREY);
     }
     let mut forces: Vec<ContactForce> = Vec::new();
     let max_force = collect_contact_forces(world, &mut forces);
     let mut colours = ParticleColours::default();
     colours.update(world, options.colour_by, options.colour_range, &forces);
     for id in bodies.particles() {
-        draw_outline(&mut pixmap, &canvas, &drawn_outline(bodies, id), colours.colours[id.index()]);
+        draw_outline(&mut pixmap, &canvas, &bodies.shape_view(id).traced_outline(), colours.colours[id.index()]);
     }
     if options.force_network {
         let max_width = options
@@ -117,11 +116,11 @@ fn body_bounds(world: &World) -> Option<Aabb> {
 }
 
 /// A filled outline (a ring: the band between its circles) with a darker one-pixel edge.
-fn draw_outline(pixmap: &mut Pixmap, canvas: &Canvas, outline: &DrawnOutline, fill: Rgba) {
+fn draw_outline(pixmap: &mut Pixmap, canvas: &Canvas, outline: &TracedOutline, fill: Rgba) {
     let mut builder = PathBuilder::new();
     let loops: Vec<&[DVec2]> = match outline {
-        DrawnOutline::Convex(vertices) => vec![vertices.as_ref()],
-        DrawnOutline::Ring { inner, outer } => vec![inner.as_slice(), outer.as_slice()],
+        TracedOutline::Convex(vertices) => vec![vertices.as_ref()],
+        TracedOutline::Ring { inner, outer } => vec![inner.as_slice(), outer.as_slice()],
     };
     for vertices in loops {
         for (k, &v) in vertices.iter().enumerate() {

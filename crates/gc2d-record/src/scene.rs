@@ -6,13 +6,12 @@
 
 use crate::colour::{Rgba, WALL_GREY, force_colour};
 use crate::network::{ContactForce, contact_segments, line_width};
-use crate::outline::{DrawnOutline, drawn_outline};
 use foxglove::schemas::{
     Color, LinePrimitive, Point3, Pose, Quaternion, SceneEntity, SceneEntityDeletion, SceneUpdate, Timestamp,
     TriangleListPrimitive, Vector3, line_primitive, scene_entity_deletion,
 };
 use gc2d_engine::{BodyId, BodyKind, World};
-use gc2d_geometry::DVec2;
+use gc2d_geometry::{DVec2, TracedOutline};
 
 /// The coordinate frame of every entity.
 pub const FRAME_ID: &str = "world";
@@ -59,15 +58,15 @@ impl SceneStyle {
 
     /// One body as a filled shape with a thin outline: a convex outline as a fan of triangles, a ring (an inner
     /// circle's wall) as the band of triangles between its two circles.
-    fn body_entity(&self, id: String, outline: &DrawnOutline, fill: Rgba, fill_layer: Layer) -> SceneEntity {
+    fn body_entity(&self, id: String, outline: &TracedOutline, fill: Rgba, fill_layer: Layer) -> SceneEntity {
         let fill_z = self.z(fill_layer);
         let outline_z = self.z(if matches!(fill_layer, Layer::Walls) { Layer::Fills } else { Layer::Outlines });
         let mut entity = self.entity(id);
         let (points, indices, loops): (Vec<Point3>, Vec<u32>, Vec<&[DVec2]>) = match outline {
-            DrawnOutline::Convex(vertices) => {
+            TracedOutline::Convex(vertices) => {
                 (vertices.iter().map(|&v| point(v)).collect(), fan_indices(vertices.len()), vec![vertices.as_ref()])
             }
-            DrawnOutline::Ring { inner, outer } => {
+            TracedOutline::Ring { inner, outer } => {
                 let points = inner.iter().chain(outer).map(|&v| point(v)).collect();
                 (points, band_indices(inner.len()), vec![inner.as_slice(), outer.as_slice()])
             }
@@ -101,7 +100,12 @@ pub(crate) fn particles_update(world: &World, colours: &[Rgba], style: &SceneSty
     let entities = bodies
         .particles()
         .map(|id| {
-            style.body_entity(format!("p{}", id.0), &drawn_outline(bodies, id), colours[id.index()], Layer::Fills)
+            style.body_entity(
+                format!("p{}", id.0),
+                &bodies.shape_view(id).traced_outline(),
+                colours[id.index()],
+                Layer::Fills,
+            )
         })
         .collect();
     style.replacing_all(entities)
@@ -114,7 +118,7 @@ pub(crate) fn walls_update(world: &World, style: &SceneStyle) -> SceneUpdate {
         .filter(|&i| bodies.kind[i] == BodyKind::Wall && bodies.alive[i])
         .map(|i| {
             let id = BodyId(i as u32);
-            style.body_entity(format!("w{i}"), &drawn_outline(bodies, id), WALL_GREY, Layer::Walls)
+            style.body_entity(format!("w{i}"), &bodies.shape_view(id).traced_outline(), WALL_GREY, Layer::Walls)
         })
         .collect();
     style.replacing_all(entities)

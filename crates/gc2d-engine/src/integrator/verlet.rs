@@ -83,7 +83,7 @@ mod tests {
             if step <= window {
                 first = first.max(error);
             }
-            if step > total - window {
+            if step + window > total {
                 last = last.max(error);
             }
         }
