@@ -217,6 +217,21 @@ mod tests {
     }
 
     #[test]
+    fn a_ring_band_covers_every_corner_with_two_triangles_inside_its_points() {
+        let n = 96;
+        let indices = band_indices(n);
+        assert_eq!(indices.len(), 6 * n);
+        assert!(indices.iter().all(|&k| (k as usize) < 2 * n));
+        // The last quad closes the ring: inner 95, outer 95, outer 0 (index 96), inner 0.
+        assert_eq!(&indices[6 * (n - 1)..], &[95, 191, 96, 95, 96, 0]);
+        let style = SceneStyle { timestamp: timestamp(0), layer_spacing: 1e-4 };
+        let chamber = gc2d_geometry::ShapeView::InnerCircle { center: DVec2::ZERO, radius: 0.07 };
+        let entity = style.body_entity("w0".into(), &chamber.traced_outline(), WALL_GREY, Layer::Walls);
+        assert_eq!(entity.triangles[0].points.len(), 2 * n);
+        assert_eq!(entity.lines.len(), 2, "the ring is outlined on both edges");
+    }
+
+    #[test]
     fn timestamps_split_nanoseconds_into_seconds() {
         let t = timestamp(2_500_000_001);
         assert_eq!(t, Timestamp::new(2, 500_000_001));
