@@ -329,7 +329,15 @@ proptest! {
         let d = (ci - cj).length();
         let expected = textbook_lens(ri, rj, d);
         let area = area_contact(i, j).map_or(0.0, |c| c.area);
-        prop_assert!((area - expected).abs() <= 1e-10 * expected + 1e-13, "{area} vs {expected}");
+        // The textbook lens (acos of cancelling quotients) is the less accurate side in shallow overlaps: 8e-6 off
+        // at depth 5.6e-6, where ours matched 50-digit arithmetic to 1.3e-11. It is the reference from 5 % of the
+        // smaller radius deep; the polygon bracket holds everywhere.
+        if ri + rj - d > 0.05 * ri.min(rj) {
+            prop_assert!((area - expected).abs() <= 1e-10 * expected + 1e-13, "{area} vs {expected}");
+        }
+        let lower = clip_area(&circle_polygon(ci, ri, false), &circle_polygon(cj, rj, false));
+        let upper = clip_area(&circle_polygon(ci, ri, true), &circle_polygon(cj, rj, true));
+        check_bracket(i, j, lower, upper, 1.0)?;
         prop_assert!((lens_area(ri, rj, d) - area).abs() <= 1e-14 * area);
         if let (Some(a), Some(b)) = (area_contact(i, j), area_contact(j, i)) {
             prop_assert!((a.area - b.area).abs() <= 1e-14 * a.area);
@@ -379,12 +387,12 @@ proptest! {
         poly in convex_polygon(1.0), a in point(1.0), b in point(1.0), rho in 0.05..1.0f64,
     ) {
         let (i, j) = (ShapeView::Polygon(&poly), ShapeView::Capsule { a, b, radius: rho });
-        // parry's GJK/EPA for support-map pairs stops at a relative accuracy of ~1e-7 in distance, which leaves
-        // the normal of a vertex–cap contact uncertain to ~√(1e-9) (1.5e-5 seen where ours matched a 200 000-
-        // direction brute force to 1e-13); contact points of flat faces are not unique. So depth and normal are
-        // compared to parry loosely, and tightly against the support functions: along our normal the two bodies
-        // overlap by exactly our depth, and along no sampled direction by less.
-        check_against_parry(i, j, 1.0, 1e-6, 1e-4, false)?;
+        // parry's GJK/EPA for support-map pairs is not exact: its depth was seen 1.0e-6 low (4e-6 relative) and its
+        // normal 1.5e-5 off where ours matched a 2 000 000-direction brute force to 2e-14; contact points of flat
+        // faces are not unique. So depth and normal are compared to parry loosely, and tightly against the support
+        // functions: along our normal the two bodies overlap by exactly our depth, and along no sampled direction
+        // by less.
+        check_against_parry(i, j, 1.0, 1e-5, 1e-4, false)?;
         if let Some(p) = penetration(i, j) {
             let overlap = |u: DVec2| {
                 a.dot(u).max(b.dot(u)) + rho - poly.iter().map(|q| q.dot(u)).fold(f64::INFINITY, f64::min)
