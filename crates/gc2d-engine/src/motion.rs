@@ -160,10 +160,12 @@ impl Vibration {
     }
 }
 
-/// A wall turning about a fixed pivot at constant angular velocity during a window (a mill rotor).
+/// A wall turning about a fixed pivot during a window (a mill rotor): from rest up to the angular velocity ω over
+/// the spin-up time T (a linear ramp, none when T = 0), then at ω.
 ///
-/// The angle turned is ω·(t_c − t1) with t_c the time clamped to the window, so the wall starts at its rest pose and
-/// keeps its last angle after t2. The window's start must be finite for the wall to turn.
+/// With e the time elapsed in the window (clamped to it), the angle turned is ω·e for T = 0, ω·e²/(2T) during the
+/// ramp and ω·(e − T/2) after it, so the wall starts at its rest pose and keeps its last angle after t2. The
+/// window's start must be finite for the wall to turn.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Rotation {
     /// The fixed point the wall turns about, world coordinates, m.
@@ -172,19 +174,38 @@ pub struct Rotation {
     pub angular_velocity: f64,
     /// When the wall turns.
     pub window: TimeWindow,
+    /// Time to reach ω from rest at the start of the window, s (0: at ω from the start).
+    pub spin_up: f64,
 }
 
 impl Rotation {
     /// Angle turned from the rest pose at time `t`, radians CCW.
     #[inline]
     pub fn angle(&self, t: f64) -> f64 {
-        self.angular_velocity * self.window.elapsed(t)
+        let elapsed = self.window.elapsed(t);
+        if self.spin_up > 0.0 {
+            if elapsed < self.spin_up {
+                self.angular_velocity * elapsed * elapsed / (2.0 * self.spin_up)
+            } else {
+                self.angular_velocity * (elapsed - 0.5 * self.spin_up)
+            }
+        } else {
+            self.angular_velocity * elapsed
+        }
     }
 
-    /// Angular velocity at time `t`: ω inside the window, 0 outside.
+    /// Angular velocity at time `t`: on the ramp ω·e/T, then ω inside the window, 0 outside.
     #[inline]
     pub fn angular_velocity_at(&self, t: f64) -> f64 {
-        if self.window.is_active(t) { self.angular_velocity } else { 0.0 }
+        if !self.window.is_active(t) {
+            return 0.0;
+        }
+        let elapsed = self.window.elapsed(t);
+        if self.spin_up > 0.0 && elapsed < self.spin_up {
+            self.angular_velocity * elapsed / self.spin_up
+        } else {
+            self.angular_velocity
+        }
     }
 }
 
@@ -479,7 +500,12 @@ mod tests {
     #[test]
     fn rotating_wall_turns_about_its_pivot() {
         let pivot = DVec2::new(1.0, 2.0);
-        let motion = WallMotion::Rotating(Rotation { pivot, angular_velocity: 0.7, window: TimeWindow::new(1.0, 3.0) });
+        let motion = WallMotion::Rotating(Rotation {
+            pivot,
+            angular_velocity: 0.7,
+            window: TimeWindow::new(1.0, 3.0),
+            spin_up: 0.0,
+        });
         let rest = Pose::new(DVec2::new(3.0, 2.0), 0.1);
 
         assert_eq!(motion.kinematics(0.5).place(rest), rest);
@@ -575,5 +601,26 @@ mod tests {
         assert!(WallMotion::default().is_static());
         assert!(!WallMotion::Vibrating(Vibration::default()).is_static());
         assert_eq!(WallMotion::Static.kinematics(1.0), WallKinematics::REST);
+    }
+
+    #[test]
+    fn a_spin_up_ramps_the_angular_velocity_and_integrates_to_the_angle() {
+        let rotation = Rotation {
+            pivot: DVec2::ZERO,
+            angular_velocity: 4.0,
+            window: TimeWindow::new(1.0, f64::INFINITY),
+            spin_up: 0.5,
+        };
+        assert_eq!((rotation.angle(1.0), rotation.angular_velocity_at(0.9)), (0.0, 0.0));
+        assert_relative_eq!(rotation.angular_velocity_at(1.25), 2.0, epsilon = 1e-15);
+        assert_relative_eq!(rotation.angle(1.25), 4.0 * 0.25 * 0.25 / 1.0, epsilon = 1e-15);
+        assert_relative_eq!(rotation.angle(1.5), 1.0, epsilon = 1e-15);
+        assert_eq!(rotation.angular_velocity_at(2.0), 4.0);
+        assert_relative_eq!(rotation.angle(2.0), 1.0 + 4.0 * 0.5, epsilon = 1e-14);
+        // The angle is the integral of the angular velocity (midpoint rule, exact for a piecewise linear ω).
+        let n = 1000;
+        let integral: f64 =
+            (0..n).map(|k| rotation.angular_velocity_at(1.0 + (k as f64 + 0.5) / n as f64) / n as f64).sum();
+        assert_relative_eq!(integral, rotation.angle(2.0), max_relative = 1e-12);
     }
 }

@@ -94,6 +94,21 @@ pub struct StepStats {
     pub removed: u64,
 }
 
+/// What the contacts did to one wall in the last step (a mill's rotor: its torque and the power it delivers).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WallLoad {
+    /// Sum of the contact forces on the wall, N.
+    pub force: DVec2,
+    /// Sum of their torques on the wall about the chosen point, N·m; a drive holding the wall on its motion supplies
+    /// the opposite.
+    pub torque: f64,
+    /// Power the wall's motion delivers to the particles through its contacts, Σ F_particle·v_wall at each contact
+    /// point, W. For a wall turning at ω about the chosen point it equals −ω·`torque` (to round-off).
+    pub power: f64,
+    /// Contacts of the wall.
+    pub contacts: usize,
+}
+
 /// The chatter diagnostic of one step, summed over the pairs of touching boxes with F the force on the pair:
 /// `change` = Σ|F(n) − 2F(n−1) + F(n−2)| and `scale` = 2Σ(|F(n)| + |F(n−1)|), in N.
 ///
@@ -369,6 +384,31 @@ impl World {
     /// a World loaded from a checkpoint until its second step (the older force history is not saved).
     pub fn force_alternation(&self) -> ForceAlternation {
         self.force_alternation
+    }
+
+    /// The load the contacts of the last step put on wall `wall`, torques about `about` (a rotor's pivot). The
+    /// material velocity of the wall at a contact point is its velocity and angular velocity at the step's predicted
+    /// state, as the contact laws saw it.
+    pub fn wall_load(&self, wall: BodyId, about: DVec2) -> WallLoad {
+        let b = &self.bodies;
+        let (velocity, omega, position) =
+            (b.velocity[wall.index()], b.angular_velocity[wall.index()], b.pose[wall.index()].position);
+        let mut load = WallLoad::default();
+        for (a, other, contact) in self.contacts() {
+            let on_wall = if a == wall {
+                contact.force_on_a
+            } else if other == wall {
+                -contact.force_on_a
+            } else {
+                continue;
+            };
+            let material_velocity = velocity + omega * (contact.point - position).perp();
+            load.force += on_wall;
+            load.torque += gc2d_geometry::cross(contact.point - about, on_wall);
+            load.power -= on_wall.dot(material_velocity);
+            load.contacts += 1;
+        }
+        load
     }
 
     /// Starts recording contact events from the next step on (see [`crate::events`]); recording costs nothing until

@@ -2,7 +2,7 @@
 //! (drum after `gc2d_drum`, D.7; funnel; silo; box).
 
 use super::shapes::{outline, polygon_error};
-use crate::checks::{finite, finite_pair, ordered_range, positive, window};
+use crate::checks::{finite, finite_pair, non_negative, ordered_range, positive, window};
 use crate::error::SceneError;
 use crate::schema::{Motion, Shape, WallItem, Waveform};
 use crate::spans::field_path;
@@ -112,15 +112,17 @@ fn motion(motion: &Motion, path: &str) -> Result<WallMotion, SceneError> {
                 },
             })
         }
-        Motion::Rotation { pivot_m, angular_velocity_rad_s, window_s } => {
+        Motion::Rotation { pivot_m, angular_velocity_rad_s, window_s, spin_up_s } => {
             finite_pair(&at("pivot_m"), pivot_m)?;
             finite(&at("angular_velocity_rad_s"), angular_velocity_rad_s)?;
             window(&at("window_s"), window_s)?;
             finite(&at("window_s"), window_s[0])?;
+            non_negative(&at("spin_up_s"), spin_up_s)?;
             WallMotion::Rotating(Rotation {
                 pivot: DVec2::from_array(pivot_m),
                 angular_velocity: angular_velocity_rad_s,
                 window: TimeWindow::new(window_s[0], window_s[1]),
+                spin_up: spin_up_s,
             })
         }
         Motion::Piston { direction_rad, force_n, max_speed_m_s } => {

@@ -116,7 +116,7 @@ pub enum Motion {
         #[serde(default = "defaults::open_window")]
         window_s: [f64; 2],
     },
-    /// Rotation about a fixed pivot at constant angular velocity (mill rotors; not in gc2d).
+    /// Rotation about a fixed pivot (mill rotors; not in gc2d): from rest to ω over `spin_up_s`, then at ω.
     Rotation {
         /// The pivot, m.
         pivot_m: [f64; 2],
@@ -125,6 +125,9 @@ pub enum Motion {
         /// (t1, t2) during which the wall turns, s. Default (0, inf).
         #[serde(default = "defaults::open_window")]
         window_s: [f64; 2],
+        /// Time of a linear ramp from rest to ω at the start of the window, s. Default 0 (at ω from the start).
+        #[serde(default, skip_serializing_if = "is_zero")]
+        spin_up_s: f64,
     },
     /// A force-controlled stamp (gsi `PISTON_*`).
     Piston {
@@ -164,4 +167,9 @@ impl WallItem {
             | WallItem::Enclosure { material, .. } => material.as_deref(),
         }
     }
+}
+
+/// True for a zero, which the scene as written out leaves away.
+fn is_zero(value: &f64) -> bool {
+    *value == 0.0
 }
