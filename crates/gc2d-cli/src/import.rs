@@ -64,12 +64,13 @@ pub fn import_gsi(gsi: &Path, output: Option<&Path>, part_size: PartSizeOption) 
     };
     let import = parse_gsi(&text, &gc2d_scene::gsi::ImportOptions { part_size: part_size.into() }).map_err(located)?;
     for note in &import.notes {
-        println!("{file}:{}: $ {}", note.line, note.text);
+        // The comments are for reading along; a closed stdout does not stop the conversion.
+        let _ = crate::console::out(&format!("{file}:{}: $ {}", note.line, note.text));
     }
     let name = output.file_stem().map_or_else(|| "imported".into(), |stem| stem.to_string_lossy().into_owned());
     let conversion = to_scene(&import, &name).map_err(located)?;
     for warning in &conversion.warnings {
-        eprintln!("{}", warning_line(&file, warning));
+        crate::console::err(&warning_line(&file, warning));
     }
     let ron = conversion.scene.to_ron_string().map_err(|e| ImportFailure::io(format!("cannot write RON: {e}")))?;
     let written = format!("{}{ron}\n", header(&file, &name, &conversion.warnings));
@@ -83,14 +84,14 @@ pub fn import_gsi(gsi: &Path, output: Option<&Path>, part_size: PartSizeOption) 
         ))
     };
     let summary = Scene::from_str(&written, &output_name).and_then(|scene| scene.summary()).map_err(invalid)?;
-    eprintln!(
+    crate::console::err(&format!(
         "Wrote {output_name}: {} walls, {} particles, {} sources, Δt = {:e} s{}.",
         summary.wall_bodies,
         summary.particles,
         summary.sources,
         summary.time_step_s,
         if summary.time_step_is_automatic { " (automatic)" } else { "" }
-    );
+    ));
     Ok(output)
 }
 

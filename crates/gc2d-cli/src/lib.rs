@@ -2,6 +2,7 @@
 //! arguments and wires scenes, recordings and checkpoints to these.
 
 pub mod chatter;
+pub mod console;
 pub mod import;
 pub mod outputs;
 pub mod resume;

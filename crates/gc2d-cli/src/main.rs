@@ -5,6 +5,7 @@
 
 use clap::{Parser, Subcommand};
 use gc2d_analysis::{AnalyzeOptions, SceneKind, analyze_run};
+use gc2d_cli::console;
 use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_scene_copy};
 use gc2d_cli::resume::{ResumePoint, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
@@ -172,6 +173,16 @@ impl Failure {
     fn input(report: impl Into<String>) -> Self {
         Self { code: 2, report: report.into() }
     }
+
+    /// A failed write to stdout: a reader that has gone (`| head`) ends the program quietly with exit code 0, any
+    /// other error is a failure.
+    fn stdout(error: &std::io::Error) -> Self {
+        if console::is_closed(error) {
+            Self { code: 0, report: String::new() }
+        } else {
+            Self { code: 1, report: format!("cannot write to standard output: {error}") }
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -191,7 +202,9 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => ExitCode::from(code),
         Err(failure) => {
-            eprintln!("{}", failure.report);
+            if !failure.report.is_empty() {
+                console::err(&failure.report);
+            }
             ExitCode::from(failure.code)
         }
     }
@@ -214,7 +227,7 @@ fn load(path: &Path) -> Result<Scene, Failure> {
 fn check(path: &Path) -> Result<u8, Failure> {
     let scene = load(path)?;
     let summary = scene.summary().map_err(|e| Failure::input(render(e)))?;
-    println!("{summary}");
+    console::out(&summary.to_string()).map_err(|e| Failure::stdout(&e))?;
     Ok(0)
 }
 
@@ -247,7 +260,12 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     let (mut world, resumed_from) = match &args.resume {
         Some(from) => {
             let ResumePoint { path, world } = load_resume_point(from).map_err(Failure::input)?;
-            eprintln!("Resuming from {} at t = {:.6} s (step {}).", path.display(), world.time(), world.steps());
+            console::err(&format!(
+                "Resuming from {} at t = {:.6} s (step {}).",
+                path.display(),
+                world.time(),
+                world.steps()
+            ));
             (world, Some(path))
         }
         None => (scene.build().map_err(|e| Failure::input(render(e)))?, None),
@@ -373,12 +391,12 @@ fn snapshot(run: &Path, output: Option<PathBuf>, width: u32, colour_by: Colour, 
     let options = PngOptions { width, colour_by: colour_by.into(), force_network: forces, ..PngOptions::default() };
     render_png(&world, &output, &options)
         .map_err(|e| Failure { code: 1, report: format!("cannot draw {}: {e}", output.display()) })?;
-    eprintln!(
+    console::err(&format!(
         "Wrote {} (t = {:.6} s, {} particles).",
         output.display(),
         world.time(),
         world.bodies().particles().count()
-    );
+    ));
     Ok(0)
 }
 
@@ -393,8 +411,8 @@ fn analyze(run: &Path, kind: Kind, window: Option<f64>, grid: Option<f64>) -> Re
     let report =
         analyze_run(run, &options).map_err(|e| Failure::input(format!("cannot analyse {}: {e}", run.display())))?;
     let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
-    println!("{json}");
-    eprintln!("Tables and figures in {}.", run.join("analysis").display());
+    console::out(&json).map_err(|e| Failure::stdout(&e))?;
+    console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
     Ok(0)
 }
 
@@ -402,7 +420,7 @@ fn analyze(run: &Path, kind: Kind, window: Option<f64>, grid: Option<f64>) -> Re
 fn convergence(out: PathBuf, quick: bool) -> Result<u8, Failure> {
     let report = run_convergence(&ConvergenceOptions { out_dir: out.clone(), quick })
         .map_err(|e| Failure { code: 1, report: format!("the convergence study failed: {e}") })?;
-    eprintln!("{} problems; tables and figures in {}.", report.problems.len(), out.display());
+    console::err(&format!("{} problems; tables and figures in {}.", report.problems.len(), out.display()));
     Ok(0)
 }
 
@@ -411,7 +429,7 @@ fn report_outcome(status: &RunStatus, world: &World, out: &Path, wall_time: f64)
     let particles = world.bodies().particles().count();
     match status {
         RunStatus::Completed => {
-            eprintln!(
+            console::err(&format!(
                 "Finished at t = {:.6} s after {} steps in {:.2} s: {} particles, {} contacts. Results in {}.",
                 world.time(),
                 world.steps(),
@@ -419,18 +437,18 @@ fn report_outcome(status: &RunStatus, world: &World, out: &Path, wall_time: f64)
                 particles,
                 world.stats().contacts,
                 out.display()
-            );
+            ));
             Ok(0)
         }
         RunStatus::Interrupted => {
-            eprintln!(
+            console::err(&format!(
                 "Interrupted at t = {:.6} s (step {}). The outputs in {} are complete up to this point; continue \
                  with --resume {}.",
                 world.time(),
                 world.steps(),
                 out.display(),
                 out.join("final.ckpt").display()
-            );
+            ));
             Ok(130)
         }
         RunStatus::Failed(message) => Err(Failure {

@@ -170,7 +170,7 @@ impl Progress {
     /// Prints a warning above the bar, or on stderr when the bar is hidden.
     fn warn(&self, message: &str) {
         if self.bar.is_hidden() {
-            eprintln!("{message}");
+            crate::console::err(message);
         } else {
             self.bar.println(message);
         }
