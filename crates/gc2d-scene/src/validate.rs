@@ -122,6 +122,9 @@ impl Scene {
                 Err(error) => errors.push(error),
             }
         }
+        if let Some(mill) = &self.mill {
+            initial = initial.saturating_add(mill.balls.count);
+        }
         if initial > MAX_INITIAL_PARTICLES {
             errors.push(SceneError::value(
                 "blocks",
@@ -130,6 +133,16 @@ impl Scene {
         }
         for (i, source) in self.sources.iter().enumerate() {
             check_source(source, &format!("sources[{i}]"), &materials, &mut errors);
+        }
+        if let Some(mill) = &self.mill {
+            collect(&mut errors, crate::build::mill::check(mill, "mill"));
+            for (field, name) in [
+                ("mill.chamber_material", &mill.chamber_material),
+                ("mill.rotor_material", &mill.rotor_material),
+                ("mill.balls.material", &mill.balls.material),
+            ] {
+                collect(&mut errors, materials.resolve(name.as_deref(), field).map(drop));
+            }
         }
         if let Some(view) = &self.view {
             check_area(view, "view", &mut errors);

@@ -7,6 +7,7 @@
 
 pub(crate) mod blocks;
 pub(crate) mod interactions;
+pub(crate) mod mill;
 pub(crate) mod safety;
 pub(crate) mod shapes;
 pub(crate) mod walls;
@@ -35,15 +36,15 @@ const BUILD_STREAM: u64 = 1;
 const SOURCE_SAMPLE_STREAM: u64 = 2;
 
 /// A free particle ready for `World::add_particle`.
-struct PlannedParticle {
-    shape: BodyShape,
-    pose: Pose,
-    velocity: DVec2,
-    angular_velocity: f64,
-    density: f64,
-    material: MaterialId,
-    drag_spring: Option<EngineDragSpring>,
-    path: String,
+pub(crate) struct PlannedParticle {
+    pub shape: BodyShape,
+    pub pose: Pose,
+    pub velocity: DVec2,
+    pub angular_velocity: f64,
+    pub density: f64,
+    pub material: MaterialId,
+    pub drag_spring: Option<EngineDragSpring>,
+    pub path: String,
 }
 
 /// A built scene and what the summary reports about it.
@@ -84,7 +85,12 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
     for (i, item) in scene.walls.iter().enumerate() {
         walls.extend(walls::expand(item, &format!("walls[{i}]"), &mut rng)?);
     }
-    let particles = plan_particles(scene, &materials, &mut rng)?;
+    let mut particles = plan_particles(scene, &materials, &mut rng)?;
+    if let Some(mill) = &scene.mill {
+        let mill_walls = mill::walls(mill, "mill");
+        particles.extend(mill::balls(mill, &mill_walls, &materials, scene.mass_model, &mut rng, "mill")?);
+        walls.extend(mill_walls);
+    }
     let sources = plan_sources(scene, &materials)?;
 
     let mut bound = particles

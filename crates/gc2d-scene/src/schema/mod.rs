@@ -7,11 +7,13 @@
 
 mod bodies;
 mod interactions;
+mod mill;
 mod shapes;
 mod walls;
 
 pub use bodies::{Block, DragSpring, DropHeight, GridType, Particle, Source};
 pub use interactions::{Damping, Friction, FrictionStiffness, Interaction, InteractionLaw, Rolling};
+pub use mill::{Balls, Mill, Rotor};
 pub use shapes::{CornerPositions, CountSpread, Orientation, Recipe, Shape, SizeSpread};
 pub use walls::{Motion, WallItem, Waveform};
 
@@ -66,6 +68,9 @@ pub struct Scene {
     /// Particle sources that insert particles during the run (gsi `DROPSOURCE`).
     #[serde(default)]
     pub sources: Vec<Source>,
+    /// A ball mill: chamber, rotor and balls, expanded into walls and particles. Default: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mill: Option<Mill>,
     /// The region a picture of the scene should show (gsi `DISPLAY` `X_RANGE`/`Y_RANGE`). Default: none.
     #[serde(default)]
     pub view: Option<Area>,
@@ -331,6 +336,24 @@ pub(crate) mod defaults {
     }
     pub fn poisson_ratio() -> f64 {
         0.3
+    }
+    pub fn chamber_radius() -> f64 {
+        0.073
+    }
+    pub fn hub_radius() -> f64 {
+        0.008
+    }
+    pub fn tip_radius() -> f64 {
+        0.058
+    }
+    pub fn blade_width() -> f64 {
+        0.008
+    }
+    pub fn one_bar() -> Vec<f64> {
+        vec![0.0, std::f64::consts::PI]
+    }
+    pub fn ball_radius() -> f64 {
+        0.0025
     }
     pub fn half_pi() -> f64 {
         std::f64::consts::FRAC_PI_2
