@@ -37,13 +37,21 @@ const SOURCE_SAMPLE_STREAM: u64 = 2;
 
 /// A free particle ready for `World::add_particle`.
 pub(crate) struct PlannedParticle {
+    /// Its outline, centroid at the origin.
     pub shape: BodyShape,
+    /// Where it starts.
     pub pose: Pose,
+    /// Start velocity, m/s.
     pub velocity: DVec2,
+    /// Start angular velocity, rad/s CCW.
     pub angular_velocity: f64,
+    /// Density in the unit of the scene's mass model.
     pub density: f64,
+    /// Its material.
     pub material: MaterialId,
+    /// A drag spring pulling it, if any.
     pub drag_spring: Option<EngineDragSpring>,
+    /// The field path of the scene entry it comes from.
     pub path: String,
 }
 
