@@ -41,3 +41,25 @@ fn every_error_class_is_located_and_exits_with_2() {
 fn run_refuses_a_bad_scene_the_same_way() {
     assert_eq!(diagnostic("run", "unknown_field.ron"), diagnostic("check", "unknown_field.ron"));
 }
+
+#[test]
+fn errors_past_column_65535_are_reported_without_the_snippet() {
+    // miette's renderer panics for underlines past column 65,535: such errors are shown without the source snippet.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("long.ron");
+    std::fs::write(&scene, format!("Scene(description: \"{}\", bogus: 1)", "x".repeat(70_000))).unwrap();
+    for command in ["check", "run"] {
+        let output = Command::cargo_bin("gc2d-rs")
+            .unwrap()
+            .current_dir(dir.path())
+            .env("NO_COLOR", "1")
+            .args([command, "long.ron"])
+            .args(if command == "run" { &["--quiet", "--out", "out"][..] } else { &[] })
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{command}: {stderr}");
+        assert!(stderr.contains("long.ron:1:70024: `bogus`: unknown field `bogus`"), "{command}: {stderr}");
+        assert!(stderr.len() < 2_000, "{command}: no 70,000-character snippet, {} bytes", stderr.len());
+    }
+}

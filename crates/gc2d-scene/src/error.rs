@@ -44,6 +44,12 @@ impl ErrorKind {
     }
 }
 
+/// Longest line, in bytes, that a rendered error shows as its source snippet. miette's renderer pads its underlines
+/// with format widths, which panic above 65,535 columns; a line of 4,096 bytes is at most 16,384 columns wide even
+/// if it were all tabs. An error on (or next to) a longer line is shown without the snippet; its message still says
+/// `file:line:column`.
+pub const MAX_SNIPPET_LINE_BYTES: usize = 4096;
+
 /// Where an error points: file, 1-based line and column (characters).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
@@ -179,6 +185,20 @@ impl SceneError {
         self
     }
 
+    /// True when the located span and the line of context miette shows on each side are short enough to render.
+    fn snippet_fits(&self) -> bool {
+        let (Some(span), Some(source)) = (&self.0.span, &self.0.source) else { return false };
+        let text = source.text();
+        let (start, end) = (span.start.min(text.len()), span.end.min(text.len()));
+        // From the start of the line before the span's first line to the end of the line after its last one.
+        let first = text[..start].rfind('\n').map_or(0, |i| text[..i].rfind('\n').map_or(0, |j| j + 1));
+        let last = text[end..].find('\n').map_or(text.len(), |i| {
+            let next = end + i + 1;
+            text[next..].find('\n').map_or(text.len(), |j| next + j)
+        });
+        text.get(first..last).is_some_and(|lines| lines.split('\n').all(|line| line.len() <= MAX_SNIPPET_LINE_BYTES))
+    }
+
     /// One error for a list of them: the first, with the others attached as related. `None` for an empty list.
     pub fn combine(mut errors: Vec<SceneError>) -> Option<SceneError> {
         if errors.is_empty() {
@@ -227,10 +247,16 @@ impl Diagnostic for SceneError {
     }
 
     fn source_code(&self) -> Option<&dyn SourceCode> {
+        if !self.snippet_fits() {
+            return None;
+        }
         self.0.source.as_ref().map(|s| s.named() as &dyn SourceCode)
     }
 
     fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
+        if !self.snippet_fits() {
+            return None;
+        }
         let span = self.0.span.clone()?;
         let label = LabeledSpan::new_with_span(Some(self.0.label.clone()), span.start..span.end.max(span.start));
         Some(Box::new(std::iter::once(label)))

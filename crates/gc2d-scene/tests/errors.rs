@@ -146,3 +146,27 @@ fn unreadable_files_are_io_errors() {
     assert_eq!(error.kind(), ErrorKind::Io);
     assert!(error.to_string().contains("/nonexistent/scene.ron"));
 }
+
+#[test]
+fn errors_far_along_a_long_line_are_shown_without_the_snippet() {
+    // miette's renderer panics for underlines past column 65,535; the message keeps file:line:column instead.
+    let text = format!("Scene(description: \"{}\", bogus: 1)", "x".repeat(70_000));
+    let error = error_of(&text);
+    assert_eq!(error.kind(), ErrorKind::UnknownName);
+    assert_eq!(error.path(), "bogus");
+    let location = error.location().cloned().expect("located");
+    assert_eq!((location.line, location.column), (1, 70_024));
+    let rendered = error.render_plain();
+    assert!(rendered.contains("bad.ron:1:70024: `bogus`: unknown field `bogus`"), "{rendered}");
+    assert!(rendered.len() < 2_000, "no 70,000-character snippet: {} bytes", rendered.len());
+    // The same error on a short line still shows its snippet.
+    let short = error_of("Scene(description: \"x\", bogus: 1)").render_plain();
+    assert!(short.contains("╭─[bad.ron:1:25]"), "{short}");
+    // Related errors far along a line are rendered the same way.
+    let several = format!(
+        "Scene(description: \"{}\", run: (end_time_s: -1, seed: 1), materials: [(name: \"a\", mu: -1)])",
+        "y".repeat(70_000)
+    );
+    let rendered = error_of(&several).render_plain();
+    assert!(rendered.contains("`materials[0].mu`"), "{rendered}");
+}
