@@ -25,9 +25,11 @@ pub fn write_scene_copy(path: &Path, scene: &Scene) -> io::Result<()> {
     std::fs::write(path, header + &text + "\n")
 }
 
-/// Column names of `timeseries.csv`, in order. Energies in J per unit thickness (per metre of depth);
-/// `force_alternation` is the engine's chatter diagnostic on the row's step (`World::force_alternation`).
-pub const TIME_SERIES_COLUMNS: [&str; 16] = [
+/// Column names of `timeseries.csv`, in order. Energies in J per unit thickness (per metre of depth), or in J with
+/// sphere-equivalent masses; `force_alternation` is the engine's chatter diagnostic on the row's step
+/// (`World::force_alternation`); the `rotor_` columns are the drive of the walls turning about pivots on the row's
+/// step (`World::rotor_power`: torque, and power from torque and from the work on the particles), zero without.
+pub const TIME_SERIES_COLUMNS: [&str; 19] = [
     "time_s",
     "particles",
     "contacts",
@@ -44,6 +46,9 @@ pub const TIME_SERIES_COLUMNS: [&str; 16] = [
     "opening_residual_j",
     "balance_error_j",
     "force_alternation",
+    "rotor_torque_n_m",
+    "rotor_power_torque_w",
+    "rotor_power_work_w",
 ];
 
 /// Appends one row per call to `timeseries.csv`.
@@ -108,9 +113,10 @@ impl TimeSeriesWriter {
         let l = world.ledger();
         let s = world.stats();
         let particles = world.bodies().particles().count();
+        let rotor = world.rotor_power();
         writeln!(
             self.file,
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             world.time(),
             particles,
             s.contacts,
@@ -127,6 +133,9 @@ impl TimeSeriesWriter {
             l.opening_residual,
             l.balance_error(),
             world.force_alternation().ratio(),
+            rotor.torque,
+            rotor.power_from_torque,
+            rotor.power_from_work,
         )?;
         self.file.flush()
     }

@@ -109,6 +109,19 @@ pub struct WallLoad {
     pub contacts: usize,
 }
 
+/// The drive of the walls turning about pivots (a mill's rotor) in the last step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RotorPower {
+    /// The torque the drive supplies to hold the turning walls on their motion, each about its own pivot, summed
+    /// (the parts of one rotor share a pivot), N·m: minus the contacts' torque on them.
+    pub torque: f64,
+    /// ω·τ, from the torque, summed over the turning walls, W.
+    pub power_from_torque: f64,
+    /// Σ F·v over their contacts, the power they deliver to the particles, W. Equal to `power_from_torque` to
+    /// round-off (the two ways the mill thesis measures the motor power, ballmill.md §7.6).
+    pub power_from_work: f64,
+}
+
 /// The chatter diagnostic of one step, summed over the pairs of touching boxes with F the force on the pair:
 /// `change` = Σ|F(n) − 2F(n−1) + F(n−2)| and `scale` = 2Σ(|F(n)| + |F(n−1)|), in N.
 ///
@@ -409,6 +422,21 @@ impl World {
             load.contacts += 1;
         }
         load
+    }
+
+    /// The drive of every wall that turns about a pivot (see [`RotorPower`]); zero when no wall does.
+    pub fn rotor_power(&self) -> RotorPower {
+        let mut drive = RotorPower::default();
+        for wall in &self.moving_walls {
+            if let WallMotion::Rotating(rotation) = &wall.motion {
+                let load = self.wall_load(wall.body, rotation.pivot);
+                let omega = self.bodies.angular_velocity[wall.body.index()];
+                drive.torque -= load.torque;
+                drive.power_from_torque -= omega * load.torque;
+                drive.power_from_work += load.power;
+            }
+        }
+        drive
     }
 
     /// Starts recording contact events from the next step on (see [`crate::events`]); recording costs nothing until

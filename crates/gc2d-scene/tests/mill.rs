@@ -65,3 +65,23 @@ fn mill_errors_name_the_field() {
     let e = error(scene("rpm: 1000", "count: 10, material: \"stel\""));
     assert_eq!(e.path(), "mill.balls.material", "{}", e.render_plain());
 }
+
+#[test]
+fn the_rotor_power_from_torque_equals_its_work_on_the_balls_at_every_step() {
+    let mut world = mill_scene().build().unwrap();
+    let mut driving_steps = 0;
+    for _ in 0..20_000 {
+        world.step().unwrap();
+        let drive = world.rotor_power();
+        let scale = drive.power_from_work.abs().max(drive.power_from_torque.abs());
+        assert!(
+            (drive.power_from_torque - drive.power_from_work).abs() <= 1e-9 * scale,
+            "t = {}: ω·τ = {} W, Σ F·v = {} W",
+            world.time(),
+            drive.power_from_torque,
+            drive.power_from_work
+        );
+        driving_steps += usize::from(scale > 0.0);
+    }
+    assert!(driving_steps > 100, "the rotor hit balls on {driving_steps} steps");
+}
