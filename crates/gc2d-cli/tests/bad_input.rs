@@ -63,3 +63,24 @@ fn errors_past_column_65535_are_reported_without_the_snippet() {
         assert!(stderr.len() < 2_000, "{command}: no 70,000-character snippet, {} bytes", stderr.len());
     }
 }
+
+#[test]
+fn thousands_of_errors_are_cut_to_a_readable_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let materials: Vec<String> = (0..5_000).map(|i| format!("    (name: \"m{i}\", mu: -1),")).collect();
+    std::fs::write(dir.path().join("many.ron"), format!("Scene(\n  materials: [\n{}\n  ],\n)", materials.join("\n")))
+        .unwrap();
+    let output = Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .current_dir(dir.path())
+        .env("NO_COLOR", "1")
+        .args(["check", "many.ron"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("many.ron:3:22: `materials[0].mu`"), "{stderr}");
+    assert!(stderr.contains("… and 4980 more errors not shown (only the first 20 are listed)"), "{stderr}");
+    assert_eq!(stderr.matches(".mu`: -1: the friction").count(), 20, "{stderr}");
+    assert!(stderr.len() < 20_000, "{} bytes", stderr.len());
+}

@@ -50,6 +50,11 @@ impl ErrorKind {
 /// `file:line:column`.
 pub const MAX_SNIPPET_LINE_BYTES: usize = 4096;
 
+/// Most errors one report lists: the first and up to 19 related ones. A scene with more (a generated file with a
+/// mistake in every entry) reports these and one last line counting the rest, so that `check` stays quick and its
+/// output readable.
+pub const MAX_REPORTED_ERRORS: usize = 20;
+
 /// Where an error points: file, 1-based line and column (characters).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Location {
@@ -83,7 +88,23 @@ struct Details {
     label: String,
     span: Option<Range<usize>>,
     source: Option<Arc<SourceText>>,
+    more: Option<MoreErrors>,
 }
+
+/// The last line of a report cut at [`MAX_REPORTED_ERRORS`]: how many errors were found but not listed.
+#[derive(Debug, Clone)]
+struct MoreErrors(usize);
+
+impl fmt::Display for MoreErrors {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (count, s) = (self.0, if self.0 == 1 { "" } else { "s" });
+        write!(f, "… and {count} more error{s} not shown (only the first {MAX_REPORTED_ERRORS} are listed)")
+    }
+}
+
+impl std::error::Error for MoreErrors {}
+
+impl Diagnostic for MoreErrors {}
 
 impl SceneError {
     /// An error at `path`, not yet located in a text.
@@ -98,6 +119,7 @@ impl SceneError {
             label: "here".to_owned(),
             span: None,
             source: None,
+            more: None,
         }))
     }
 
@@ -134,6 +156,11 @@ impl SceneError {
     /// Further errors found in the same pass, or notes that belong to this one.
     pub fn related_errors(&self) -> &[SceneError] {
         &self.0.related
+    }
+
+    /// How many further errors were found but left out of [`Self::related_errors`] (see [`MAX_REPORTED_ERRORS`]).
+    pub fn omitted_errors(&self) -> usize {
+        self.0.more.as_ref().map_or(0, |more| more.0)
     }
 
     /// The underlined byte span in the source text, if located.
@@ -199,13 +226,16 @@ impl SceneError {
         text.get(first..last).is_some_and(|lines| lines.split('\n').all(|line| line.len() <= MAX_SNIPPET_LINE_BYTES))
     }
 
-    /// One error for a list of them: the first, with the others attached as related. `None` for an empty list.
-    pub fn combine(mut errors: Vec<SceneError>) -> Option<SceneError> {
-        if errors.is_empty() {
-            return None;
-        }
-        let mut first = errors.remove(0);
-        first.0.related.extend(errors);
+    /// One error for a list of them: the first, with the others attached as related. `None` for an empty list. At
+    /// most [`MAX_REPORTED_ERRORS`] are kept (with the related ones the first may already have); the report ends
+    /// with a line counting the rest.
+    pub fn combine(errors: Vec<SceneError>) -> Option<SceneError> {
+        let mut errors = errors.into_iter();
+        let mut first = errors.next()?;
+        let room = MAX_REPORTED_ERRORS.saturating_sub(1 + first.0.related.len());
+        first.0.related.extend(errors.by_ref().take(room));
+        let omitted = errors.len() + first.omitted_errors();
+        first.0.more = (omitted > 0).then_some(MoreErrors(omitted));
         Some(first)
     }
 
@@ -263,10 +293,11 @@ impl Diagnostic for SceneError {
     }
 
     fn related<'a>(&'a self) -> Option<Box<dyn Iterator<Item = &'a dyn Diagnostic> + 'a>> {
-        if self.0.related.is_empty() {
+        if self.0.related.is_empty() && self.0.more.is_none() {
             return None;
         }
-        Some(Box::new(self.0.related.iter().map(|e| e as &dyn Diagnostic)))
+        let more = self.0.more.iter().map(|m| m as &dyn Diagnostic);
+        Some(Box::new(self.0.related.iter().map(|e| e as &dyn Diagnostic).chain(more)))
     }
 }
 

@@ -170,3 +170,23 @@ fn errors_far_along_a_long_line_are_shown_without_the_snippet() {
     let rendered = error_of(&several).render_plain();
     assert!(rendered.contains("`materials[0].mu`"), "{rendered}");
 }
+
+#[test]
+fn long_lists_of_errors_are_cut_with_a_count_of_the_rest() {
+    let materials: Vec<String> = (0..5_000).map(|i| format!("    (name: \"m{i}\", mu: -1),")).collect();
+    let text = format!("Scene(\n  materials: [\n{}\n  ],\n)", materials.join("\n"));
+    let error = error_of(&text);
+    assert_eq!(error.path(), "materials[0].mu");
+    assert_eq!(error.related_errors().len(), gc2d_scene::error::MAX_REPORTED_ERRORS - 1);
+    assert_eq!(error.related_errors()[18].path(), "materials[19].mu");
+    assert_eq!(error.omitted_errors(), 4_980);
+    let rendered = error.render_plain();
+    assert!(rendered.contains("× … and 4980 more errors not shown (only the first 20 are listed)"), "{rendered}");
+    assert_eq!(rendered.matches("must be a finite number ≥ 0").count(), 20, "{rendered}");
+    assert!(rendered.len() < 20_000, "{} bytes", rendered.len());
+    // At the limit nothing is cut and no count is shown.
+    let twenty = format!("Scene(\n  materials: [\n{}\n  ],\n)", materials[..20].join("\n"));
+    let error = error_of(&twenty);
+    assert_eq!((error.related_errors().len(), error.omitted_errors()), (19, 0));
+    assert!(!error.render_plain().contains("more error"));
+}
