@@ -59,3 +59,29 @@ pub(crate) fn window(path: &str, window: [f64; 2]) -> Result<[f64; 2], SceneErro
     }
     Ok(window)
 }
+
+/// A number as a person writes it in a scene: plain for 0 and for 1e-4 ≤ |x| < 1e7, else in exponent form, so that
+/// 1e-320 reads `1e-320` instead of 330 digits and 1e23 reads `1e23`. Both forms are the shortest that reads back
+/// to the same f64.
+pub(crate) fn number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) { format!("{x}") } else { format!("{x:e}") }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short() {
+        assert_eq!(number(1e-320), "1e-320");
+        assert_eq!(number(-2.5e23), "-2.5e23");
+        assert_eq!(number(1e308), "1e308");
+        assert_eq!(number(0.0001), "0.0001");
+        assert_eq!(number(9.81), "9.81");
+        assert_eq!(number(-1.0), "-1");
+        assert_eq!(number(0.0), "0");
+        assert_eq!(number(f64::NAN), "NaN");
+        assert_eq!(number(f64::NEG_INFINITY), "-inf");
+        assert_eq!(number(12_345_678.0), "1.2345678e7");
+    }
+}

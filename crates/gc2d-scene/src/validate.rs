@@ -3,7 +3,7 @@
 
 use crate::build::blocks::{Lattice, MAX_INITIAL_PARTICLES};
 use crate::build::{shapes, walls};
-use crate::checks::{finite, finite_pair, non_negative, ordered_range, positive, window};
+use crate::checks::{finite, finite_pair, non_negative, number, ordered_range, positive, window};
 use crate::error::{SceneError, suggest};
 use crate::schema::{Area, Gravity, InteractionLaw, MassModel, Material, Particle, Scene, Source, defaults};
 use crate::spans::field_path;
@@ -131,8 +131,25 @@ impl Scene {
                 format!("the scene starts with {initial} particles, more than the {MAX_INITIAL_PARTICLES} allowed"),
             ));
         }
+        let (mut insertions, mut most) = (0.0, 0.0f64);
         for (i, source) in self.sources.iter().enumerate() {
-            check_source(source, &format!("sources[{i}]"), &materials, &mut errors);
+            let planned = check_source(source, &format!("sources[{i}]"), self.run.end_time_s, &materials, &mut errors);
+            insertions += planned;
+            most = most.max(planned);
+        }
+        // Together (a source that plans too many on its own has been reported at its interval).
+        if insertions > MAX_INITIAL_PARTICLES as f64 && most <= MAX_INITIAL_PARTICLES as f64 {
+            errors.push(
+                SceneError::value(
+                    "sources",
+                    format!(
+                        "the sources would insert {} particles before the end time, more than the \
+                         {MAX_INITIAL_PARTICLES} allowed",
+                        number(insertions)
+                    ),
+                )
+                .with_help("use longer intervals or shorter windows"),
+            );
         }
         if let Some(mill) = &self.mill {
             collect(&mut errors, crate::build::mill::check(mill, "mill"));
@@ -351,12 +368,71 @@ fn check_particle(
     }
 }
 
-fn check_source(source: &Source, path: &str, materials: &Materials, errors: &mut Vec<SceneError>) {
+/// Shortest interval between a source's insertions, s. Far below any contact time step, and long enough that the
+/// source's schedule moves on (t + interval > t in f64) up to t = 10⁷ s.
+const MIN_SOURCE_INTERVAL_S: f64 = 1e-9;
+
+/// Checks a source; returns the insertions it plans before `end_time` (0 when its times are unusable).
+fn check_source(
+    source: &Source,
+    path: &str,
+    end_time: f64,
+    materials: &Materials,
+    errors: &mut Vec<SceneError>,
+) -> f64 {
     let at = |field: &str| field_path(path, field);
     collect(errors, materials.resolve(source.material.as_deref(), &at("material")).map(drop));
     collect(errors, shapes::particle_recipe(&source.shape, &at("shape")).map(drop));
     collect(errors, finite_pair(&at("position_m"), source.position_m).map(drop));
     collect(errors, non_negative(&at("width_m"), source.width_m).map(drop));
-    collect(errors, window(&at("window_s"), source.window_s).map(drop));
-    collect(errors, positive(&at("interval_s"), source.interval_s).map(drop));
+    let window_ok = window(&at("window_s"), source.window_s).map_err(|e| errors.push(e)).is_ok();
+    let interval = source.interval_s;
+    if !(interval >= MIN_SOURCE_INTERVAL_S && interval.is_finite()) {
+        errors.push(
+            SceneError::value(
+                at("interval_s"),
+                format!(
+                    "{} s: the interval between insertions must be a finite time of at least {} s",
+                    number(interval),
+                    number(MIN_SOURCE_INTERVAL_S)
+                ),
+            )
+            .with_label("too short")
+            .with_help("check the units: `interval_s` is in seconds"),
+        );
+        return 0.0;
+    }
+    if !window_ok || !end_time.is_finite() {
+        return 0.0;
+    }
+    let planned = planned_insertions(source, end_time);
+    if planned > MAX_INITIAL_PARTICLES as f64 {
+        errors.push(
+            SceneError::value(
+                at("interval_s"),
+                format!(
+                    "the source would insert {} particles before the end time {} s, more than the \
+                     {MAX_INITIAL_PARTICLES} allowed",
+                    number(planned),
+                    number(end_time)
+                ),
+            )
+            .with_label("too short")
+            .with_help("use a longer interval or a shorter `window_s`; `interval_s` is in seconds"),
+        );
+    }
+    planned
+}
+
+/// How many insertions a source attempts before `end_time`, as the build counts them (`planned_insertions` in
+/// build/mod.rs): one at max(t1, 0) and one per interval while inside the window and not past the end time. In f64,
+/// so that absurd values give a large number instead of overflowing; needs a checked window (no NaN), a finite
+/// `end_time` and an interval > 0.
+fn planned_insertions(source: &Source, end_time: f64) -> f64 {
+    let first = source.window_s[0].max(0.0);
+    let last = source.window_s[1].min(end_time);
+    if last < first {
+        return 0.0;
+    }
+    ((last - first) / source.interval_s).floor() + if first < source.window_s[1] { 1.0 } else { 0.0 }
 }

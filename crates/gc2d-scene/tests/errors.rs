@@ -190,3 +190,43 @@ fn long_lists_of_errors_are_cut_with_a_count_of_the_rest() {
     assert_eq!((error.related_errors().len(), error.omitted_errors()), (19, 0));
     assert!(!error.render_plain().contains("more error"));
 }
+
+/// A scene with one source of `interval_s` over `window_s` (and `end_time_s` 1 s).
+fn source_scene(interval: &str, window: &str) -> String {
+    format!(
+        "Scene(\n    sources: [(position_m: (0, 1), window_s: {window}, shape: (semi_axes_m: (0.01, 0.01)),\n        interval_s: {interval})],\n)"
+    )
+}
+
+#[test]
+fn sources_may_not_plan_more_insertions_than_a_scene_may_hold() {
+    // 1e-320 s passed validation and made `run` spin forever (t + interval == t); it is now refused at the field.
+    let error = check(
+        "source_interval",
+        &source_scene("1e-320", "(0, inf)"),
+        ErrorKind::Value,
+        "sources[0].interval_s",
+        (3, 21),
+    );
+    assert_eq!(error.message(), "1e-320 s: the interval between insertions must be a finite time of at least 1e-9 s");
+    // 10^9 insertions in the scene's one second.
+    let error = check(
+        "source_insertions",
+        &source_scene("1e-9", "(0, inf)"),
+        ErrorKind::Value,
+        "sources[0].interval_s",
+        (3, 21),
+    );
+    assert!(
+        error.message().starts_with("the source would insert 1e9 particles before the end time 1 s"),
+        "{}",
+        error.message()
+    );
+    // The same interval in a window of a millisecond plans 10^6 + 1 insertions, still one too many; 10^-5 s is fine.
+    assert!(Scene::from_str(&source_scene("1e-9", "(0, 1e-3)"), "bad.ron").is_err());
+    assert!(Scene::from_str(&source_scene("1e-5", "(0, 1e-3)"), "ok.ron").is_ok());
+    // Together: two sources of 600,000 insertions each.
+    let text = "Scene(\n    run: (end_time_s: 6),\n    sources: [\n        (position_m: (0, 1), window_s: (0, 6), shape: (semi_axes_m: (0.01, 0.01)), interval_s: 1e-5),\n        (position_m: (1, 1), window_s: (0, 6), shape: (semi_axes_m: (0.01, 0.01)), interval_s: 1e-5),\n    ],\n)";
+    let error = check("sources_together", text, ErrorKind::Value, "sources", (3, 14));
+    assert!(error.message().starts_with("the sources would insert 1200002 particles"), "{}", error.message());
+}
