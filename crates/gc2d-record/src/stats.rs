@@ -28,7 +28,10 @@ pub const STATS_JSON_SCHEMA: &str = r#"{
     "contacts": {"type": "integer", "description": "touching pairs"},
     "max_overlap_fraction": {"type": "number", "description": "largest overlap area / smaller particle area"},
     "mean_coordination": {"type": "number", "description": "mean contacts per particle (wall contacts count once)"},
-    "max_contact_force": {"type": "number", "description": "largest |F| of the frame, N/m; drawn at full line width"}
+    "max_contact_force": {"type": "number", "description": "largest |F| of the frame, N/m; drawn at full line width"},
+    "median_speed": {"type": "number", "description": "median |v| of the particles, m/s"},
+    "rotor_power": {"type": "number", "description": "power the walls turning about pivots (a rotor) deliver to the particles, W"},
+    "rotor_torque": {"type": "number", "description": "torque that drives the walls turning about pivots, N m"}
   },
   "required": ["time", "particles", "kinetic", "potential", "elastic", "dissipated", "contacts"]
 }"#;
@@ -62,6 +65,12 @@ pub struct FrameStats {
     pub mean_coordination: f64,
     /// Largest |F| of the frame, N per unit thickness.
     pub max_contact_force: f64,
+    /// Median speed of the particles, m/s (0 without particles): the mill thesis's stationarity measure.
+    pub median_speed: f64,
+    /// Power the walls turning about pivots deliver to the particles, W (`World::rotor_power`).
+    pub rotor_power: f64,
+    /// Torque that drives them, N·m.
+    pub rotor_torque: f64,
 }
 
 impl FrameStats {
@@ -69,6 +78,7 @@ impl FrameStats {
     pub fn of(world: &World, forces: &[ContactForce], max_force: f64) -> Self {
         let ledger = world.ledger();
         let stats = world.stats();
+        let rotor = world.rotor_power();
         Self {
             time: world.time(),
             steps: world.steps(),
@@ -83,6 +93,9 @@ impl FrameStats {
             max_overlap_fraction: stats.max_overlap_fraction,
             mean_coordination: mean_coordination(world, forces),
             max_contact_force: max_force,
+            median_speed: median_speed(world),
+            rotor_power: rotor.power_from_work,
+            rotor_torque: rotor.torque,
         }
     }
 
@@ -103,6 +116,65 @@ impl FrameStats {
             "max_overlap_fraction": self.max_overlap_fraction,
             "mean_coordination": self.mean_coordination,
             "max_contact_force": self.max_contact_force,
+            "median_speed": self.median_speed,
+            "rotor_power": self.rotor_power,
+            "rotor_torque": self.rotor_torque,
         })
+    }
+}
+
+/// The median |v| of the living particles (the mean of the two middle ones for an even count), m/s; 0 without
+/// particles.
+pub fn median_speed(world: &World) -> f64 {
+    let b = world.bodies();
+    let mut speeds: Vec<f64> = b.particles().map(|id| b.velocity[id.index()].length()).collect();
+    let n = speeds.len();
+    if n == 0 {
+        return 0.0;
+    }
+    let (_, upper, _) = speeds.select_nth_unstable_by(n / 2, f64::total_cmp);
+    let upper = *upper;
+    if n % 2 == 1 {
+        upper
+    } else {
+        let lower = speeds[..n / 2].iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        0.5 * (lower + upper)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gc2d_contact::ContactLaw;
+    use gc2d_engine::schedules::GravitySchedule;
+    use gc2d_engine::{BodyShape, InteractionTable, MassModel, WorldConfig};
+    use gc2d_geometry::{DVec2, Pose};
+
+    /// A World without gravity holding disks that move at `speeds` along x, far apart.
+    fn world_with_speeds(speeds: &[f64]) -> World {
+        let config = WorldConfig {
+            time_step: 1e-5,
+            integrator: Default::default(),
+            interactions: InteractionTable::uniform(ContactLaw::elastic(1e7)),
+            mass_model: MassModel::PerUnitThickness,
+            gravity: GravitySchedule::constant(0.0),
+            heating: None,
+            safety: Default::default(),
+            domain: None,
+            seed: 1,
+        };
+        let mut world = World::new(config).unwrap();
+        for (k, &v) in speeds.iter().enumerate() {
+            let pose = Pose::new(DVec2::new(k as f64, 0.0), 0.0);
+            world.add_particle(BodyShape::Disk { radius: 0.01 }, pose, 1000.0, DVec2::new(v, 0.0), 0.0).unwrap();
+        }
+        world
+    }
+
+    #[test]
+    fn median_speed_of_odd_even_and_no_particles() {
+        assert_eq!(median_speed(&world_with_speeds(&[3.0, -1.0, 2.0])), 2.0);
+        assert_eq!(median_speed(&world_with_speeds(&[4.0, 1.0, -2.0, 8.0])), 3.0);
+        assert_eq!(median_speed(&world_with_speeds(&[])), 0.0);
     }
 }
