@@ -375,7 +375,8 @@ proptest! {
         c in point(1.0), r in 0.05..1.5f64, a in point(1.0), b in point(1.0), rho in 0.05..1.0f64,
     ) {
         let (i, j) = (ShapeView::Disk { center: c, radius: r }, ShapeView::Capsule { a, b, radius: rho });
-        check_against_parry(i, j, 1.0, 1e-12, 1e-12, r + rho, true)?;
+        // parry's capsule normal was seen 3.6e-12 off where ours matched 40-digit arithmetic to 1e-16.
+        check_against_parry(i, j, 1.0, 1e-12, 1e-11, r + rho, true)?;
         check_surface_points(i, j, 1.0)?;
         let lower = clip_area(&capsule_polygon(a, b, rho, false), &circle_polygon(c, r, false));
         let upper = clip_area(&capsule_polygon(a, b, rho, true), &circle_polygon(c, r, true));
