@@ -60,6 +60,25 @@ pub(crate) fn window(path: &str, window: [f64; 2]) -> Result<[f64; 2], SceneErro
     Ok(window)
 }
 
+/// A finite number in `[min, max]`, the physically sensible range of what `path` holds (`what`, in `unit`).
+pub(crate) fn in_range(
+    path: &str,
+    value: f64,
+    [min, max]: [f64; 2],
+    unit: &str,
+    what: &str,
+) -> Result<f64, SceneError> {
+    if value >= min && value <= max {
+        Ok(value)
+    } else {
+        Err(SceneError::value(
+            path,
+            format!("{} {unit}: {what} must lie between {} and {} {unit}", number(value), number(min), number(max)),
+        )
+        .with_label("out of range"))
+    }
+}
+
 /// A number as a person writes it in a scene: plain for 0 and for 1e-4 ≤ |x| < 1e7, else in exponent form, so that
 /// 1e-320 reads `1e-320` instead of 330 digits and 1e23 reads `1e23`. Both forms are the shortest that reads back
 /// to the same f64.

@@ -3,7 +3,7 @@
 
 use crate::build::blocks::{Lattice, MAX_INITIAL_PARTICLES};
 use crate::build::{shapes, walls};
-use crate::checks::{finite, finite_pair, non_negative, number, ordered_range, positive, window};
+use crate::checks::{finite, finite_pair, in_range, non_negative, number, ordered_range, positive, window};
 use crate::error::{SceneError, suggest};
 use crate::schema::{Area, Gravity, InteractionLaw, MassModel, Material, Particle, Scene, Source, defaults};
 use crate::spans::field_path;
@@ -212,10 +212,10 @@ fn check_area(area: &Area, path: &str, errors: &mut Vec<SceneError>) {
 
 fn check_gravity_and_heating(scene: &Scene, errors: &mut Vec<SceneError>) {
     match scene.gravity {
-        Gravity::Constant(g) => collect(errors, finite("gravity", g).map(drop)),
+        Gravity::Constant(g) => collect(errors, gravity_in_range("gravity", g)),
         Gravity::Varying { from_m_s2, to_m_s2, window_s, ramp_fraction, .. } => {
-            collect(errors, finite("gravity.from_m_s2", from_m_s2).map(drop));
-            collect(errors, finite("gravity.to_m_s2", to_m_s2).map(drop));
+            collect(errors, gravity_in_range("gravity.from_m_s2", from_m_s2));
+            collect(errors, gravity_in_range("gravity.to_m_s2", to_m_s2));
             collect(errors, window("gravity.window_s", window_s).map(drop));
             if !(0.0..=1.0).contains(&ramp_fraction) {
                 errors.push(SceneError::value("gravity.ramp_fraction", format!("{ramp_fraction}: must lie in [0, 1]")));
@@ -235,6 +235,30 @@ fn check_gravity_and_heating(scene: &Scene, errors: &mut Vec<SceneError>) {
     }
 }
 
+/// Area densities a `PerUnitThickness` material may have, kg/m²: ρ·(1 m) of solids from a millimetre of aerogel
+/// (1e-3) to a few metres of osmium (1e5). Outside, masses underflow to 0 (NaN at the first step) or give an automatic
+/// Δt of hours.
+const AREA_DENSITY_RANGE: [f64; 2] = [1e-3, 1e5];
+
+const AREA_DENSITY_HELP: &str = "per unit thickness, the density in kg/m² is ρ·(1 m): 1,000–22,590 for solids, 5000 \
+                                 in gc2d; the range spans a millimetre of aerogel to metres of osmium";
+
+/// Densities a `SphereEquivalent` material may have, kg/m³: the lightest aerogels (0.1) to beyond osmium (22,590).
+const DENSITY_RANGE: [f64; 2] = [0.1, 1e5];
+
+const DENSITY_HELP: &str =
+    "solids lie between the lightest aerogels (about 0.2 kg/m³) and osmium (22,590 kg/m³); steel is 7850";
+
+/// Largest magnitude of gravity, m/s²: about 10⁶ g, what an ultracentrifuge reaches (geotechnical centrifuges run
+/// granular models at a few hundred g). Far above, the first steps overflow to NaN.
+const MAX_GRAVITY_M_S2: f64 = 1e7;
+
+fn gravity_in_range(path: &str, g: f64) -> Result<(), SceneError> {
+    in_range(path, g, [-MAX_GRAVITY_M_S2, MAX_GRAVITY_M_S2], "m/s²", "gravity").map(drop).map_err(|e| {
+        e.with_help("gravity acts along −y; Earth's is 9.81 m/s², and |g| may be at most 1e7 m/s² (about 10⁶ g)")
+    })
+}
+
 /// Ranges of each material and unique names.
 fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
     if scene.materials.is_empty() && scene.mass_model == MassModel::SphereEquivalent {
@@ -252,11 +276,19 @@ fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
         } else if scene.materials[..i].iter().any(|m| m.name == material.name) {
             errors.push(SceneError::value(at("name"), format!("material `{}` is defined twice", material.name)));
         }
-        collect(errors, positive(&at("density_kg_m2"), material.density_kg_m2).map(drop));
+        collect(
+            errors,
+            in_range(&at("density_kg_m2"), material.density_kg_m2, AREA_DENSITY_RANGE, "kg/m²", "the area density")
+                .map(drop)
+                .map_err(|e| e.with_help(AREA_DENSITY_HELP)),
+        );
         match (scene.mass_model, material.density_kg_m3) {
-            (MassModel::SphereEquivalent, Some(density)) => {
-                collect(errors, positive(&at("density_kg_m3"), density).map(drop));
-            }
+            (MassModel::SphereEquivalent, Some(density)) => collect(
+                errors,
+                in_range(&at("density_kg_m3"), density, DENSITY_RANGE, "kg/m³", "the density")
+                    .map(drop)
+                    .map_err(|e| e.with_help(DENSITY_HELP)),
+            ),
             (MassModel::SphereEquivalent, None) => errors.push(
                 SceneError::value(
                     at("name"),

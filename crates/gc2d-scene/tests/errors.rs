@@ -230,3 +230,25 @@ fn sources_may_not_plan_more_insertions_than_a_scene_may_hold() {
     let error = check("sources_together", text, ErrorKind::Value, "sources", (3, 14));
     assert!(error.message().starts_with("the sources would insert 1200002 particles"), "{}", error.message());
 }
+
+#[test]
+fn densities_and_gravity_must_be_physically_sensible() {
+    // 1e-320 kg/m² made masses 0 and the first step NaN; 1e23 gave an automatic Δt of 4e4 s.
+    let text = "Scene(\n    materials: [(name: \"sand\", density_kg_m2: 1e-320)],\n)";
+    let error = check("tiny_density", text, ErrorKind::Value, "materials[0].density_kg_m2", (2, 47));
+    assert!(error.message().starts_with("1e-320 kg/m²: the area density must lie between 0.001 and 100000 kg/m²"));
+    let text = "Scene(\n    materials: [(name: \"sand\", density_kg_m2: 1e23)],\n)";
+    assert_eq!(error_of(text).path(), "materials[0].density_kg_m2");
+    let text =
+        "Scene(\n    mass_model: SphereEquivalent,\n    materials: [(name: \"steel\", density_kg_m3: 1e-320)],\n)";
+    check("tiny_sphere_density", text, ErrorKind::Value, "materials[0].density_kg_m3", (3, 48));
+    // Gravity of 1e308 m/s² overflowed to NaN at the first step.
+    let text = "Scene(\n    gravity: Constant(1e308),\n)";
+    let error = check("huge_gravity", text, ErrorKind::Value, "gravity", (2, 23));
+    assert_eq!(error.message(), "1e308 m/s²: gravity must lie between -1e7 and 1e7 m/s²");
+    let text = "Scene(\n    gravity: Varying(profile: Linear, from_m_s2: 9.81, to_m_s2: -2e7, window_s: (0, 1)),\n)";
+    assert_eq!(error_of(text).path(), "gravity.to_m_s2");
+    // The edges of the ranges are allowed.
+    let edges = "Scene(\n    gravity: Constant(-1e7),\n    materials: [(name: \"a\", density_kg_m2: 1e-3), (name: \"b\", density_kg_m2: 1e5)],\n)";
+    assert!(Scene::from_str(edges, "ok.ron").is_ok());
+}
