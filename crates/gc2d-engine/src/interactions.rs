@@ -35,6 +35,18 @@ pub enum ContactModel {
     Penetration(PenetrationLaw),
 }
 
+impl From<ContactLaw> for ContactModel {
+    fn from(law: ContactLaw) -> Self {
+        ContactModel::OverlapArea(law)
+    }
+}
+
+impl From<PenetrationLaw> for ContactModel {
+    fn from(law: PenetrationLaw) -> Self {
+        ContactModel::Penetration(law)
+    }
+}
+
 /// A contact model's parameter out of range.
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 pub enum ContactModelError {
@@ -127,9 +139,9 @@ pub struct MaterialPair {
 }
 
 impl InteractionTable {
-    /// One material whose bodies all interact by `law`: the gc2d scenes, which have one law per scene.
-    pub fn uniform(law: ContactLaw) -> Self {
-        Self { material_count: 1, models: vec![ContactModel::OverlapArea(law)], pair_model: vec![0] }
+    /// One material whose bodies all interact by `model`: the gc2d scenes, which have one law per scene.
+    pub fn uniform(model: impl Into<ContactModel>) -> Self {
+        Self { material_count: 1, models: vec![model.into()], pair_model: vec![0] }
     }
 
     /// A table over `material_count` materials from one row per unordered pair; every pair must be given once.

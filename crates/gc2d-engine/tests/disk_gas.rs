@@ -2,12 +2,10 @@
 //! 10^5 steps the total energy drifts by less than a stated bound, and the speeds, which all start equal, relax to
 //! the 2D Maxwell (Rayleigh) distribution, which a χ² test at the 1 % level does not reject.
 
+mod common;
+
 use gc2d_contact::{NormalSpring, PenetrationLaw};
-use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{
-    BodyId, BodyShape, ContactEventKind, ContactModel, Integrator, InteractionTable, MassModel, MaterialId,
-    MaterialPair, SafetyLimits, WallMotion, World, WorldConfig,
-};
+use gc2d_engine::{BodyId, BodyShape, ContactEventKind, WallMotion, World};
 use gc2d_geometry::{DVec2, Pose};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -91,22 +89,7 @@ struct Gas {
 /// Maxwell distribution, not to a Rayleigh distribution of the speeds.
 fn disk_gas() -> Gas {
     let law = PenetrationLaw::elastic(NormalSpring::Linear { stiffness_n_m: stiffness() });
-    let config = WorldConfig {
-        time_step: contact_time() / STEPS_PER_CONTACT,
-        integrator: Integrator::default(),
-        interactions: InteractionTable::new(
-            1,
-            &[MaterialPair { a: MaterialId(0), b: MaterialId(0), model: ContactModel::Penetration(law) }],
-        )
-        .unwrap(),
-        mass_model: MassModel::SphereEquivalent,
-        gravity: GravitySchedule::constant(0.0),
-        heating: None,
-        safety: SafetyLimits::default(),
-        domain: None,
-        seed: 1,
-    };
-    let mut world = World::new(config).expect("valid configuration");
+    let mut world = common::sphere_world(law, contact_time() / STEPS_PER_CONTACT, 0.0);
     let chamber = chamber_radius();
     let wall = world.add_wall(
         BodyShape::InnerCircle { radius: chamber },

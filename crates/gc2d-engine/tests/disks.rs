@@ -4,15 +4,11 @@
 
 mod common;
 
-use common::{G, step};
+use common::{G, sphere_world, step};
 use gc2d_contact::{
     CundallStrack, ImpactLaw, NormalSpring, PenetrationDamping, PenetrationLaw, TangentialSpring, TangentialStiffness,
 };
-use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{
-    BodyShape, ContactModel, Integrator, InteractionTable, MassModel, MaterialId, MaterialPair, SafetyLimits,
-    WallMotion, World, WorldConfig,
-};
+use gc2d_engine::{BodyShape, MassModel, WallMotion, World, WorldConfig};
 use gc2d_geometry::{DVec2, Pose, rectangle};
 use std::f64::consts::PI;
 
@@ -26,29 +22,9 @@ fn steel_effective_modulus() -> f64 {
     1.0 / (2.0 * (1.0 - STEEL_NU * STEEL_NU) / STEEL_E)
 }
 
-/// A World with one material whose bodies interact by `law`, sphere-equivalent masses, gravity `g`.
-fn world_with(law: PenetrationLaw, dt: f64, g: f64) -> World {
-    world_of(law, dt, g, MassModel::SphereEquivalent)
-}
-
 /// A World with one material whose bodies interact by `law`, masses by `mass_model`, gravity `g`.
 fn world_of(law: PenetrationLaw, dt: f64, g: f64, mass_model: MassModel) -> World {
-    let config = WorldConfig {
-        time_step: dt,
-        integrator: Integrator::default(),
-        interactions: InteractionTable::new(
-            1,
-            &[MaterialPair { a: MaterialId(0), b: MaterialId(0), model: ContactModel::Penetration(law) }],
-        )
-        .unwrap(),
-        mass_model,
-        gravity: GravitySchedule::constant(g),
-        heating: None,
-        safety: SafetyLimits::default(),
-        domain: None,
-        seed: 1,
-    };
-    World::new(config).expect("valid configuration")
+    common::world(WorldConfig { mass_model, ..common::config(dt, law, g) })
 }
 
 /// A steel disk of radius `radius` at `position` moving with `velocity`; its slot.
@@ -103,7 +79,7 @@ fn hertz_head_on_of_steel_spheres_takes_the_analytic_contact_time_and_is_elastic
     let mass = STEEL_DENSITY * 4.0 / 3.0 * PI * radius.powi(3);
     let expected = hertz_contact_time(0.5 * mass, 0.5 * radius, e_star, speed);
     let law = PenetrationLaw::elastic(NormalSpring::Hertz { effective_modulus_pa: e_star });
-    let mut world = world_with(law, expected / 4000.0, 0.0);
+    let mut world = sphere_world(law, expected / 4000.0, 0.0);
     let gap = 1e-8;
     let a = add_disk(&mut world, radius, DVec2::new(-radius - gap, 0.0), DVec2::new(0.5 * speed, 0.0));
     let b = add_disk(&mut world, radius, DVec2::new(radius + gap, 0.0), DVec2::new(-0.5 * speed, 0.0));
@@ -131,7 +107,7 @@ fn linear_spring_realises_its_target_restitution_at_every_speed() {
                 damping: Some(PenetrationDamping::Restitution(target)),
                 ..PenetrationLaw::elastic(NormalSpring::Linear { stiffness_n_m: stiffness })
             };
-            let mut world = world_with(law, period / 1000.0, 0.0);
+            let mut world = sphere_world(law, period / 1000.0, 0.0);
             let gap = 1e-9;
             let a = add_disk(&mut world, radius, DVec2::new(-radius - gap, 0.0), DVec2::new(0.5 * speed, 0.0));
             let b = add_disk(&mut world, radius, DVec2::new(radius + gap, 0.0), DVec2::new(-0.5 * speed, 0.0));
@@ -154,7 +130,7 @@ fn steel_impact_law_is_realised_on_a_steel_wall_from_slow_to_fast() {
     for speed in [0.1, 0.5, 1.0, 3.0, 10.0, 30.0, 50.0] {
         let mass = STEEL_DENSITY * 4.0 / 3.0 * PI * radius.powi(3);
         let contact_time = hertz_contact_time(mass, radius, e_star, speed);
-        let mut world = world_with(law, contact_time / 400.0, 0.0);
+        let mut world = sphere_world(law, contact_time / 400.0, 0.0);
         let wall = rectangle(0.02, 0.01).unwrap();
         world.add_wall(&wall, Pose::new(DVec2::new(0.0, -0.005), 0.0), DVec2::ZERO, WallMotion::Static);
         let ball = add_disk(&mut world, radius, DVec2::new(0.0, radius + 1e-9), DVec2::new(0.0, -speed));

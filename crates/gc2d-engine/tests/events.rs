@@ -143,19 +143,7 @@ fn an_impact_reports_its_speed_and_an_impulse_equal_to_the_momentum_change() {
         damping: Some(PenetrationDamping::Restitution(0.5)),
         ..PenetrationLaw::elastic(NormalSpring::Linear { stiffness_n_m: 1e5 })
     });
-    let config = WorldConfig {
-        time_step: 1e-6,
-        integrator: Integrator::default(),
-        interactions: InteractionTable::new(1, &[MaterialPair { a: MaterialId(0), b: MaterialId(0), model: law }])
-            .unwrap(),
-        mass_model: MassModel::SphereEquivalent,
-        gravity: GravitySchedule::constant(0.0),
-        heating: None,
-        safety: SafetyLimits::default(),
-        domain: None,
-        seed: 1,
-    };
-    let mut world = World::new(config).unwrap();
+    let mut world = common::sphere_world(law, 1e-6, 0.0);
     let wall = rectangle(0.02, 0.01).unwrap();
     world.add_wall(&wall, Pose::new(DVec2::new(0.0, -0.005), 0.0), DVec2::ZERO, WallMotion::Static);
     let velocity = DVec2::new(0.3, -1.0);

@@ -2,13 +2,11 @@
 //! the ball's angular momentum change about the axis, and the rotor's power from its torque, ω·τ, equals the power
 //! its blade delivers through the contact, Σ F·v, at every step.
 
+mod common;
+
 use gc2d_contact::{ImpactLaw, NormalSpring, PenetrationDamping, PenetrationLaw};
 use gc2d_engine::motion::Rotation;
-use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{
-    BodyShape, ContactEventKind, ContactModel, Integrator, InteractionTable, MassModel, MaterialId, MaterialPair,
-    SafetyLimits, TimeWindow, WallMotion, World, WorldConfig,
-};
+use gc2d_engine::{BodyShape, ContactEventKind, TimeWindow, WallMotion, World};
 use gc2d_geometry::{DVec2, Pose, cross};
 
 /// E* of two steel bodies (E = 196.2 GPa, ν = 0.3), Pa.
@@ -29,22 +27,7 @@ fn a_blade_striking_a_resting_ball_throws_it_at_one_plus_e_times_its_speed() {
         damping: Some(PenetrationDamping::VelocityDependent(ImpactLaw::SteelReichardt)),
         ..PenetrationLaw::elastic(NormalSpring::Hertz { effective_modulus_pa: STEEL_E_STAR })
     };
-    let config = WorldConfig {
-        time_step: 2e-8,
-        integrator: Integrator::default(),
-        interactions: InteractionTable::new(
-            1,
-            &[MaterialPair { a: MaterialId(0), b: MaterialId(0), model: ContactModel::Penetration(law) }],
-        )
-        .unwrap(),
-        mass_model: MassModel::SphereEquivalent,
-        gravity: GravitySchedule::constant(0.0),
-        heating: None,
-        safety: SafetyLimits::default(),
-        domain: None,
-        seed: 1,
-    };
-    let mut world = World::new(config).unwrap();
+    let mut world = common::sphere_world(law, 2e-8, 0.0);
     let pivot = DVec2::ZERO;
     let rotation =
         Rotation { pivot, angular_velocity: OMEGA, window: TimeWindow::new(0.0, f64::INFINITY), spin_up: 0.0 };

@@ -5,7 +5,9 @@
 
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{BodyId, Integrator, InteractionTable, MassModel, SafetyLimits, World, WorldConfig, WorldError};
+use gc2d_engine::{
+    BodyId, ContactModel, Integrator, InteractionTable, MassModel, SafetyLimits, World, WorldConfig, WorldError,
+};
 use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose, contact_geometry, rectangle};
 
 /// Young's modulus of almost all of the thesis's production runs, N/m (reference §2.14).
@@ -27,12 +29,13 @@ pub fn law(e: f64, gamma: f64, mu: f64) -> ContactLaw {
     }
 }
 
-/// A World configuration with the engine's defaults for everything not named.
-pub fn config(dt: f64, contact_law: ContactLaw, g: f64) -> WorldConfig {
+/// A World configuration with one material whose bodies interact by `model` (an overlap-area or a penetration law),
+/// masses per unit thickness, and the engine's defaults for everything not named.
+pub fn config(dt: f64, model: impl Into<ContactModel>, g: f64) -> WorldConfig {
     WorldConfig {
         time_step: dt,
         integrator: Integrator::default(),
-        interactions: InteractionTable::uniform(contact_law),
+        interactions: InteractionTable::uniform(model),
         mass_model: MassModel::PerUnitThickness,
         gravity: GravitySchedule::constant(g),
         heating: None,
@@ -40,6 +43,11 @@ pub fn config(dt: f64, contact_law: ContactLaw, g: f64) -> WorldConfig {
         domain: None,
         seed: 1,
     }
+}
+
+/// An empty World of spheres moving in the plane (sphere-equivalent masses) whose bodies interact by `model`.
+pub fn sphere_world(model: impl Into<ContactModel>, dt: f64, g: f64) -> World {
+    world(WorldConfig { mass_model: MassModel::SphereEquivalent, ..config(dt, model, g) })
 }
 
 /// An empty World built from `config`, which the tests expect to be valid.
