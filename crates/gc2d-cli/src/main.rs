@@ -13,7 +13,7 @@ use gc2d_cli::segments::SegmentLog;
 use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording};
 use gc2d_engine::World;
 use gc2d_record::{ColourBy, PngOptions, RecordOptions, Recorder, RunInfo, SceneFile, render_png};
-use gc2d_scene::Scene;
+use gc2d_scene::{ErrorKind, Scene, SceneError};
 use gc2d_validation::{ConvergenceOptions, run_convergence};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -227,6 +227,7 @@ fn load(path: &Path) -> Result<Scene, Failure> {
 fn check(path: &Path) -> Result<u8, Failure> {
     let scene = load(path)?;
     let summary = scene.summary().map_err(|e| Failure::input(render(e)))?;
+    refuse_a_run_shorter_than_its_step(&scene, summary.time_step_s, None, || summary.limiting_entry.clone())?;
     console::out(&summary.to_string()).map_err(|e| Failure::stdout(&e))?;
     Ok(0)
 }
@@ -268,7 +269,13 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
             ));
             (world, Some(path))
         }
-        None => (scene.build().map_err(|e| Failure::input(render(e)))?, None),
+        None => {
+            let world = scene.build().map_err(|e| Failure::input(render(e)))?;
+            refuse_a_run_shorter_than_its_step(&scene, world.time_step(), args.until, || {
+                scene.summary().ok().and_then(|summary| summary.limiting_entry)
+            })?;
+            (world, None)
+        }
     };
     let out = match (&args.out, &args.resume) {
         (Some(out), _) => out.clone(),
@@ -380,6 +387,43 @@ fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) ->
     let recorder = Recorder::create(path, options, &info)
         .map_err(|e| Failure::input(format!("cannot record to {}: {e}", path.display())))?;
     Ok(Recording { recorder: Some(recorder), interval })
+}
+
+/// Refuses an automatic time step longer than the run (the scene's end time, or `--until`), which would end the run
+/// before its first step: usually a density, a modulus or the end time in the wrong unit. An end time of 0 (build
+/// and write the start) and a time step the scene gives (its author's choice) are not refused. `limiting` names the
+/// scene entry whose particle sets the bound; it is asked for only when the step is refused.
+fn refuse_a_run_shorter_than_its_step(
+    scene: &Scene,
+    time_step: f64,
+    until: Option<f64>,
+    limiting: impl FnOnce() -> Option<String>,
+) -> Result<(), Failure> {
+    let end_time = until.unwrap_or(scene.run.end_time_s);
+    if scene.run.time_step_s.is_some() || end_time <= 0.0 || time_step <= end_time {
+        return Ok(());
+    }
+    let run = match until {
+        Some(until) => format!("--until {until:.3e} s"),
+        None => format!("end time {end_time:.3e} s"),
+    };
+    let mut error = SceneError::new(
+        ErrorKind::TimeStep,
+        if until.is_some() { "" } else { "run.end_time_s" },
+        format!("the automatic time step {time_step:.3e} s is longer than the run ({run}): it would end before its first step"),
+    )
+    .with_label("shorter than one step")
+    .with_help(
+        "check the units of the end time and of the materials' densities and Young's moduli (the particles are far \
+         heavier or softer than the run expects), or give `run.time_step_s`",
+    );
+    if let Some(path) = limiting() {
+        error = error.with_related(
+            SceneError::new(ErrorKind::TimeStep, path, "the particle that sets the time-step bound comes from here")
+                .with_label("sets the bound"),
+        );
+    }
+    Err(Failure::input(render(error.located(scene.source.as_ref()))))
 }
 
 /// `snapshot`: draws a checkpoint (a run directory's final.ckpt, or the given file).

@@ -84,3 +84,40 @@ fn thousands_of_errors_are_cut_to_a_readable_report() {
     assert_eq!(stderr.matches(".mu`: -1: the friction").count(), 20, "{stderr}");
     assert!(stderr.len() < 20_000, "{} bytes", stderr.len());
 }
+
+#[test]
+fn an_automatic_time_step_longer_than_the_run_is_refused() {
+    // A 1 m square of sand has an automatic Δt of 9.3e-4 s; an end time of 1e-4 s "completed" in 0 steps.
+    let dir = tempfile::tempdir().unwrap();
+    let text = "Scene(\n    run: (end_time_s: 1e-4),\n    particles: [(shape: Square(side_m: 1.0))],\n)\n";
+    std::fs::write(dir.path().join("short.ron"), text).unwrap();
+    let gc2d = |args: &[&str]| {
+        let output =
+            Command::cargo_bin("gc2d-rs").unwrap().current_dir(dir.path()).env("NO_COLOR", "1").args(args).output();
+        output.unwrap()
+    };
+    for args in [&["check", "short.ron"][..], &["run", "short.ron", "--quiet", "--out", "out"]] {
+        let output = gc2d(args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        // (miette wraps the message at 80 columns)
+        let message: String = stderr.split_whitespace().filter(|w| *w != "│").collect::<Vec<_>>().join(" ");
+        assert!(
+            message.contains(
+                "short.ron:2:23: `run.end_time_s`: the automatic time step 9.300e-4 s is longer than the run (end time \
+                 1.000e-4 s)"
+            ),
+            "{args:?}: {stderr}"
+        );
+        assert!(stderr.contains("short.ron:3:17: `particles[0]`"), "{args:?}: the limiting particle: {stderr}");
+    }
+    assert!(!dir.path().join("out").exists(), "nothing written");
+    // With --until beyond one step the run is long enough; a time step given in the scene is its author's choice.
+    assert_eq!(gc2d(&["run", "short.ron", "--quiet", "--out", "out", "--until", "2e-3"]).status.code(), Some(0));
+    std::fs::write(
+        dir.path().join("given.ron"),
+        text.replace("(end_time_s: 1e-4)", "(end_time_s: 1e-4, time_step_s: 5e-4)"),
+    )
+    .unwrap();
+    assert_eq!(gc2d(&["check", "given.ron"]).status.code(), Some(0));
+}
