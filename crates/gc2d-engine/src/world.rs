@@ -267,12 +267,19 @@ impl World {
             self.integrator.time_step(),
         );
         self.insert_into_broadphase(id, broadphase::BodyKind::Dynamic);
+        let g = self.config.gravity.magnitude(self.time);
+        let translational = 0.5 * mass.mass * velocity.length_squared();
+        let rotational = 0.5 * mass.inertia * pose.scale * pose.scale * angular_velocity * angular_velocity;
+        let potential = mass.mass * g * pose.position.y;
         if self.started {
             // A particle added during the run brings its energy in from outside; before the start it is part of E_0.
-            let g = self.config.gravity.magnitude(self.time);
-            self.ledger.work_insertions += 0.5 * mass.mass * velocity.length_squared()
-                + 0.5 * mass.inertia * pose.scale * pose.scale * angular_velocity * angular_velocity
-                + mass.mass * g * pose.position.y;
+            self.ledger.work_insertions += translational + rotational + potential;
+        } else {
+            // Before the first step the ledger shows the start's energies (the first step recomputes them all), so
+            // that a time series row at t = 0 is not zero for particles that move.
+            self.ledger.kinetic_translational += translational;
+            self.ledger.kinetic_rotational += rotational;
+            self.ledger.potential += potential;
         }
         Ok(id)
     }
