@@ -4,7 +4,11 @@ use crate::error::SceneError;
 
 /// A finite number.
 pub(crate) fn finite(path: &str, value: f64) -> Result<f64, SceneError> {
-    if value.is_finite() { Ok(value) } else { Err(SceneError::value(path, format!("{value} is not a finite number"))) }
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(SceneError::value(path, format!("{} is not a finite number", number(value))))
+    }
 }
 
 /// A finite number > 0.
@@ -12,7 +16,7 @@ pub(crate) fn positive(path: &str, value: f64) -> Result<f64, SceneError> {
     if value > 0.0 && value.is_finite() {
         Ok(value)
     } else {
-        Err(SceneError::value(path, format!("{value}: must be a positive finite number")))
+        Err(SceneError::value(path, format!("{}: must be a positive finite number", number(value))))
     }
 }
 
@@ -21,7 +25,7 @@ pub(crate) fn non_negative(path: &str, value: f64) -> Result<f64, SceneError> {
     if value >= 0.0 && value.is_finite() {
         Ok(value)
     } else {
-        Err(SceneError::value(path, format!("{value}: must be a finite number ≥ 0")))
+        Err(SceneError::value(path, format!("{}: must be a finite number ≥ 0", number(value))))
     }
 }
 
@@ -30,7 +34,10 @@ pub(crate) fn finite_pair(path: &str, pair: [f64; 2]) -> Result<[f64; 2], SceneE
     if pair.iter().all(|v| v.is_finite()) {
         Ok(pair)
     } else {
-        Err(SceneError::value(path, format!("({}, {}) has a component that is not a finite number", pair[0], pair[1])))
+        Err(SceneError::value(
+            path,
+            format!("({}, {}) has a component that is not a finite number", number(pair[0]), number(pair[1])),
+        ))
     }
 }
 
@@ -44,7 +51,7 @@ pub(crate) fn ordered_range(path: &str, range: [f64; 2], strict: bool) -> Result
         let relation = if strict { "less than" } else { "at most" };
         Err(SceneError::value(
             path,
-            format!("({}, {}): the first value must be {relation} the second", range[0], range[1]),
+            format!("({}, {}): the first value must be {relation} the second", number(range[0]), number(range[1])),
         ))
     }
 }
@@ -54,7 +61,11 @@ pub(crate) fn window(path: &str, window: [f64; 2]) -> Result<[f64; 2], SceneErro
     if window.iter().any(|v| v.is_nan()) || window[0] > window[1] {
         return Err(SceneError::value(
             path,
-            format!("({}, {}) is not a time window: it needs t1 ≤ t2 (inf is allowed)", window[0], window[1]),
+            format!(
+                "({}, {}) is not a time window: it needs t1 ≤ t2 (inf is allowed)",
+                number(window[0]),
+                number(window[1])
+            ),
         ));
     }
     Ok(window)

@@ -187,10 +187,27 @@ fn collect(errors: &mut Vec<SceneError>, result: Result<(), SceneError>) {
     }
 }
 
+/// Shortest time step a scene may give, s: a femtosecond, the step of molecular dynamics (the engine itself needs
+/// Δt⁵/120 to be a normal f64, about 1.5e-61 s).
+const MIN_TIME_STEP_S: f64 = 1e-15;
+
 fn check_run(scene: &Scene, errors: &mut Vec<SceneError>) {
     let run = &scene.run;
-    if let Some(dt) = run.time_step_s {
-        collect(errors, positive("run.time_step_s", dt).map(drop));
+    if let Some(dt) = run.time_step_s
+        && !(dt >= MIN_TIME_STEP_S && dt.is_finite())
+    {
+        errors.push(
+            SceneError::value(
+                "run.time_step_s",
+                format!(
+                    "{} s: the time step must be a finite time of at least {} s",
+                    number(dt),
+                    number(MIN_TIME_STEP_S)
+                ),
+            )
+            .with_label("out of range")
+            .with_help("a femtosecond is the step of molecular dynamics; no grain contact needs a finer one"),
+        );
     }
     collect(errors, non_negative("run.end_time_s", run.end_time_s).map(drop));
     collect(errors, positive("run.frames_per_second", run.frames_per_second).map(drop));
@@ -218,7 +235,10 @@ fn check_gravity_and_heating(scene: &Scene, errors: &mut Vec<SceneError>) {
             collect(errors, gravity_in_range("gravity.to_m_s2", to_m_s2));
             collect(errors, window("gravity.window_s", window_s).map(drop));
             if !(0.0..=1.0).contains(&ramp_fraction) {
-                errors.push(SceneError::value("gravity.ramp_fraction", format!("{ramp_fraction}: must lie in [0, 1]")));
+                errors.push(SceneError::value(
+                    "gravity.ramp_fraction",
+                    format!("{}: must lie in [0, 1]", number(ramp_fraction)),
+                ));
             }
         }
     }
@@ -227,7 +247,10 @@ fn check_gravity_and_heating(scene: &Scene, errors: &mut Vec<SceneError>) {
         if !(heating.amplitude > -1.0 && heating.amplitude.is_finite()) {
             errors.push(SceneError::value(
                 "heating.amplitude",
-                format!("{}: must be a finite number above −1 (particles cannot shrink to nothing)", heating.amplitude),
+                format!(
+                    "{}: must be a finite number above −1 (particles cannot shrink to nothing)",
+                    number(heating.amplitude)
+                ),
             ));
         }
         collect(errors, positive("heating.frequency_hz", heating.frequency_hz).map(drop));
@@ -312,7 +335,10 @@ fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
         if !(material.youngs_modulus_n_m > 0.0 && material.youngs_modulus_n_m.is_finite()) {
             errors.push(SceneError::value(
                 at("youngs_modulus_n_m"),
-                format!("{}: Young's modulus E must be a positive finite number (N/m)", material.youngs_modulus_n_m),
+                format!(
+                    "{}: Young's modulus E must be a positive finite number (N/m)",
+                    number(material.youngs_modulus_n_m)
+                ),
             ));
         }
         collect(errors, non_negative(&at("gamma"), material.gamma).map(drop));
@@ -320,7 +346,7 @@ fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
             errors.push(
                 SceneError::value(
                     at("mu"),
-                    format!("{}: the friction coefficient μ must be a finite number ≥ 0", material.mu),
+                    format!("{}: the friction coefficient μ must be a finite number ≥ 0", number(material.mu)),
                 )
                 .with_help("μ = 0 switches friction off"),
             );

@@ -252,3 +252,29 @@ fn densities_and_gravity_must_be_physically_sensible() {
     let edges = "Scene(\n    gravity: Constant(-1e7),\n    materials: [(name: \"a\", density_kg_m2: 1e-3), (name: \"b\", density_kg_m2: 1e5)],\n)";
     assert!(Scene::from_str(edges, "ok.ron").is_ok());
 }
+
+#[test]
+fn tiny_time_steps_are_refused_at_the_field() {
+    // The engine refused 1e-320 s, located at `Scene(` and printed with 330 digits.
+    let text = "Scene(\n    run: (time_step_s: 1e-320),\n)";
+    let error = check("tiny_time_step", text, ErrorKind::Value, "run.time_step_s", (2, 24));
+    assert!(error.message().starts_with("1e-320 s: the time step must be a finite time of at least 1e-15 s"));
+    assert!(Scene::from_str("Scene(run: (time_step_s: 1e-15))", "ok.ron").is_ok());
+}
+
+#[test]
+fn extreme_numbers_are_printed_short() {
+    let text = "Scene(\n    run: (end_time_s: -1e-300, frames_per_second: 1e300, max_overlap_fraction: -1e-320),\n    materials: [(name: \"a\", mu: -1e-310)],\n    heating: (window_s: (0, 1), amplitude: -1e30),\n)";
+    let error = error_of(text);
+    let messages: Vec<&str> =
+        std::iter::once(error.message()).chain(error.related_errors().iter().map(|e| e.message())).collect();
+    assert_eq!(
+        messages,
+        [
+            "-1e-300: must be a finite number ≥ 0",
+            "-1e-320: must be a positive finite number",
+            "-1e30: must be a finite number above −1 (particles cannot shrink to nothing)",
+            "-1e-310: the friction coefficient μ must be a finite number ≥ 0",
+        ]
+    );
+}
