@@ -14,10 +14,14 @@ impl Scene {
     /// Reads, parses and validates the scene file at `path`. The scene's name defaults to the file stem.
     pub fn from_path(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| {
+        let bytes = std::fs::read(path).map_err(|e| {
             SceneError::new(ErrorKind::Io, "", format!("cannot read scene file {}: {e}", path.display()))
         })?;
-        Scene::from_str(&text, &path.display().to_string())
+        let name = path.display().to_string();
+        match String::from_utf8(bytes) {
+            Ok(text) => Scene::from_str(&text, &name),
+            Err(error) => Err(invalid_utf8(&error, &name)),
+        }
     }
 
     /// Parses and validates scene `text`; `name` is the file name shown in errors (and, without directories and
@@ -46,6 +50,25 @@ impl Scene {
         let config = ron::ser::PrettyConfig::new().struct_names(true).extensions(Extensions::IMPLICIT_SOME);
         ron::ser::to_string_pretty(self, config)
     }
+}
+
+/// A file that is not UTF-8, located at its first invalid byte: in the text read with invalid bytes replaced by U+FFFD
+/// (identical up to that byte), so that the error names line, column and field like any other.
+fn invalid_utf8(error: &std::string::FromUtf8Error, name: &str) -> SceneError {
+    let bytes = error.as_bytes();
+    let at = error.utf8_error().valid_up_to();
+    let text = String::from_utf8_lossy(bytes);
+    let source = Arc::new(SourceText::new(name, &text));
+    let path = source.path_at(at).unwrap_or("").to_owned();
+    let byte = bytes.get(at).copied().unwrap_or(0);
+    SceneError::new(
+        ErrorKind::Syntax,
+        path,
+        format!("invalid UTF-8 at byte {at} (0x{byte:02x}): scene files are UTF-8 text"),
+    )
+    .with_label("not UTF-8")
+    .with_help("save the file as UTF-8 (Latin-1 letters such as ä or µ are single bytes that UTF-8 writes as two)")
+    .at_span(&source, Some(at..at + char::REPLACEMENT_CHARACTER.len_utf8()))
 }
 
 /// The file name without directories and a `.ron` ending.

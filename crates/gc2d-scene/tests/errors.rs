@@ -278,3 +278,19 @@ fn extreme_numbers_are_printed_short() {
         ]
     );
 }
+
+#[test]
+fn invalid_utf8_is_located_at_its_first_byte() {
+    let dir = std::env::temp_dir().join(format!("gc2d-scene-utf8-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad.ron");
+    std::fs::write(&path, b"Scene(\n    name: \"ab\xff\xfe\",\n)").unwrap();
+    let error = Scene::from_path(&path).err().unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(error.kind(), ErrorKind::Syntax, "{}", error.render_plain());
+    assert_eq!(error.path(), "name");
+    let location = error.location().cloned().expect("located");
+    assert_eq!((location.line, location.column), (2, 14));
+    assert_eq!(error.message(), "invalid UTF-8 at byte 20 (0xff): scene files are UTF-8 text");
+    insta::assert_snapshot!("invalid_utf8", error.render_plain().replace(&path.display().to_string(), "bad.ron"));
+}
