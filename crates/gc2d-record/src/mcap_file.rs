@@ -22,8 +22,13 @@ pub(crate) struct Channel {
 }
 
 /// An MCAP file being written.
+///
+/// mcap's `Writer` finishes the file when it is dropped and panics if its output failed before (the first write to a
+/// full disk, say): a writer that returned an error is therefore forgotten rather than dropped ([`Self::with`]), and
+/// every later call reports that the recording failed earlier.
 pub(crate) struct McapFile {
-    writer: Writer<BufWriter<File>>,
+    /// The writer; `None` after an error.
+    writer: Option<Writer<BufWriter<File>>>,
     path: PathBuf,
     sequence: u32,
     buffer: Vec<u8>,
@@ -38,8 +43,31 @@ impl McapFile {
             .chunk_size(None)
             .compression_threads(0)
             .library(library);
-        let writer = options.create(BufWriter::new(file))?;
-        Ok(Self { writer, path: path.to_path_buf(), sequence: 0, buffer: Vec::new() })
+        match options.create(BufWriter::new(file)) {
+            Ok(writer) => Ok(Self { writer: Some(writer), path: path.to_path_buf(), sequence: 0, buffer: Vec::new() }),
+            Err(error) => Err(error.into()),
+        }
+    }
+
+    /// Runs `operation` on the writer. After an error the writer is forgotten, not dropped (see the type's docs):
+    /// its buffers leak, once, on a path that ends the recording anyway.
+    fn with<T>(
+        &mut self,
+        operation: impl FnOnce(&mut Writer<BufWriter<File>>) -> Result<T, mcap::McapError>,
+    ) -> Result<T, RecordError> {
+        let Some(writer) = self.writer.as_mut() else { return Err(self.failed_earlier()) };
+        operation(writer).map_err(|error| {
+            std::mem::forget(self.writer.take());
+            error.into()
+        })
+    }
+
+    /// The error of a call after an earlier write failed.
+    fn failed_earlier(&self) -> RecordError {
+        RecordError::Io {
+            path: self.path.display().to_string(),
+            source: std::io::Error::other("an earlier write to the recording failed"),
+        }
     }
 
     /// The file's path.
@@ -51,8 +79,8 @@ impl McapFile {
     pub fn add_protobuf_channel<M: Encode>(&mut self, topic: &'static str) -> Result<Channel, RecordError> {
         let schema =
             M::get_schema().ok_or_else(|| RecordError::Encode { topic, reason: "type has no schema".into() })?;
-        let schema_id = self.writer.add_schema(&schema.name, &schema.encoding, &schema.data)?;
-        let id = self.writer.add_channel(schema_id, topic, &M::get_message_encoding(), &BTreeMap::new())?;
+        let schema_id = self.with(|w| w.add_schema(&schema.name, &schema.encoding, &schema.data))?;
+        let id = self.with(|w| w.add_channel(schema_id, topic, &M::get_message_encoding(), &BTreeMap::new()))?;
         Ok(Channel { id, topic })
     }
 
@@ -63,8 +91,8 @@ impl McapFile {
         schema_name: &str,
         schema: &str,
     ) -> Result<Channel, RecordError> {
-        let schema_id = self.writer.add_schema(schema_name, "jsonschema", schema.as_bytes())?;
-        let id = self.writer.add_channel(schema_id, topic, "json", &BTreeMap::new())?;
+        let schema_id = self.with(|w| w.add_schema(schema_name, "jsonschema", schema.as_bytes()))?;
+        let id = self.with(|w| w.add_channel(schema_id, topic, "json", &BTreeMap::new()))?;
         Ok(Channel { id, topic })
     }
 
@@ -108,38 +136,37 @@ impl McapFile {
         let header =
             MessageHeader { channel_id: channel.id, sequence: self.sequence, log_time, publish_time: log_time };
         self.sequence = self.sequence.wrapping_add(1);
-        self.writer.write_to_known_channel(&header, data)?;
-        Ok(())
+        self.with(|w| w.write_to_known_channel(&header, data))
     }
 
     /// Closes the current chunk and hands everything written so far to the operating system.
     pub fn end_frame(&mut self) -> Result<(), RecordError> {
-        self.writer.flush()?;
-        Ok(())
+        self.with(|w| w.flush())
     }
 
     /// Stores a file (the scene description) as an MCAP attachment.
     pub fn attach(&mut self, name: &str, media_type: &str, data: &[u8], log_time: u64) -> Result<(), RecordError> {
-        self.writer.attach(&Attachment {
-            log_time,
-            create_time: log_time,
-            name: name.to_string(),
-            media_type: media_type.to_string(),
-            data: Cow::Borrowed(data),
-        })?;
-        Ok(())
+        self.with(|w| {
+            w.attach(&Attachment {
+                log_time,
+                create_time: log_time,
+                name: name.to_string(),
+                media_type: media_type.to_string(),
+                data: Cow::Borrowed(data),
+            })
+        })
     }
 
     /// Writes a Metadata record `name` with the key–value pairs `entries`.
     pub fn metadata(&mut self, name: &str, entries: BTreeMap<String, String>) -> Result<(), RecordError> {
-        self.writer.write_metadata(&Metadata { name: name.to_string(), metadata: entries })?;
-        Ok(())
+        self.with(|w| w.write_metadata(&Metadata { name: name.to_string(), metadata: entries }))
     }
 
     /// Writes the summary section and footer, and flushes the file.
     pub fn finish(mut self) -> Result<(), RecordError> {
-        self.writer.finish()?;
-        let mut inner = self.writer.into_inner();
+        self.with(|w| w.finish())?;
+        let writer = self.writer.take().ok_or_else(|| self.failed_earlier())?;
+        let mut inner = writer.into_inner();
         std::io::Write::flush(&mut inner)
             .map_err(|source| RecordError::Io { path: self.path.display().to_string(), source })?;
         Ok(())
