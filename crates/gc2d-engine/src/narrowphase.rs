@@ -71,7 +71,8 @@ pub struct PairContact {
     pub torque_on_a: f64,
     /// Torque on body `b`, N·m.
     pub torque_on_b: f64,
-    /// Force application point (midpoint of the contact chord), m.
+    /// Force application point, m: the midpoint of the contact chord (overlap-area law) or the contact point midway
+    /// between the two surfaces (penetration laws).
     pub point: DVec2,
     /// How deep the bodies overlap: for the overlap-area law the overlap area as a fraction of the smaller
     /// particle's area, for penetration laws the depth as a fraction of the smaller particle's diameter.
