@@ -3,6 +3,7 @@
 
 pub mod chatter;
 pub mod console;
+pub mod events;
 pub mod import;
 pub mod outputs;
 pub mod resume;

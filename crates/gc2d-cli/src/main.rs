@@ -6,6 +6,7 @@
 use clap::{Parser, Subcommand};
 use gc2d_analysis::{AnalyzeOptions, SceneKind, analyze_run};
 use gc2d_cli::console;
+use gc2d_cli::events::EventsWriter;
 use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_scene_copy};
 use gc2d_cli::resume::{ResumePoint, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
@@ -155,6 +156,10 @@ struct RunArgs {
     /// Record the run for Foxglove into this MCAP file (frames at the scene's frames_per_second).
     #[arg(long)]
     record: Option<PathBuf>,
+    /// Write every finished contact episode to <out>/events.csv (impact speeds, largest overlap, dissipated energy,
+    /// impulses; docs/model.md, "Contact events").
+    #[arg(long)]
+    events: bool,
     /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/).
     #[arg(long)]
     png_every: Option<f64>,
@@ -326,7 +331,15 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         options: PngOptions { colour_by: args.colour_by.into(), ..PngOptions::default() },
         written: 0,
     });
+    let mut events = if args.events {
+        Some(start_events(&out, &scene, &mut world, args.resume.is_some(), frame_interval)?)
+    } else {
+        None
+    };
     let mut sinks: Vec<&mut dyn FrameSink> = vec![&mut segments];
+    if let Some(e) = events.as_mut() {
+        sinks.push(e);
+    }
     if let Some(c) = checkpoints.as_mut() {
         sinks.push(c);
     }
@@ -365,6 +378,25 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         .write(&out.join("summary.json"))
         .map_err(|e| Failure { code: 1, report: format!("could not write the summary: {e}") })?;
     report_outcome(&status, &world, &out, wall_time)
+}
+
+/// Opens `events.csv` (continued on a resumed run that has one) and has the World record contact events.
+fn start_events(
+    out: &Path,
+    scene: &Scene,
+    world: &mut World,
+    resumed: bool,
+    flush_interval: f64,
+) -> Result<EventsWriter, Failure> {
+    world.record_contact_events();
+    let path = out.join("events.csv");
+    let names = scene.material_names();
+    let writer = if resumed && path.exists() {
+        EventsWriter::continue_at(&path, names, flush_interval, world.time(), 0.5 * world.time_step())
+    } else {
+        EventsWriter::create(&path, names, flush_interval)
+    };
+    writer.map_err(|e| Failure::input(format!("cannot write {}: {e}", path.display())))
 }
 
 /// Opens the MCAP recording with the scene file attached and the run's metadata.

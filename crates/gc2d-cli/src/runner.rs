@@ -15,6 +15,10 @@ pub trait FrameSink: Send {
     fn interval(&self) -> f64;
     /// Takes the World as it is now; an error stops the run with that message.
     fn take(&mut self, world: &World) -> Result<(), String>;
+    /// Sees the World after every step (what happened on that step only: contact events); nothing by default.
+    fn after_step(&mut self, _world: &World) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// Ticks at whole multiples of an interval of simulated time (not counted from the start), so that a resumed run
@@ -111,6 +115,9 @@ pub fn run_to(
         }
         if let Err(e) = world.step() {
             break RunStatus::Failed(e.to_string());
+        }
+        if let Some(message) = cadences.iter_mut().find_map(|c| c.sink.after_step(world).err()) {
+            break RunStatus::Failed(message);
         }
         if let Some(warning) = chatter.observe(world) {
             progress.warn(&warning);

@@ -84,6 +84,12 @@ pub(crate) fn overlap_area_law(youngs_modulus_n_m: f64, gamma: f64, mu: f64, coh
 }
 
 impl Scene {
+    /// The names of the scene's materials in the order of their ids in the built World (the single `default` material
+    /// when the scene declares none).
+    pub fn material_names(&self) -> Vec<String> {
+        Materials::of(self).names()
+    }
+
     /// Checks every value that can be checked without building: ranges, names, shapes, wall macros. Returns all
     /// problems found, the first as the error and the others as its related errors, located in the source text
     /// when the scene was loaded from one.

@@ -1,0 +1,141 @@
+//! `events.csv`: one row per finished contact episode, written while the run goes (`gc2d-rs run --events`).
+//!
+//! Each row is an episode from its first touching step to its first step apart (docs/model.md, "Contact events"):
+//! the two bodies and their kinds and materials, the impact speeds at first touch, the largest overlap, the energy
+//! dissipated, the impulse on body a and, against a wall turning about a pivot, the angular impulse it took. Episodes
+//! still open when the run stops are in the final checkpoint, not in the file; a resumed run writes them when they end.
+
+use crate::runner::FrameSink;
+use gc2d_engine::{BodyKind, ContactEvent, ContactEventKind, World};
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
+
+/// Column names of `events.csv`, in order.
+pub const EVENT_COLUMNS: [&str; 16] = [
+    "begin_time_s",
+    "end_time_s",
+    "a",
+    "b",
+    "kind_a",
+    "kind_b",
+    "material_a",
+    "material_b",
+    "impact_normal_speed_m_s",
+    "impact_tangential_speed_m_s",
+    "max_overlap_fraction",
+    "dissipated_j",
+    "impulse_on_a_x_n_s",
+    "impulse_on_a_y_n_s",
+    "wall_angular_impulse_n_m_s",
+    "duration_s",
+];
+
+/// Appends the finished episodes of every step to `events.csv`; as a frame sink it flushes on the frame cadence.
+pub struct EventsWriter {
+    file: BufWriter<File>,
+    /// The scene's material names, by material id.
+    materials: Vec<String>,
+    /// Simulated time between flushes, s.
+    flush_interval: f64,
+}
+
+impl EventsWriter {
+    /// Creates `path` (truncating it) with the header line; `materials` names the material ids.
+    pub fn create(path: &Path, materials: Vec<String>, flush_interval: f64) -> io::Result<Self> {
+        let mut file = BufWriter::new(File::create(path)?);
+        writeln!(file, "{}", EVENT_COLUMNS.join(","))?;
+        file.flush()?;
+        Ok(Self { file, materials, flush_interval })
+    }
+
+    /// Continues `path` for a run resumed at `resumed_at`: episodes that ended after it (written by the earlier run
+    /// after its checkpoint) and a half-written last line are dropped; the resumed run writes them again.
+    pub fn continue_at(
+        path: &Path,
+        materials: Vec<String>,
+        flush_interval: f64,
+        resumed_at: f64,
+        slack: f64,
+    ) -> io::Result<Self> {
+        let text = std::fs::read_to_string(path)?;
+        let mut lines = text.lines();
+        let header = lines.next().unwrap_or_default();
+        if header != EVENT_COLUMNS.join(",") {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                "its first line is not this version's events header; resume into a new --out directory",
+            ));
+        }
+        let end_time = |line: &str| {
+            let fields: Vec<&str> = line.split(',').collect();
+            (fields.len() == EVENT_COLUMNS.len()).then(|| fields[1].parse::<f64>().ok()).flatten()
+        };
+        let mut kept = format!("{header}\n");
+        for line in lines.filter(|line| end_time(line).is_some_and(|t| t < resumed_at + slack)) {
+            kept.push_str(line);
+            kept.push('\n');
+        }
+        std::fs::write(path, kept)?;
+        let file = std::fs::OpenOptions::new().append(true).open(path)?;
+        Ok(Self { file: BufWriter::new(file), materials, flush_interval })
+    }
+
+    fn write_row(&mut self, world: &World, event: &ContactEvent) -> io::Result<()> {
+        let kind = |id: gc2d_engine::BodyId| match world.bodies().kind[id.index()] {
+            BodyKind::Particle => "particle",
+            BodyKind::Wall => "wall",
+        };
+        let name = |m: gc2d_engine::MaterialId| csv_field(self.materials.get(m.index()).map_or("?", String::as_str));
+        let e = &event.episode;
+        let angular = event.wall_angular_impulse.map_or(String::new(), |l| format!("{l:e}"));
+        writeln!(
+            self.file,
+            "{},{},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e}",
+            e.begin_time,
+            event.time,
+            event.a.0,
+            event.b.0,
+            kind(event.a),
+            kind(event.b),
+            name(event.materials[0]),
+            name(event.materials[1]),
+            e.impact_normal_speed,
+            e.impact_tangential_speed,
+            e.max_overlap,
+            e.dissipated,
+            e.impulse_on_a.x,
+            e.impulse_on_a.y,
+            angular,
+            event.time - e.begin_time,
+        )
+    }
+}
+
+impl FrameSink for EventsWriter {
+    fn interval(&self) -> f64 {
+        self.flush_interval
+    }
+
+    /// Hands the rows written so far to the operating system.
+    fn take(&mut self, _world: &World) -> Result<(), String> {
+        self.file.flush().map_err(|e| format!("events.csv: {e}"))
+    }
+
+    /// Writes the episodes that ended on the World's last step.
+    fn after_step(&mut self, world: &World) -> Result<(), String> {
+        for event in world.contact_events().iter().filter(|e| e.kind == ContactEventKind::End) {
+            self.write_row(world, event).map_err(|e| format!("events.csv: {e}"))?;
+        }
+        Ok(())
+    }
+}
+
+/// A CSV field: as it is, or quoted (with quotes doubled) when it holds a comma, a quote or a line break.
+fn csv_field(text: &str) -> std::borrow::Cow<'_, str> {
+    if text.contains([',', '"', '\n', '\r']) {
+        std::borrow::Cow::Owned(format!("\"{}\"", text.replace('"', "\"\"")))
+    } else {
+        std::borrow::Cow::Borrowed(text)
+    }
+}
