@@ -28,8 +28,9 @@ pub fn write_scene_copy(path: &Path, scene: &Scene) -> io::Result<()> {
 /// Column names of `timeseries.csv`, in order. Energies in J per unit thickness (per metre of depth), or in J with
 /// sphere-equivalent masses; `force_alternation` is the engine's chatter diagnostic on the row's step
 /// (`World::force_alternation`); the `rotor_` columns are the drive of the walls turning about pivots on the row's
-/// step (`World::rotor_power`: torque, and power from torque and from the work on the particles), zero without.
-pub const TIME_SERIES_COLUMNS: [&str; 19] = [
+/// step (`World::rotor_power`: torque, and power from torque and from the work on the particles), zero without;
+/// `median_speed_m_s` is the median |v| of the particles (the mill thesis's stationarity measure).
+pub const TIME_SERIES_COLUMNS: [&str; 20] = [
     "time_s",
     "particles",
     "contacts",
@@ -49,6 +50,7 @@ pub const TIME_SERIES_COLUMNS: [&str; 19] = [
     "rotor_torque_n_m",
     "rotor_power_torque_w",
     "rotor_power_work_w",
+    "median_speed_m_s",
 ];
 
 /// Appends one row per call to `timeseries.csv`.
@@ -116,7 +118,7 @@ impl TimeSeriesWriter {
         let rotor = world.rotor_power();
         writeln!(
             self.file,
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             world.time(),
             particles,
             s.contacts,
@@ -136,6 +138,7 @@ impl TimeSeriesWriter {
             rotor.torque,
             rotor.power_from_torque,
             rotor.power_from_work,
+            gc2d_record::stats::median_speed(world),
         )?;
         self.file.flush()
     }
