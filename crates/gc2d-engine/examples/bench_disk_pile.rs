@@ -23,6 +23,9 @@
 //! `PARTICLE_STEPS_PER_RUN` particle-steps are measured on a rayon pool of 1 and of 2 threads. Printed per run:
 //! particle-steps per wall-clock second, wall and CPU ns per particle-step, box pairs and contacts per disk.
 
+#[path = "support/timing.rs"]
+mod timing;
+
 use gc2d_contact::{
     CundallStrack, NormalSpring, PenetrationDamping, PenetrationLaw, TangentialSpring, TangentialStiffness,
 };
@@ -37,6 +40,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
 use std::time::Instant;
+use timing::{load_average, measure, pool, print_header};
 
 /// Disks in the pile unless the command line names another count.
 const DEFAULT_DISKS: usize = 10_000;
@@ -62,66 +66,12 @@ const ASSUMED_PACKING: f64 = 0.82;
 const SETTLE_TIME: f64 = 0.4;
 /// Interval of the kinetic-energy reports while the pile settles, s.
 const SETTLE_REPORT_INTERVAL: f64 = 0.05;
-/// Untimed steps before each measurement (fills the caches, lets the thread pool spin up).
-const WARM_STEPS: u64 = 20;
 /// Particle-steps per measurement: the step count is this divided by the number of disks.
 const PARTICLE_STEPS_PER_RUN: u64 = 20_000_000;
 /// Thickness of the box walls, m.
 const WALL_THICKNESS: f64 = 0.01;
 /// Seed of the radii.
 const SEED: u64 = 10_000;
-
-/// One timed run.
-struct Measurement {
-    /// Disks in the pile.
-    disks: usize,
-    /// Threads of the rayon pool.
-    threads: usize,
-    /// Timed steps.
-    steps: u64,
-    /// Wall-clock time of the timed steps, s.
-    seconds: f64,
-    /// CPU time of all threads during the timed steps, s (NaN where it cannot be read).
-    cpu_seconds: f64,
-    /// Touching pairs summed over the timed steps.
-    contacts: u64,
-    /// Pairs of touching boxes summed over the timed steps.
-    box_pairs: u64,
-}
-
-impl Measurement {
-    /// Particle-steps per wall-clock second.
-    fn particle_steps_per_second(&self) -> f64 {
-        self.disks as f64 * self.steps as f64 / self.seconds
-    }
-
-    /// Prints the run as a row of the table of [`print_header`].
-    fn print(&self) {
-        let particle_steps = self.disks as f64 * self.steps as f64;
-        println!(
-            "| {:>6} | {:>7} | {:>5} | {:>7.2} | {:>7.2} | {:>11.3} | {:>14.0} | {:>13.0} | {:>15.2} | {:>14.2} |",
-            self.disks,
-            self.threads,
-            self.steps,
-            self.seconds,
-            self.cpu_seconds,
-            self.particle_steps_per_second() / 1e6,
-            1e9 * self.seconds / particle_steps,
-            1e9 * self.cpu_seconds / particle_steps,
-            self.box_pairs as f64 / particle_steps,
-            self.contacts as f64 / particle_steps,
-        );
-    }
-}
-
-/// Prints the head of the table of [`Measurement::print`].
-fn print_header() {
-    println!(
-        "| disks | threads | steps | wall s | CPU s | M p-steps/s | wall ns/p-step | CPU ns/p-step | box pairs/disk \
-         | contacts/disk |"
-    );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
-}
 
 /// The contact law of every pair: linear spring `STIFFNESS`, restitution `RESTITUTION`, friction `FRICTION`.
 fn contact_model() -> ContactModel {
@@ -196,48 +146,6 @@ fn pile(disks: usize) -> World {
     world
 }
 
-/// A rayon pool of `threads` threads.
-fn pool(threads: usize) -> rayon::ThreadPool {
-    rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool")
-}
-
-/// CPU time used by all threads of this process so far, s (the sum of `/proc/self/task/*/schedstat`), or `None`
-/// where that is not available. On a shared machine it is the better measure of the work a run needs.
-fn process_cpu_seconds() -> Option<f64> {
-    let mut nanoseconds = 0u64;
-    for task in std::fs::read_dir("/proc/self/task").ok()? {
-        let stat = std::fs::read_to_string(task.ok()?.path().join("schedstat")).ok()?;
-        nanoseconds += stat.split_whitespace().next()?.parse::<u64>().ok()?;
-    }
-    Some(nanoseconds as f64 * 1e-9)
-}
-
-/// Steps `world` `steps` times on a pool of `threads` threads and times it.
-fn measure(world: &mut World, threads: usize, steps: u64) -> Measurement {
-    let disks = world.bodies().particles().count();
-    pool(threads).install(|| {
-        for _ in 0..WARM_STEPS {
-            world.step().expect("no blow-up");
-        }
-        let (mut contacts, mut box_pairs) = (0, 0);
-        let cpu_before = process_cpu_seconds();
-        let started = Instant::now();
-        for _ in 0..steps {
-            world.step().expect("no blow-up");
-            contacts += world.stats().contacts as u64;
-            box_pairs += world.stats().box_pairs as u64;
-        }
-        let seconds = started.elapsed().as_secs_f64();
-        let cpu_seconds = process_cpu_seconds().zip(cpu_before).map_or(f64::NAN, |(after, before)| after - before);
-        Measurement { disks, threads, steps, seconds, cpu_seconds, contacts, box_pairs }
-    })
-}
-
-/// The system's load average, as `/proc/loadavg` gives it.
-fn load_average() -> String {
-    std::fs::read_to_string("/proc/loadavg").map_or_else(|_| "unknown".into(), |s| s.trim().to_string())
-}
-
 fn main() {
     let disks = std::env::args().nth(1).map_or(DEFAULT_DISKS, |a| a.parse().expect("a number of disks"));
     println!("load average before: {}", load_average());
@@ -267,7 +175,7 @@ fn main() {
         100.0 * world.stats().max_overlap_fraction,
     );
     println!();
-    print_header();
+    print_header("disk");
     for threads in [1, 2] {
         measure(&mut world, threads, PARTICLE_STEPS_PER_RUN / disks as u64).print();
     }

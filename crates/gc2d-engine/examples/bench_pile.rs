@@ -24,10 +24,13 @@
 mod deposition;
 #[path = "support/thesis_material.rs"]
 mod thesis_material;
+#[path = "support/timing.rs"]
+mod timing;
 
 use deposition::PileShape;
 use gc2d_engine::World;
 use std::time::Instant;
+use timing::{load_average, measure, pool, print_header};
 
 /// Simulated time a dense pile settles before it is measured, s (its kinetic energy has peaked and decayed).
 const DENSE_SETTLE_TIME: f64 = 0.06;
@@ -35,65 +38,12 @@ const DENSE_SETTLE_TIME: f64 = 0.06;
 const LAYER_SETTLE_TIME: f64 = 0.005;
 /// Depth of the layers, m.
 const LAYER_DEPTH: f64 = 0.01;
-/// Untimed steps before each measurement (fills the caches, lets the thread pool spin up).
-const WARM_STEPS: u64 = 20;
 /// Particle-steps per measurement of a dense pile: the step count is this divided by the particle count.
 const PARTICLE_STEPS_PER_RUN: u64 = 20_000_000;
 /// Steps per measurement of a layer: the same stretch of simulated time (2 ms) at every size.
 const LAYER_STEPS: u64 = 1_000;
 /// Seed of the piles.
 const SEED: u64 = 2000;
-
-/// One timed run.
-struct Measurement {
-    particles: usize,
-    threads: usize,
-    steps: u64,
-    seconds: f64,
-    cpu_seconds: f64,
-    contacts: u64,
-    box_pairs: u64,
-    heap_bytes: usize,
-    body_heap_bytes: usize,
-}
-
-impl Measurement {
-    fn particle_steps_per_second(&self) -> f64 {
-        self.particles as f64 * self.steps as f64 / self.seconds
-    }
-
-    fn print(&self) {
-        let per_step = |x: u64| x as f64 / self.steps as f64 / self.particles as f64;
-        println!(
-            "| {:>7} | {:>7} | {:>6} | {:>8.3} | {:>8.3} | {:>10.2} | {:>10.2} | {:>6.1} | {:>8.1} | {:>8.2} | {:>8.2} | {:>7} | {:>7} |",
-            self.particles,
-            self.threads,
-            self.steps,
-            self.seconds,
-            self.cpu_seconds,
-            self.particle_steps_per_second() / 1e6,
-            self.contacts as f64 / self.seconds / 1e6,
-            1e9 / self.particle_steps_per_second(),
-            1e9 * self.cpu_seconds / (self.particles as f64 * self.steps as f64),
-            per_step(self.box_pairs),
-            per_step(self.contacts),
-            self.heap_bytes / self.particles,
-            self.body_heap_bytes / self.particles,
-        );
-    }
-}
-
-fn print_header() {
-    println!(
-        "| grains | threads | steps | wall s | CPU s | M p-steps/s | M contacts/s | wall ns/p-step | CPU ns/p-step \
-         | box pairs/grain | contacts/grain | heap B/grain | of it bodies |"
-    );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-}
-
-fn pool(threads: usize) -> rayon::ThreadPool {
-    rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool")
-}
 
 /// A deposited pile of `particles` grains after `settle_time` on two threads.
 fn settled_pile(particles: usize, shape: PileShape, settle_time: f64) -> World {
@@ -110,52 +60,6 @@ fn settled_pile(particles: usize, shape: PileShape, settle_time: f64) -> World {
     world
 }
 
-/// CPU time used by all threads of this process so far, s (the sum of `/proc/self/task/*/schedstat`), or `None`
-/// where that is not available. On a shared machine it is the better measure of the work a run needs.
-fn process_cpu_seconds() -> Option<f64> {
-    let mut nanoseconds = 0u64;
-    for task in std::fs::read_dir("/proc/self/task").ok()? {
-        let stat = std::fs::read_to_string(task.ok()?.path().join("schedstat")).ok()?;
-        nanoseconds += stat.split_whitespace().next()?.parse::<u64>().ok()?;
-    }
-    Some(nanoseconds as f64 * 1e-9)
-}
-
-/// Steps `world` `steps` times on a pool of `threads` threads and times it.
-fn measure(world: &mut World, threads: usize, particles: usize, steps: u64) -> Measurement {
-    pool(threads).install(|| {
-        for _ in 0..WARM_STEPS {
-            world.step().expect("no blow-up");
-        }
-        let (mut contacts, mut box_pairs) = (0, 0);
-        let cpu_before = process_cpu_seconds();
-        let started = Instant::now();
-        for _ in 0..steps {
-            world.step().expect("no blow-up");
-            contacts += world.stats().contacts as u64;
-            box_pairs += world.stats().box_pairs as u64;
-        }
-        let seconds = started.elapsed().as_secs_f64();
-        let cpu_seconds = process_cpu_seconds().zip(cpu_before).map_or(f64::NAN, |(after, before)| after - before);
-        let (heap_bytes, body_heap_bytes) = (world.heap_bytes(), world.bodies().heap_bytes());
-        Measurement {
-            particles,
-            threads,
-            steps,
-            seconds,
-            cpu_seconds,
-            contacts,
-            box_pairs,
-            heap_bytes,
-            body_heap_bytes,
-        }
-    })
-}
-
-fn load_average() -> String {
-    std::fs::read_to_string("/proc/loadavg").map_or_else(|_| "unknown".into(), |s| s.trim().to_string())
-}
-
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let sizes: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
@@ -164,20 +68,20 @@ fn main() {
     println!("load average before: {}", load_average());
     if only("dense") {
         println!("\ndense piles (twice as wide as high), settled {DENSE_SETTLE_TIME} s\n");
-        print_header();
+        print_header("grain");
         for particles in sizes_or(&[2_000, 10_000]) {
             let mut world = settled_pile(particles, PileShape::TwiceAsWideAsHigh, DENSE_SETTLE_TIME);
             for threads in [1, 2] {
-                measure(&mut world, threads, particles, PARTICLE_STEPS_PER_RUN / particles as u64).print();
+                measure(&mut world, threads, PARTICLE_STEPS_PER_RUN / particles as u64).print();
             }
         }
     }
     if only("layer") {
         println!("\nlayers {LAYER_DEPTH} m deep, settled {LAYER_SETTLE_TIME} s\n");
-        print_header();
+        print_header("grain");
         for particles in sizes_or(&[1_000, 10_000, 100_000]) {
             let mut world = settled_pile(particles, PileShape::Layer(LAYER_DEPTH), LAYER_SETTLE_TIME);
-            measure(&mut world, 1, particles, LAYER_STEPS).print();
+            measure(&mut world, 1, LAYER_STEPS).print();
         }
     }
     println!("\nload average after: {}", load_average());
