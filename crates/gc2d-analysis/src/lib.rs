@@ -14,6 +14,7 @@ pub mod output;
 pub mod pressure;
 pub mod repose;
 pub mod run;
+pub mod scene_mill;
 pub mod scene_pile;
 pub mod scene_silo;
 pub mod snapshot;
@@ -30,6 +31,7 @@ pub use pressure::{
 };
 pub use repose::{FlankFit, FlankOptions, PileShape, Repose, angle_of_repose, surface_envelope};
 pub use run::{AnalyzeOptions, Report, SceneKind, analyze_run, analyze_snapshot, detect_scene};
+pub use scene_mill::{CollisionClass, MillOptions, MillPower, MillReport, analyze_mill};
 pub use scene_pile::{FloorPressureReport, PileReport};
 pub use scene_silo::SiloReport;
 pub use snapshot::{BodyRef, Contact, Particle, Snapshot, Wall};

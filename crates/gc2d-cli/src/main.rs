@@ -4,7 +4,7 @@
 //! Ctrl-C, SIGTERM or SIGHUP.
 
 use clap::{Parser, Subcommand};
-use gc2d_analysis::{AnalyzeOptions, SceneKind, analyze_run};
+use gc2d_analysis::{AnalyzeOptions, MillOptions, SceneKind, analyze_mill, analyze_run};
 use gc2d_cli::console;
 use gc2d_cli::events::EventsWriter;
 use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_scene_copy};
@@ -59,7 +59,7 @@ enum Command {
     Analyze {
         /// The run directory (written by `gc2d-rs run`).
         run: PathBuf,
-        /// What the run is: a pile, a silo, or decide from the wall forces.
+        /// What the run is: a pile, a silo, a ball mill, or (pile or silo) decide from the wall forces.
         #[arg(long, value_enum, default_value_t = Kind::Auto)]
         kind: Kind,
         /// Half-width of the pressure window, m [default: about 15 contacts per window].
@@ -68,6 +68,9 @@ enum Command {
         /// Cell size of the density and stress grids, m [default: about 150 particles per cell].
         #[arg(long)]
         grid: Option<f64>,
+        /// Mill: the warm-up left out of the averages, s.
+        #[arg(long, default_value_t = 0.2)]
+        warm_up: f64,
     },
     /// Convert a legacy gc2d input file (.gsi) into a RON scene; prints its `$` comments and every warning.
     ImportGsi {
@@ -124,6 +127,8 @@ enum Kind {
     Pile,
     /// A column between side walls.
     Silo,
+    /// A ball mill: collision statistics from events.csv and the power balance (run it with --events).
+    Mill,
 }
 
 #[derive(clap::Args)]
@@ -196,7 +201,7 @@ fn main() -> ExitCode {
         Command::Run(args) => run(args),
         Command::Check { scene } => check(&scene),
         Command::Snapshot { run, output, width, colour_by, forces } => snapshot(&run, output, width, colour_by, forces),
-        Command::Analyze { run, kind, window, grid } => analyze(&run, kind, window, grid),
+        Command::Analyze { run, kind, window, grid, warm_up } => analyze(&run, kind, window, grid, warm_up),
         Command::Convergence { out, quick } => convergence(out, quick),
         Command::ImportGsi { gsi, output, part_size } => {
             gc2d_cli::import::import_gsi(&gsi, output.as_deref(), part_size)
@@ -477,15 +482,22 @@ fn snapshot(run: &Path, output: Option<PathBuf>, width: u32, colour_by: Colour, 
 }
 
 /// `analyze`: runs the analysis of a finished run and says where the tables and figures are.
-fn analyze(run: &Path, kind: Kind, window: Option<f64>, grid: Option<f64>) -> Result<u8, Failure> {
+fn analyze(run: &Path, kind: Kind, window: Option<f64>, grid: Option<f64>, warm_up: f64) -> Result<u8, Failure> {
+    let failed = |e: gc2d_analysis::AnalysisError| Failure::input(format!("cannot analyse {}: {e}", run.display()));
     let scene = match kind {
         Kind::Auto => SceneKind::Auto,
         Kind::Pile => SceneKind::Pile,
         Kind::Silo => SceneKind::Silo,
+        Kind::Mill => {
+            let report = analyze_mill(run, &MillOptions { warm_up_s: warm_up }).map_err(failed)?;
+            let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
+            console::out(&json).map_err(|e| Failure::stdout(&e))?;
+            console::err(&format!("Tables in {}.", run.join("analysis").display()));
+            return Ok(0);
+        }
     };
     let options = AnalyzeOptions { scene, window_half_width: window, grid_cell: grid };
-    let report =
-        analyze_run(run, &options).map_err(|e| Failure::input(format!("cannot analyse {}: {e}", run.display())))?;
+    let report = analyze_run(run, &options).map_err(failed)?;
     let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
     console::out(&json).map_err(|e| Failure::stdout(&e))?;
     console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));

@@ -1,0 +1,50 @@
+//! `gc2d-rs analyze RUN --kind mill` on a short run of the bundled mill: collision classes with consistent statistics,
+//! and the rotor's two powers equal.
+
+use assert_cmd::Command;
+use std::path::Path;
+
+#[test]
+fn a_mill_run_is_analysed_into_collision_classes_and_a_power_balance() {
+    let out = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/mill.ron");
+    let gc2d = || Command::cargo_bin("gc2d-rs").unwrap();
+    gc2d()
+        .args(["run", scene.to_str().unwrap(), "--quiet", "--events", "--until", "0.02", "--out"])
+        .arg(out.path())
+        .assert()
+        .success();
+    let output = gc2d().arg("analyze").arg(out.path()).args(["--kind", "mill", "--warm-up", "0.005"]).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let classes = report["classes"].as_array().unwrap();
+    let names: Vec<&str> = classes.iter().map(|c| c["class"].as_str().unwrap()).collect();
+    assert!(
+        names.contains(&"ball–ball") && names.contains(&"ball–chamber") && names.contains(&"ball–blade"),
+        "{names:?}"
+    );
+    for class in classes {
+        let q: Vec<f64> = class["quartiles_m_s"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        assert!(q[0] <= q[1] && q[1] <= q[2], "{q:?}");
+        let above: Vec<f64> =
+            class["fractions_above"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        assert!(above.windows(2).all(|w| w[0] >= w[1]) && above.iter().all(|f| (0.0..=1.0).contains(f)), "{above:?}");
+        let edges: Vec<f64> = class["bin_edges_m_s"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let densities: Vec<f64> = class["densities"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let area: f64 = densities.iter().zip(edges.windows(2)).map(|(d, e)| d * (e[1] - e[0])).sum();
+        assert!((area - 1.0).abs() < 1e-9, "histogram area {area}");
+        assert!(class["collisions"].as_u64().unwrap() > 0);
+    }
+    let power = &report["power"];
+    let (torque, work) = (power["mean_power_torque_w"].as_f64().unwrap(), power["mean_power_work_w"].as_f64().unwrap());
+    assert!((torque - work).abs() <= 1e-9 * work.abs(), "ω·τ {torque} W against Σ F·v {work} W");
+    for file in ["mill.json", "mill_collisions.csv", "mill_speed_histograms.csv"] {
+        assert!(out.path().join("analysis").join(file).exists(), "{file} is missing");
+    }
+    // Without an events file the analysis says how to get one.
+    std::fs::remove_file(out.path().join("events.csv")).unwrap();
+    let missing =
+        gc2d().arg("analyze").arg(out.path()).args(["--kind", "mill", "--warm-up", "0.005"]).output().unwrap();
+    assert!(!missing.status.success());
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("--events"));
+}
