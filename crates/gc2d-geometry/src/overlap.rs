@@ -310,7 +310,7 @@ fn ring_centroid(ring: &[RingVertex]) -> DVec2 {
 
 /// Area centroid of a counter-clockwise polygon (vertex mean for a degenerate one), summed relative to its first
 /// vertex for precision.
-fn centroid(points: &[DVec2]) -> DVec2 {
+pub(crate) fn centroid(points: &[DVec2]) -> DVec2 {
     let origin = points[0];
     let mut twice_area = 0.0;
     let mut weighted = DVec2::ZERO;

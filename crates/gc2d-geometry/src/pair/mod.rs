@@ -279,23 +279,7 @@ fn farthest_crossings(crossings: &[Crossing], away: impl Fn() -> DVec2) -> Optio
     }
 }
 
-/// Area centroid of a counter-clockwise polygon (vertex mean for a degenerate one), relative to its first vertex.
-pub(crate) fn polygon_centroid(points: &[DVec2]) -> DVec2 {
-    let origin = points[0];
-    let mut twice_area = 0.0;
-    let mut weighted = DVec2::ZERO;
-    for k in 1..points.len() - 1 {
-        let (p, q) = (points[k] - origin, points[k + 1] - origin);
-        let c = cross(p, q);
-        twice_area += c;
-        weighted += (p + q) * c;
-    }
-    if twice_area > 0.0 {
-        origin + weighted / (3.0 * twice_area)
-    } else {
-        points.iter().sum::<DVec2>() / points.len() as f64
-    }
-}
+pub(crate) use crate::overlap::centroid as polygon_centroid;
 
 /// Area of a counter-clockwise polygon, summed relative to its first vertex.
 pub(crate) fn polygon_area(points: &[DVec2]) -> f64 {
