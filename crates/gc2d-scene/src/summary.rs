@@ -103,6 +103,8 @@ pub struct Summary {
     pub stable_time_step_s: Option<f64>,
     /// The scene entry that sets the bound.
     pub limiting_entry: Option<String>,
+    /// The impact speed a Hertz contact's bound is taken at, m/s (`Scene::max_impact_speed`).
+    pub max_impact_speed_m_s: f64,
     /// End time, s.
     pub end_time_s: f64,
 }
@@ -139,6 +141,11 @@ impl fmt::Display for Summary {
             (Some(bound), Some(entry)) => writeln!(f, ", stable bound {bound:.3e} s set by `{entry}`")?,
             _ => writeln!(f, ", no particles to bound it")?,
         }
+        writeln!(
+            f,
+            "  impacts expected up to {:.3} m/s (where a Hertz contact's bound is taken)",
+            self.max_impact_speed_m_s
+        )?;
         write!(f, "  end time: {} s ({} steps)", self.end_time_s, self.steps())
     }
 }

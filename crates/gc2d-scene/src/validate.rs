@@ -225,7 +225,9 @@ fn check_run(scene: &Scene, errors: &mut Vec<SceneError>) {
     }
     collect(errors, positive("run.max_overlap_fraction", run.max_overlap_fraction).map(drop));
     collect(errors, positive("run.max_energy_gain_fraction", run.max_energy_gain_fraction).map(drop));
-    collect(errors, positive("run.max_impact_speed_m_s", run.max_impact_speed_m_s).map(drop));
+    if let Some(speed) = run.max_impact_speed_m_s {
+        collect(errors, positive("run.max_impact_speed_m_s", speed).map(drop));
+    }
 }
 
 fn check_area(area: &Area, path: &str, errors: &mut Vec<SceneError>) {

@@ -19,6 +19,11 @@ use std::f64::consts::TAU;
 /// Placement attempts per ball before the mill is declared too full.
 const PLACEMENT_ATTEMPTS_PER_BALL: usize = 1000;
 
+/// The speed of the blade tips at the rotor's full speed, m/s.
+pub(crate) fn tip_speed(mill: &Mill) -> f64 {
+    (mill.rotor.rpm * TAU / 60.0 * mill.rotor.tip_radius_m).abs()
+}
+
 /// Checks the mill's numbers, each at its field.
 pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
     let at = |field: &str| field_path(path, field);

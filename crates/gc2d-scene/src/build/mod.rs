@@ -75,6 +75,20 @@ impl Scene {
         Ok(self.build_with_summary()?.summary)
     }
 
+    /// The highest normal impact speed the time-step bound of a Hertz contact is taken at, m/s:
+    /// `run.max_impact_speed_m_s` where the scene gives it; else, for a mill, twice the rotor's tip speed (a ball a
+    /// blade has thrown at up to (1 + e)·V meets the next blade head-on, ballmill.md §7.5), or the speed of a fall
+    /// across the chamber where that is more (a slow rotor); else the engine's default (10 m/s).
+    pub fn max_impact_speed(&self) -> f64 {
+        self.run.max_impact_speed_m_s.unwrap_or_else(|| match &self.mill {
+            Some(mill) => {
+                let fall = (2.0 * self.gravity.largest_magnitude() * 2.0 * mill.chamber_radius_m).sqrt();
+                (2.0 * mill::tip_speed(mill)).max(fall)
+            }
+            None => gc2d_engine::safety::DEFAULT_MAX_IMPACT_SPEED,
+        })
+    }
+
     pub(crate) fn build_with_summary(&self) -> Result<Built, SceneError> {
         self.validate()?;
         build(self).map_err(|e| e.located(self.source.as_ref()))
@@ -85,7 +99,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
     let materials = Materials::of(scene);
     let table = interactions::interaction_table(scene, &materials)?;
     let models = table.models_per_material();
-    let max_impact_speed = scene.run.max_impact_speed_m_s;
+    let max_impact_speed = scene.max_impact_speed();
     let mut rng = ChaCha8Rng::seed_from_u64(scene.run.seed);
     rng.set_stream(BUILD_STREAM);
 
@@ -215,6 +229,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
         time_step_is_automatic: scene.run.time_step_s.is_none(),
         stable_time_step_s: bound.as_ref().map(|b| b.time_step),
         limiting_entry: bound.map(|b| b.path),
+        max_impact_speed_m_s: max_impact_speed,
         end_time_s: scene.run.end_time_s,
     };
     Ok(Built { world, summary })

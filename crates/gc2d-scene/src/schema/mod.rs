@@ -116,14 +116,10 @@ pub struct Run {
     #[serde(default)]
     pub corrector: Corrector,
     /// The highest normal impact speed the scene expects, m/s: a Hertz contact stiffens with depth, so its time-step
-    /// bound depends on how hard bodies hit (a mill: about twice the rotor's tip speed). Default 10.
-    #[serde(default = "defaults::max_impact_speed", skip_serializing_if = "is_default_max_impact_speed")]
-    pub max_impact_speed_m_s: f64,
-}
-
-/// True for the default impact speed, which the scene as written out leaves away.
-fn is_default_max_impact_speed(value: &f64) -> bool {
-    *value == defaults::max_impact_speed()
+    /// bound depends on how hard bodies hit. Default: twice the rotor's tip speed for a mill (a ball thrown by a
+    /// blade meets the next blade head-on), at least 10 m/s; 10 m/s otherwise (`Scene::max_impact_speed`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_impact_speed_m_s: Option<f64>,
 }
 
 impl Default for Run {
@@ -139,7 +135,7 @@ impl Default for Run {
             max_overlap_fraction: defaults::max_overlap_fraction(),
             max_energy_gain_fraction: defaults::max_energy_gain_fraction(),
             corrector: Corrector::default(),
-            max_impact_speed_m_s: defaults::max_impact_speed(),
+            max_impact_speed_m_s: None,
         }
     }
 }
@@ -204,6 +200,16 @@ pub enum GravityProfile {
     Step,
     /// p1 equal steps, each ending with a linear ramp over the fraction p2 of the step.
     SmoothStep,
+}
+
+impl Gravity {
+    /// The largest |g| the scene reaches, m/s².
+    pub fn largest_magnitude(&self) -> f64 {
+        match *self {
+            Gravity::Constant(g) => g.abs(),
+            Gravity::Varying { from_m_s2, to_m_s2, .. } => from_m_s2.abs().max(to_m_s2.abs()),
+        }
+    }
 }
 
 /// Global size cycling of all particles, s(t) = 1 + a·(½ − ½·tanh(S·cos 2πft)) (gsi `HEAT_*`, §1.6, B.2).
@@ -303,9 +309,6 @@ pub(crate) mod defaults {
     }
     pub fn max_energy_gain_fraction() -> f64 {
         gc2d_engine::SafetyLimits::default().max_energy_gain_fraction
-    }
-    pub fn max_impact_speed() -> f64 {
-        gc2d_engine::safety::DEFAULT_MAX_IMPACT_SPEED
     }
     pub fn gravity_steps() -> u32 {
         5
