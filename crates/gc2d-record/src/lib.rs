@@ -10,6 +10,7 @@
 pub mod cadence;
 pub mod colour;
 mod error;
+pub mod frame;
 pub mod layout;
 mod mcap_file;
 pub mod network;
@@ -21,6 +22,7 @@ pub mod stats;
 
 pub use cadence::Cadence;
 pub use error::RecordError;
+pub use frame::{Frame, FrameBuilder};
 pub use png::{PngOptions, render_png};
 pub use quantities::{ColourBy, ColourRange};
 pub use recorder::{Observer, RecordOptions, Recorder, RecordingSummary, RunInfo, SceneFile};

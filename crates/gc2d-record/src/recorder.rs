@@ -12,14 +12,12 @@
 
 use crate::RecordError;
 use crate::cadence::Cadence;
+use crate::frame::FrameBuilder;
 use crate::mcap_file::{Channel, McapFile};
-use crate::network::{ContactForce, collect_contact_forces};
-use crate::quantities::{ColourBy, ColourRange, ParticleColours, mean_inscribed_radius};
-use crate::scene::{SceneStyle, contacts_update, particles_update, timestamp, walls_update};
-use crate::stats::{FrameStats, STATS_JSON_SCHEMA, STATS_SCHEMA_NAME};
+use crate::quantities::{ColourBy, ColourRange};
+use crate::stats::{STATS_JSON_SCHEMA, STATS_SCHEMA_NAME};
 use foxglove::schemas::SceneUpdate;
-use gc2d_engine::{BodyKind, World};
-use gc2d_geometry::Pose;
+use gc2d_engine::World;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -35,9 +33,6 @@ pub trait Observer {
 
 /// Force lines of the largest force are this many mean inscribed radii wide (unless set explicitly).
 pub const DEFAULT_FORCE_WIDTH_RADII: f64 = 0.5;
-
-/// Layers are this many mean inscribed radii apart in z.
-const LAYER_SPACING_RADII: f64 = 0.05;
 
 /// How a recording looks and how often it samples the run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -108,25 +103,14 @@ struct Channels {
     stats: Channel,
 }
 
-/// Scales fixed at the first frame that has particles.
-#[derive(Debug, Clone, Copy)]
-struct Scales {
-    force_line_max_width: f64,
-    layer_spacing: f64,
-}
-
 /// Writes a run to an MCAP file, one frame per cadence tick.
 pub struct Recorder {
     file: Option<McapFile>,
     channels: Channels,
     cadence: Cadence,
-    options: RecordOptions,
-    scales: Option<Scales>,
+    builder: FrameBuilder,
     frames: u64,
     last_log_time: Option<u64>,
-    wall_poses: Vec<Pose>,
-    forces: Vec<ContactForce>,
-    colours: ParticleColours,
 }
 
 impl Recorder {
@@ -154,13 +138,9 @@ impl Recorder {
             file: Some(file),
             channels,
             cadence,
-            options,
-            scales: None,
+            builder: FrameBuilder::new(options),
             frames: 0,
             last_log_time: None,
-            wall_poses: Vec::new(),
-            forces: Vec::new(),
-            colours: ParticleColours::default(),
         })
     }
 
@@ -181,31 +161,16 @@ impl Recorder {
         if self.last_log_time.is_some_and(|last| log_time <= last) {
             return Ok(false);
         }
-        if self.file.is_none() {
-            return Err(RecordError::Finished);
-        }
-        let scales = self.scales(world);
-        let walls_changed = self.walls_changed(world);
         let Some(file) = self.file.as_mut() else { return Err(RecordError::Finished) };
-        let style =
-            SceneStyle { timestamp: timestamp(log_time), layer_spacing: scales.map_or(0.0, |s| s.layer_spacing) };
-        let max_force = collect_contact_forces(world, &mut self.forces);
-        self.colours.update(world, self.options.colour_by, self.options.colour_range, &self.forces);
-        file.write_protobuf(
-            self.channels.particles,
-            log_time,
-            &particles_update(world, &self.colours.colours, &style),
-        )?;
-        if walls_changed {
-            file.write_protobuf(self.channels.walls, log_time, &walls_update(world, &style))?;
+        let frame = self.builder.build(world, log_time);
+        file.write_protobuf(self.channels.particles, log_time, &frame.particles)?;
+        if let Some(walls) = &frame.walls {
+            file.write_protobuf(self.channels.walls, log_time, walls)?;
         }
-        if self.options.force_network {
-            let width = scales.map_or(0.0, |s| s.force_line_max_width);
-            let update = contacts_update(world, &self.forces, max_force, width, &style);
-            file.write_protobuf(self.channels.contacts, log_time, &update)?;
+        if let Some(contacts) = &frame.contacts {
+            file.write_protobuf(self.channels.contacts, log_time, contacts)?;
         }
-        let stats = FrameStats::of(world, &self.forces, max_force);
-        file.write_json(self.channels.stats, log_time, &stats.to_json())?;
+        file.write_json(self.channels.stats, log_time, &frame.stats.to_json())?;
         if self.frames == 0 {
             file.metadata("gc2d-rs.world", world_metadata(world))?;
         }
@@ -225,30 +190,6 @@ impl Recorder {
             .map_err(|source| RecordError::Io { path: path.display().to_string(), source })?
             .len();
         Ok(RecordingSummary { frames: self.frames, bytes })
-    }
-
-    /// The length scales of the drawing, fixed by the first frame with particles.
-    fn scales(&mut self, world: &World) -> Option<Scales> {
-        if self.scales.is_none() {
-            let radius = mean_inscribed_radius(world);
-            let width = self.options.force_line_max_width.or(radius.map(|r| DEFAULT_FORCE_WIDTH_RADII * r));
-            if let (Some(radius), Some(width)) = (radius, width) {
-                self.scales = Some(Scales { force_line_max_width: width, layer_spacing: LAYER_SPACING_RADII * radius });
-            }
-        }
-        self.scales
-    }
-
-    /// True in the first frame and whenever a wall's pose differs from the one last written (then remembers it).
-    fn walls_changed(&mut self, world: &World) -> bool {
-        let bodies = world.bodies();
-        let walls = (0..bodies.len()).filter(|&i| bodies.kind[i] == BodyKind::Wall).map(|i| bodies.pose[i]);
-        let changed = self.frames == 0 || !walls.clone().eq(self.wall_poses.iter().copied());
-        if changed {
-            self.wall_poses.clear();
-            self.wall_poses.extend(walls);
-        }
-        changed
     }
 }
 
