@@ -37,6 +37,8 @@ EXPECTED_TOPICS = {
 }
 STATS_FIELDS = ("time", "particles", "kinetic", "potential", "elastic", "dissipated", "contacts", "mean_coordination")
 DELETE_ALL = 1  # foxglove.SceneEntityDeletion.Type.ALL
+LINE_LIST = 2  # foxglove.LinePrimitive.Type.LINE_LIST
+FORCE_WIDTH_CLASSES = 16  # /contacts: one line list per width class
 
 
 class Checks:
@@ -125,6 +127,64 @@ def check_log_times(records, channels, checks):
         last_by_topic[topic] = r.log_time
 
 
+def count_packed_particles(entity, k, checks):
+    """Counts the particles of a packed /particles entity (a block of body slots): one triangle list of all fills (per-vertex colours) and
+    one line list of all outlines on the same points. Each particle is a closed outline loop (a connected component
+    of the line list in which every point has two neighbours), filled by a fan of n - 2 triangles within its own
+    points, in one colour, in the plane z = const. Returns the number of loops (0 when the checks fail)."""
+    if len(entity.triangles) == 0 and len(entity.lines) == 0:
+        return 0
+    if not checks.expect(len(entity.triangles) == 1 and len(entity.lines) == 1,
+                         f"frame {k}: particles are not one triangle list and one line list"):
+        return 0
+    fills, outlines = entity.triangles[0], entity.lines[0]
+    points = [(p.x, p.y, p.z) for p in fills.points]
+    n = len(points)
+    ok = checks.expect([(p.x, p.y, p.z) for p in outlines.points] == points, f"frame {k}: outline points != fill points")
+    ok &= checks.expect(len(fills.colors) == n, f"frame {k}: {len(fills.colors)} fill colours for {n} points")
+    ok &= checks.expect(outlines.type == LINE_LIST and len(outlines.indices) % 2 == 0, f"frame {k}: outlines not a line list")
+    ok &= checks.expect(len(fills.indices) % 3 == 0 and all(i < n for i in fills.indices), f"frame {k}: bad fill indices")
+    ok &= checks.expect(all(i < n for i in outlines.indices), f"frame {k}: bad outline indices")
+    ok &= checks.expect(all(p[2] == points[0][2] for p in points), f"frame {k}: fills not in one plane")
+    if not ok:
+        return 0
+    # Connected components of the outline graph (union-find), and every point's degree.
+    parent = list(range(n))
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    degree = [0] * n
+    edges = list(zip(outlines.indices[0::2], outlines.indices[1::2]))
+    for a, b in edges:
+        degree[a] += 1
+        degree[b] += 1
+        parent[root(a)] = root(b)
+    size = {}
+    for i in range(n):
+        size[root(i)] = size.get(root(i), 0) + 1
+    ok &= checks.expect(all(d == 2 for d in degree), f"frame {k}: an outline point does not close a loop")
+    ok &= checks.expect(len(edges) == n and all(m >= 3 for m in size.values()), f"frame {k}: outlines are not loops")
+    triangles = {}
+    for t in range(0, len(fills.indices), 3):
+        a, b, c = fills.indices[t:t + 3]
+        same = root(a) == root(b) == root(c)
+        ok &= checks.expect(same, f"frame {k}: a fill triangle spans two particles")
+        if not same:
+            break
+        triangles[root(a)] = triangles.get(root(a), 0) + 1
+    ok &= checks.expect(all(triangles.get(r, 0) == m - 2 for r, m in size.items()), f"frame {k}: a fill is no fan of n - 2 triangles")
+    colour = {}
+    for i, c in enumerate(fills.colors):
+        rgba = (c.r, c.g, c.b, c.a)
+        ok &= colour.setdefault(root(i), rgba) == rgba
+    checks.expect(ok, f"frame {k}: packed particles are not filled, outlined loops of one colour each")
+    return len(size) if ok else 0
+
+
 def check_particles(frames, stats, expect, checks, truncated):
     fps = expect["frames_per_second"]
     dt = expect["time_step"]
@@ -141,26 +201,19 @@ def check_particles(frames, stats, expect, checks, truncated):
         t = log_time * 1e-9
         checks.expect(abs(t - tick) <= 0.5 * dt + 1e-9, f"frame {k} at t = {t:.9f} s, tick {tick:.9f} s")
         entities = list(update.entities)
-        if k < len(counts):
-            checks.expect(len(entities) == counts[k], f"frame {k}: {len(entities)} particles, expected {counts[k]}")
+        ids = [e.id for e in entities]
         checks.expect(
-            len(update.deletions) == 1 and update.deletions[0].type == DELETE_ALL,
-            f"frame {k}: /particles does not start by clearing the topic",
+            len(set(ids)) == len(ids)
+            and all(i.startswith("particles/") and i[len("particles/"):].isdigit() for i in ids)
+            and all(e.frame_id == "world" for e in entities),
+            f"frame {k}: /particles entities {ids[:5]} are not distinct blocks 'particles/<k>' in frame 'world'",
         )
-        for e in entities:
-            ok = (
-                e.frame_id == "world"
-                and len(e.triangles) == 1
-                and len(e.lines) == 1
-                and len(e.triangles[0].indices) == 3 * (len(e.triangles[0].points) - 2)
-                and len(e.lines[0].points) == len(e.triangles[0].points) >= 3
-                and all(p.z == e.triangles[0].points[0].z for p in e.triangles[0].points)
-            )
-            if not checks.expect(ok, f"frame {k}: entity {e.id} is not a fan-triangulated, outlined polygon"):
-                break
+        particles = sum(count_packed_particles(e, k, checks) for e in entities)
+        if k < len(counts):
+            checks.expect(particles == counts[k], f"frame {k}: {particles} particles, expected {counts[k]}")
         s = stats_by_time.get(log_time)
         if checks.expect(s is not None, f"frame {k}: no /stats message at its log time"):
-            checks.expect(s["particles"] == len(entities), f"frame {k}: /stats particles {s['particles']}")
+            checks.expect(s["particles"] == particles, f"frame {k}: /stats particles {s['particles']}")
             checks.expect(abs(s["time"] - t) <= 1e-9, f"frame {k}: /stats time {s['time']} != {t}")
             checks.expect(all(f in s for f in STATS_FIELDS), f"frame {k}: /stats lacks one of {STATS_FIELDS}")
 
@@ -170,10 +223,17 @@ def check_contacts(frames, contacts, stats, checks):
     stats_by_time = dict(stats)
     for log_time, update in contacts:
         lines = [line for e in update.entities for line in e.lines]
+        segments = sum(len(line.points) // 2 for line in lines)
         s = stats_by_time.get(log_time)
+        checks.expect(len(lines) <= FORCE_WIDTH_CLASSES, f"/contacts at {log_time}: {len(lines)} line lists")
         if s is not None:
-            checks.expect(len(lines) <= s["contacts"], f"/contacts at {log_time}: {len(lines)} > {s['contacts']}")
-        checks.expect(all(line.thickness > 0 and len(line.points) % 2 == 0 for line in lines), "bad force line")
+            # A contact draws a segment from each of its particles (two at most) to its force point.
+            checks.expect(segments <= 2 * s["contacts"], f"/contacts at {log_time}: {segments} segments > 2 x {s['contacts']}")
+        checks.expect(
+            all(line.thickness > 0 and len(line.points) % 2 == 0 and len(line.colors) == len(line.points) for line in lines),
+            "bad force line",
+        )
+        checks.expect(len({line.thickness for line in lines}) == len(lines), f"/contacts at {log_time}: two lists of one width")
 
 
 def check_complete_file(path, expect, records, checks):

@@ -26,5 +26,5 @@ pub use frame::{Frame, FrameBuilder};
 pub use png::{PngOptions, render_png};
 pub use quantities::{ColourBy, ColourRange};
 pub use recorder::{Observer, RecordOptions, Recorder, RecordingSummary, RunInfo, SceneFile};
-pub use scene::FRAME_ID;
+pub use scene::{FRAME_ID, PARTICLE_BLOCK_SLOTS, particle_entity_id};
 pub use stats::FrameStats;

@@ -2,9 +2,11 @@
 //!
 //! Topics (all in frame `world`, x-y plane, SI units):
 //! - `/particles` — `foxglove.SceneUpdate`: every living particle as a filled, outlined polygon, coloured by
-//!   [`RecordOptions::colour_by`].
+//!   [`RecordOptions::colour_by`], packed by body slot into entities `particles/<k>` of 1024 slots, each one
+//!   triangle list with per-vertex colours and one line list.
 //! - `/walls` — `foxglove.SceneUpdate`: the walls, in the first frame and then only in frames where a wall moved.
-//! - `/contacts` — `foxglove.SceneUpdate`: the force network (reference §5.5), if enabled.
+//! - `/contacts` — `foxglove.SceneUpdate`: the force network (reference §5.5), if enabled: one entity `forces`
+//!   with a line list per width class.
 //! - `/stats` — JSON ([`FrameStats`]): time, energies, contacts, overlap, coordination.
 //!
 //! The file also holds a Metadata record `gc2d-rs` (program version, seed, command line, cadence) and, if given,

@@ -5,7 +5,7 @@
 //! in the depth test; seen from above the offset is invisible.
 
 use crate::colour::{Rgba, WALL_GREY, force_colour};
-use crate::network::{ContactForce, contact_segments, line_width};
+use crate::network::{ContactForce, FORCE_WIDTH_CLASSES, class_width, contact_segments, width_class};
 use foxglove::schemas::{
     Color, LinePrimitive, Point3, Pose, Quaternion, SceneEntity, SceneEntityDeletion, SceneUpdate, Timestamp,
     TriangleListPrimitive, Vector3, line_primitive, scene_entity_deletion,
@@ -16,8 +16,21 @@ use gc2d_geometry::{DVec2, TracedOutline};
 /// The coordinate frame of every entity.
 pub const FRAME_ID: &str = "world";
 
+/// Body slots per `/particles` entity. Each entity is one triangle list and one line list (one mesh in Foxglove),
+/// so a frame of n particles costs Foxglove about n/1024 meshes instead of n. Blocks this small keep a block's
+/// fill and outline points (which repeat each other) within reach of zstd's match window, so the packed frames
+/// compress as well as one entity per particle did, and keep the point indices short.
+pub const PARTICLE_BLOCK_SLOTS: usize = 1024;
+
+/// Id of the entity of `/contacts` that holds the force network.
+pub const FORCES_ENTITY: &str = "forces";
+
 /// Outline width of particles and walls, screen pixels.
 const OUTLINE_PIXELS: f64 = 1.0;
+
+/// Outline colour: translucent black, which over a fill darkens it to 45 % (as a fill colour darkened by 0.55
+/// would), so one colour outlines bodies of every colour.
+const OUTLINE_SHADE: Rgba = Rgba { r: 0.0, g: 0.0, b: 0.0, a: 0.55 };
 
 /// Heights of the drawing layers, in units of the layer spacing.
 #[derive(Debug, Clone, Copy)]
@@ -55,60 +68,98 @@ impl SceneStyle {
         };
         SceneUpdate { deletions: vec![clear], entities }
     }
+}
 
-    /// One body as a filled shape with a thin outline: a convex outline as a fan of triangles, a ring (an inner
-    /// circle's wall) as the band of triangles between its two circles.
-    fn body_entity(&self, id: String, outline: &TracedOutline, fill: Rgba, fill_layer: Layer) -> SceneEntity {
-        let fill_z = self.z(fill_layer);
-        let outline_z = self.z(if matches!(fill_layer, Layer::Walls) { Layer::Fills } else { Layer::Outlines });
-        let mut entity = self.entity(id);
-        let (points, indices, loops): (Vec<Point3>, Vec<u32>, Vec<&[DVec2]>) = match outline {
+/// Outlines of many bodies packed into two primitives: one triangle list of every fill (fans of the convex outlines,
+/// bands of the rings) with per-vertex colours, and one line list of every outline sharing its points. Foxglove draws
+/// each triangle-list primitive as one mesh, so a frame of any size costs it one mesh and one line set.
+#[derive(Debug, Default)]
+struct PackedOutlines {
+    points: Vec<Point3>,
+    colours: Vec<Color>,
+    triangles: Vec<u32>,
+    outlines: Vec<u32>,
+}
+
+impl PackedOutlines {
+    /// Adds one body's outline filled with `fill`.
+    fn push(&mut self, outline: &TracedOutline, fill: Rgba) {
+        let base = self.points.len() as u32;
+        match outline {
             TracedOutline::Convex(vertices) => {
-                (vertices.iter().map(|&v| point(v)).collect(), fan_indices(vertices.len()), vec![vertices.as_ref()])
+                self.points.extend(vertices.iter().map(|&v| point(v)));
+                self.triangles.extend(fan_indices(vertices.len()).into_iter().map(|k| base + k));
+                self.outlines.extend(loop_indices(base, vertices.len()));
             }
             TracedOutline::Ring { inner, outer } => {
-                let points = inner.iter().chain(outer).map(|&v| point(v)).collect();
-                (points, band_indices(inner.len()), vec![inner.as_slice(), outer.as_slice()])
+                self.points.extend(inner.iter().chain(outer).map(|&v| point(v)));
+                self.triangles.extend(band_indices(inner.len()).into_iter().map(|k| base + k));
+                self.outlines.extend(loop_indices(base, inner.len()));
+                self.outlines.extend(loop_indices(base + inner.len() as u32, outer.len()));
             }
+        }
+        self.colours.resize(self.points.len(), color(fill));
+    }
+
+    /// The entity `id` drawing the packed fills at `fill_layer` and the outlines one layer above it. `uniform`: one
+    /// colour for every fill (written once instead of per vertex).
+    fn into_entity(self, style: &SceneStyle, id: String, fill_layer: Layer, uniform: Option<Rgba>) -> SceneEntity {
+        let fill_z = style.z(fill_layer);
+        let outline_z = style.z(if matches!(fill_layer, Layer::Walls) { Layer::Fills } else { Layer::Outlines });
+        let mut entity = style.entity(id);
+        if self.points.is_empty() {
+            return entity;
+        }
+        let (color_field, colors) = match uniform {
+            Some(fill) => (Some(color(fill)), Vec::new()),
+            None => (None, self.colours),
         };
+        entity.lines.push(LinePrimitive {
+            r#type: line_primitive::Type::LineList as i32,
+            pose: Some(lifted_pose(outline_z)),
+            thickness: OUTLINE_PIXELS,
+            scale_invariant: true,
+            points: self.points.clone(),
+            color: Some(color(OUTLINE_SHADE)),
+            colors: Vec::new(),
+            indices: self.outlines,
+        });
         entity.triangles.push(TriangleListPrimitive {
             pose: Some(lifted_pose(fill_z)),
-            points,
-            color: Some(color(fill)),
-            colors: Vec::new(),
-            indices,
+            points: self.points,
+            color: color_field,
+            colors,
+            indices: self.triangles,
         });
-        for outline_points in loops {
-            entity.lines.push(LinePrimitive {
-                r#type: line_primitive::Type::LineLoop as i32,
-                pose: Some(lifted_pose(outline_z)),
-                thickness: OUTLINE_PIXELS,
-                scale_invariant: true,
-                points: outline_points.iter().map(|&v| point(v)).collect(),
-                color: Some(color(fill.darkened(0.55))),
-                colors: Vec::new(),
-                indices: Vec::new(),
-            });
-        }
         entity
     }
 }
 
-/// `/particles`: one entity per living particle, id `p<slot>`, coloured by `colours[slot]`.
+/// `/particles`: every living particle filled with `colours[slot]` and outlined, packed by slot into blocks of
+/// [`PARTICLE_BLOCK_SLOTS`]: the entity `particles/<k>` holds slots k·1024 … k·1024 + 1023 in slot order (see
+/// [`particle_entity_id`]), so a particle stays in the same entity for the whole run.
 pub(crate) fn particles_update(world: &World, colours: &[Rgba], style: &SceneStyle) -> SceneUpdate {
     let bodies = world.bodies();
-    let entities = bodies
-        .particles()
-        .map(|id| {
-            style.body_entity(
-                format!("p{}", id.0),
-                &bodies.shape_view(id).traced_outline(),
-                colours[id.index()],
-                Layer::Fills,
-            )
-        })
-        .collect();
+    let mut entities = Vec::new();
+    let mut block: Option<(usize, PackedOutlines)> = None;
+    for id in bodies.particles() {
+        let k = id.index() / PARTICLE_BLOCK_SLOTS;
+        if block.as_ref().is_some_and(|(current, _)| *current != k) {
+            let (current, packed) = block.take().expect("checked");
+            entities.push(packed.into_entity(style, particle_entity_id(current), Layer::Fills, None));
+        }
+        let (_, packed) = block.get_or_insert_with(|| (k, PackedOutlines::default()));
+        packed.push(&bodies.shape_view(id).traced_outline(), colours[id.index()]);
+    }
+    if let Some((current, packed)) = block {
+        entities.push(packed.into_entity(style, particle_entity_id(current), Layer::Fills, None));
+    }
     style.replacing_all(entities)
+}
+
+/// The id of the `/particles` entity holding block `block` of [`PARTICLE_BLOCK_SLOTS`] slots.
+pub fn particle_entity_id(block: usize) -> String {
+    format!("particles/{block}")
 }
 
 /// `/walls`: one grey entity per wall, id `w<slot>`.
@@ -117,15 +168,17 @@ pub(crate) fn walls_update(world: &World, style: &SceneStyle) -> SceneUpdate {
     let entities = (0..bodies.len())
         .filter(|&i| bodies.kind[i] == BodyKind::Wall && bodies.alive[i])
         .map(|i| {
-            let id = BodyId(i as u32);
-            style.body_entity(format!("w{i}"), &bodies.shape_view(id).traced_outline(), WALL_GREY, Layer::Walls)
+            let mut packed = PackedOutlines::default();
+            packed.push(&bodies.shape_view(BodyId(i as u32)).traced_outline(), WALL_GREY);
+            packed.into_entity(style, format!("w{i}"), Layer::Walls, Some(WALL_GREY))
         })
         .collect();
     style.replacing_all(entities)
 }
 
-/// `/contacts`: one entity `forces` with a line list per contact, from each particle centroid to the force point,
-/// width `max_width`·|F|/F_max (in metres, so it scales with zoom) and gc2d's force colour.
+/// `/contacts`: one entity [`FORCES_ENTITY`] with a line list per width class ([`width_class`]), holding the
+/// segments from each particle centroid to the force point of every contact of that class, each segment in gc2d's
+/// force colour of its contact. Widths are in metres (they scale with zoom), the largest force `max_width` wide.
 pub(crate) fn contacts_update(
     world: &World,
     forces: &[ContactForce],
@@ -134,32 +187,35 @@ pub(crate) fn contacts_update(
     style: &SceneStyle,
 ) -> SceneUpdate {
     let z = style.z(Layer::Forces);
-    let mut entity = style.entity("forces".to_string());
-    for force in forces {
-        let width = line_width(force.magnitude, max_force, max_width);
-        if width <= 0.0 {
-            continue;
-        }
-        let points: Vec<Point3> = contact_segments(world, force)
-            .into_iter()
-            .flatten()
-            .flat_map(|(from, to)| [point(from), point(to)])
+    let mut entity = style.entity(FORCES_ENTITY.to_string());
+    if max_width > 0.0 {
+        let mut classes: Vec<LinePrimitive> = (1..=FORCE_WIDTH_CLASSES)
+            .map(|class| LinePrimitive {
+                r#type: line_primitive::Type::LineList as i32,
+                pose: Some(lifted_pose(z)),
+                thickness: class_width(class, max_width),
+                scale_invariant: false,
+                ..LinePrimitive::default()
+            })
             .collect();
-        if points.is_empty() {
-            continue;
+        for force in forces {
+            let Some(class) = width_class(force.magnitude, max_force) else { continue };
+            let line = &mut classes[class - 1];
+            let shade = color(force_colour(force.magnitude / max_force));
+            for (from, to) in contact_segments(world, force).into_iter().flatten() {
+                line.points.extend([point(from), point(to)]);
+                line.colors.extend([shade, shade]);
+            }
         }
-        entity.lines.push(LinePrimitive {
-            r#type: line_primitive::Type::LineList as i32,
-            pose: Some(lifted_pose(z)),
-            thickness: width,
-            scale_invariant: false,
-            points,
-            color: Some(color(force_colour(force.magnitude / max_force))),
-            colors: Vec::new(),
-            indices: Vec::new(),
-        });
+        entity.lines = classes.into_iter().filter(|line| !line.points.is_empty()).collect();
     }
     style.replacing_all(vec![entity])
+}
+
+/// Line-list indices of the closed loop of `n` points starting at `base`: (base + k, base + (k+1) mod n).
+fn loop_indices(base: u32, n: usize) -> impl Iterator<Item = u32> {
+    let n = n as u32;
+    (0..n).flat_map(move |k| [base + k, base + (k + 1) % n])
 }
 
 /// Triangle indices of the band between two closed loops of `n` points each, stored one after the other (inner
@@ -190,8 +246,11 @@ fn point(v: DVec2) -> Point3 {
     Point3 { x: v.x, y: v.y, z: 0.0 }
 }
 
+/// A Foxglove colour in 8-bit steps (k/255, what a display shows): colours of neighbouring particles then repeat
+/// exactly, which the per-vertex colours of a packed frame compress by.
 fn color(c: Rgba) -> Color {
-    Color { r: c.r, g: c.g, b: c.b, a: c.a }
+    let q = |x: f64| (x * 255.0).round() / 255.0;
+    Color { r: q(c.r), g: q(c.g), b: q(c.b), a: q(c.a) }
 }
 
 /// Primitives are given in world coordinates, shifted by `z` to their layer; the orientation is written out
@@ -226,9 +285,32 @@ mod tests {
         assert_eq!(&indices[6 * (n - 1)..], &[95, 191, 96, 95, 96, 0]);
         let style = SceneStyle { timestamp: timestamp(0), layer_spacing: 1e-4 };
         let chamber = gc2d_geometry::ShapeView::InnerCircle { center: DVec2::ZERO, radius: 0.07 };
-        let entity = style.body_entity("w0".into(), &chamber.traced_outline(), WALL_GREY, Layer::Walls);
+        let mut packed = PackedOutlines::default();
+        packed.push(&chamber.traced_outline(), WALL_GREY);
+        let entity = packed.into_entity(&style, "w0".into(), Layer::Walls, Some(WALL_GREY));
         assert_eq!(entity.triangles[0].points.len(), 2 * n);
-        assert_eq!(entity.lines.len(), 2, "the ring is outlined on both edges");
+        let outline = &entity.lines[0].indices;
+        assert_eq!(outline.len(), 4 * n, "the ring is outlined on both edges");
+        assert_eq!(&outline[2 * n - 2..2 * n + 2], &[95, 0, 96, 97], "inner loop closes, outer loop starts");
+    }
+
+    #[test]
+    fn packed_bodies_keep_their_own_points_colours_and_closed_outlines() {
+        let style = SceneStyle { timestamp: timestamp(0), layer_spacing: 1e-4 };
+        let triangle = [DVec2::ZERO, DVec2::X, DVec2::Y];
+        let square = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
+        let (red, blue) = (Rgba::hex(0xff0000), Rgba::hex(0x0000ff));
+        let mut packed = PackedOutlines::default();
+        packed.push(&TracedOutline::Convex(triangle.as_slice().into()), red);
+        packed.push(&TracedOutline::Convex(square.as_slice().into()), blue);
+        let entity = packed.into_entity(&style, "particles".into(), Layer::Fills, None);
+        let (fills, lines) = (&entity.triangles[0], &entity.lines[0]);
+        assert_eq!(fills.points.len(), 7);
+        assert_eq!(fills.colors, [vec![color(red); 3], vec![color(blue); 4]].concat());
+        assert_eq!(fills.indices, vec![0, 1, 2, 3, 4, 5, 3, 5, 6], "the square's fan starts at its own first point");
+        assert_eq!(lines.points, fills.points, "outlines share the fills' points");
+        assert_eq!(lines.indices, vec![0, 1, 1, 2, 2, 0, 3, 4, 4, 5, 5, 6, 6, 3]);
+        assert!(lines.pose.unwrap().position.unwrap().z > fills.pose.unwrap().position.unwrap().z, "on top");
     }
 
     #[test]

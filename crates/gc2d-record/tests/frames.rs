@@ -9,8 +9,10 @@ use foxglove::schemas::SceneUpdate;
 use gc2d_engine::motion::Vibration;
 use gc2d_engine::{WallMotion, World};
 use gc2d_geometry::{DVec2, Pose, regular_polygon};
-use gc2d_record::colour::{category, viridis};
-use gc2d_record::network::collect_contact_forces;
+use gc2d_record::colour::{category, force_colour, viridis};
+use gc2d_record::network::{
+    FORCE_WIDTH_CLASSES, class_width, collect_contact_forces, contact_segments, line_width, width_class,
+};
 use gc2d_record::quantities::{
     ParticleColours, contact_pressures, mean_coordination, mean_inscribed_radius, perimeter,
 };
@@ -130,22 +132,50 @@ fn force_lines_are_as_wide_as_the_force_with_the_largest_at_the_documented_width
 
     let topics = messages_by_topic(&path);
     let contacts = SceneUpdate::decode(topics["/contacts"][0].1.as_slice()).unwrap();
+    assert_eq!(contacts.entities.len(), 1);
+    assert_eq!(contacts.entities[0].id, "forces");
     let lines = &contacts.entities[0].lines;
     let mut forces = Vec::new();
     let max_force = collect_contact_forces(&world, &mut forces);
-    assert_eq!(lines.len(), forces.len(), "one line list per contact");
     let max_width = DEFAULT_FORCE_WIDTH_RADII * mean_inscribed_radius(&world).unwrap();
-    for (line, force) in lines.iter().zip(&forces) {
-        let expected = max_width * force.magnitude / max_force;
-        assert!((line.thickness - expected).abs() <= 1e-12 * max_width, "{} vs {expected}", line.thickness);
+    // The segments each width class should hold, in contact order: from each particle of the pair to the point.
+    let mut expected: BTreeMap<usize, Vec<(DVec2, DVec2, f64)>> = BTreeMap::new();
+    for force in &forces {
+        let class = width_class(force.magnitude, max_force).unwrap();
+        let exact = line_width(force.magnitude, max_force, max_width);
+        let drawn = class_width(class, max_width);
+        assert!(drawn >= exact && drawn - exact < max_width / 16.0 + 1e-15, "{drawn} vs {exact}");
         let wall_contact = force.a.index() < 3;
-        assert_eq!(line.points.len(), if wall_contact { 2 } else { 4 }, "a segment per particle of the contact");
-        let end = line.points[1];
-        assert!((end.x - force.point.x).abs() < 1e-15 && (end.y - force.point.y).abs() < 1e-15, "ends at the point");
+        let segments: Vec<_> = contact_segments(&world, force).into_iter().flatten().collect();
+        assert_eq!(segments.len(), if wall_contact { 1 } else { 2 }, "a segment per particle of the contact");
+        let t = force.magnitude / max_force;
+        expected.entry(class).or_default().extend(segments.into_iter().map(|(from, to)| (from, to, t)));
+    }
+    assert_eq!(lines.len(), expected.len(), "one line list per width class in use");
+    assert!(lines.len() <= FORCE_WIDTH_CLASSES);
+    for (line, (class, segments)) in lines.iter().zip(&expected) {
+        assert!((line.thickness - class_width(*class, max_width)).abs() <= 1e-15 * max_width);
+        assert_eq!(line.points.len(), 2 * segments.len());
+        assert_eq!(line.colors.len(), line.points.len(), "a colour per point");
+        for (k, (from, to, t)) in segments.iter().enumerate() {
+            let (start, end) = (line.points[2 * k], line.points[2 * k + 1]);
+            assert_eq!((start.x, start.y, end.x, end.y), (from.x, from.y, to.x, to.y));
+            let shade = force_colour(*t);
+            let eight_bit = |x: f64| (x * 255.0).round() / 255.0;
+            assert_eq!((line.colors[2 * k].r, line.colors[2 * k].g), (eight_bit(shade.r), eight_bit(shade.g)));
+        }
     }
     let widest = lines.iter().map(|l| l.thickness).fold(0.0, f64::max);
-    assert!((widest - max_width).abs() < 1e-15);
+    assert!((widest - max_width).abs() < 1e-15, "the largest force is drawn at full width");
     let particles = SceneUpdate::decode(topics["/particles"][0].1.as_slice()).unwrap();
-    assert_eq!(particles.entities.len(), 30);
-    assert_eq!(particles.entities[0].id, "p3", "particles are named by slot; slots 0–2 are the walls");
+    assert_eq!(particles.entities.len(), 1, "slots 0 to 1023 share one entity");
+    let entity = &particles.entities[0];
+    assert_eq!(entity.id, "particles/0");
+    assert_eq!((entity.triangles.len(), entity.lines.len()), (1, 1), "one triangle list and one line list");
+    assert_eq!(entity.triangles[0].points.len(), 30 * 7, "30 heptagons");
+    assert_eq!(entity.triangles[0].indices.len(), 30 * 15, "five triangles each");
+    assert_eq!(entity.lines[0].indices.len(), 30 * 14, "seven outline segments each");
+    // Slot order: the first particle (slot 3; slots 0–2 are the walls) comes first.
+    let first = world.bodies().world_vertices_of(gc2d_engine::BodyId(3));
+    assert_eq!((entity.triangles[0].points[0].x, entity.triangles[0].points[0].y), (first[0].x, first[0].y));
 }
