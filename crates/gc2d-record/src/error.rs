@@ -30,6 +30,9 @@ pub enum RecordError {
     /// The recording was already finished.
     #[error("the recording is already finished")]
     Finished,
+    /// The live view could not be started.
+    #[error("live view: {0}")]
+    Live(String),
     /// The PNG snapshot could not be drawn or encoded.
     #[error("PNG snapshot: {0}")]
     Png(String),

@@ -12,6 +12,8 @@ pub mod colour;
 mod error;
 pub mod frame;
 pub mod layout;
+#[cfg(feature = "live")]
+pub mod live;
 mod mcap_file;
 pub mod network;
 pub mod png;
@@ -23,6 +25,8 @@ pub mod stats;
 pub use cadence::Cadence;
 pub use error::RecordError;
 pub use frame::{Frame, FrameBuilder};
+#[cfg(feature = "live")]
+pub use live::{DEFAULT_LIVE_ADDRESS, LiveView};
 pub use png::{PngOptions, render_png};
 pub use quantities::{ColourBy, ColourRange};
 pub use recorder::{Observer, RecordOptions, Recorder, RecordingSummary, RunInfo, SceneFile};
