@@ -26,9 +26,13 @@ pub use cadence::Cadence;
 pub use error::RecordError;
 pub use frame::{Frame, FrameBuilder};
 #[cfg(feature = "live")]
-pub use live::{DEFAULT_LIVE_ADDRESS, LiveView};
+pub use live::LiveView;
 pub use png::{PngOptions, render_png};
 pub use quantities::{ColourBy, ColourRange};
 pub use recorder::{Observer, RecordOptions, Recorder, RecordingSummary, RunInfo, SceneFile};
 pub use scene::{FRAME_ID, PARTICLE_BLOCK_SLOTS, particle_entity_id};
 pub use stats::FrameStats;
+
+/// Where the live view listens unless told otherwise: the Foxglove app's default for a local connection
+/// (`ws://127.0.0.1:8765`).
+pub const DEFAULT_LIVE_ADDRESS: &str = "127.0.0.1:8765";

@@ -15,9 +15,6 @@ use foxglove::{Channel, ChannelBuilder, Context, PartialMetadata, RawChannel, Sc
 use gc2d_engine::World;
 use std::sync::Arc;
 
-/// Where the live view listens unless told otherwise: the Foxglove app's default for a local connection.
-pub const DEFAULT_LIVE_ADDRESS: &str = "127.0.0.1:8765";
-
 /// A running live view.
 pub struct LiveView {
     /// The channels' and the server's context; they hold it weakly, so the view keeps it alive.
