@@ -12,7 +12,7 @@ const G: f64 = 9.81;
 
 fn world() -> World {
     let contact_law = ContactLaw {
-        elastic: NormalElastic { e_modulus: 1e6 },
+        elastic: NormalElastic::thesis(1e6),
         damping: Some(NormalDamping { gamma: 0.75 }),
         friction: Some(CundallStrack { mu: 0.6 }),
         cohesion: None,

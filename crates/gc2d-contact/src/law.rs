@@ -1,8 +1,8 @@
 //! The composed contact law and its single entry point, [`ContactLaw::evaluate`] (reference §2.15).
 
 use crate::{
-    BodyMotion, Cohesion, ContactConstants, ContactGeometry, ContactState, CundallStrack, EnergyTerms, NormalDamping,
-    NormalElastic, TangentialStep, reciprocal_or_zero,
+    AreaFormulation, BodyMotion, Cohesion, ContactConstants, ContactGeometry, ContactState, CundallStrack, EnergyTerms,
+    NormalDamping, NormalElastic, TangentialStep, reciprocal_or_zero,
 };
 use gc2d_geometry::{DVec2, cross};
 use serde::{Deserialize, Serialize};
@@ -14,7 +14,7 @@ use thiserror::Error;
 /// pair fits the same type later.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ContactLaw {
-    /// Overlap-area elasticity F⊥ = E·A/l (2.20); always present.
+    /// Overlap-area elasticity, F⊥ = E·A/l (2.20) or its energy-conserving variant; always present.
     pub elastic: NormalElastic,
     /// Normal damping (2.21, 2.22).
     pub damping: Option<NormalDamping>,
@@ -62,7 +62,7 @@ pub struct ContactResponse {
 impl ContactLaw {
     /// The purely elastic law with Young's modulus `e_modulus` (N/m): no damping, friction or cohesion.
     pub fn elastic(e_modulus: f64) -> Self {
-        Self { elastic: NormalElastic { e_modulus }, damping: None, friction: None, cohesion: None }
+        Self { elastic: NormalElastic::thesis(e_modulus), damping: None, friction: None, cohesion: None }
     }
 
     /// Checks that every parameter lies in its physical range, naming the first one that does not.
@@ -126,8 +126,7 @@ impl ContactLaw {
         // Normal approach over the step, Δh = ΔA/c̄ (∂A/∂h = chord length).
         let approach = area_change * reciprocal_or_zero(mean_chord(previous.previous_chord, geometry.chord_length));
 
-        let elastic = self.elastic.force(area, constants.length);
-        let previous_elastic = self.elastic.force(previous.previous_area, constants.length);
+        let elastic = self.elastic.force(area, geometry.chord_length, constants.length);
         let damping = self
             .damping
             .map_or(0.0, |d| d.force(e, constants.normal_mass, area_change, constants.length, inv_dt, elastic));
@@ -148,7 +147,19 @@ impl ContactLaw {
 
         let normal_force = elastic + damping - cohesion;
         let force = normal_force * geometry.normal + tangential.force * tangent;
-        let normal_elastic_change = 0.5 * (previous_elastic + elastic) * approach;
+        // The thesis law books its work by the trapezoid rule; the conservative one stores its potential W(A).
+        let (normal_elastic_change, normal_energy) = match self.elastic.formulation {
+            AreaFormulation::Thesis => {
+                let previous_elastic =
+                    self.elastic.force(previous.previous_area, previous.previous_chord, constants.length);
+                let change = 0.5 * (previous_elastic + elastic) * approach;
+                (change, previous.normal_energy + change)
+            }
+            AreaFormulation::Conservative => {
+                let energy = self.elastic.potential(area, constants.length);
+                (energy - previous.normal_energy, energy)
+            }
+        };
         ContactResponse {
             force_on_i: force,
             torque_on_i: cross(geometry.arm_i, force),
@@ -170,21 +181,28 @@ impl ContactLaw {
                 previous_area: area,
                 previous_chord: geometry.chord_length,
                 spring: tangential.spring,
-                normal_energy: previous.normal_energy + normal_elastic_change,
+                normal_energy,
             },
         }
     }
 
     /// The response of a pair that does not (or no longer) overlap: no force, a reset state and, if a contact was
     /// active, the energy terms of its last step (the elastic force falls to zero by the trapezoid rule over the
-    /// previous chord; whatever the contact still stores is the opening residual).
+    /// previous chord; whatever the contact still stores is the opening residual). Under the conservative
+    /// formulation the normal energy W(A) returns to W(0) = 0 exactly and only the tangential spring can be left.
     fn separate(&self, previous: &ContactState) -> ContactResponse {
         let Some(constants) = previous.constants else {
             return ContactResponse::default();
         };
-        let previous_elastic = self.elastic.force(previous.previous_area, constants.length);
-        let last_approach = -previous.previous_area * reciprocal_or_zero(previous.previous_chord);
-        let normal_left = previous.normal_energy + 0.5 * previous_elastic * last_approach;
+        let normal_left = match self.elastic.formulation {
+            AreaFormulation::Thesis => {
+                let previous_elastic =
+                    self.elastic.force(previous.previous_area, previous.previous_chord, constants.length);
+                let last_approach = -previous.previous_area * reciprocal_or_zero(previous.previous_chord);
+                previous.normal_energy + 0.5 * previous_elastic * last_approach
+            }
+            AreaFormulation::Conservative => 0.0,
+        };
         let spring_energy = CundallStrack::spring_energy(self.elastic.e_modulus, previous.spring);
         ContactResponse {
             energy: EnergyTerms {

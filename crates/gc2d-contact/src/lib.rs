@@ -32,7 +32,7 @@ pub use energy::EnergyTerms;
 pub use gc2d_geometry::DVec2;
 pub use geometry::ContactGeometry;
 pub use law::{ContactLaw, ContactLawError, ContactResponse};
-pub use normal::{NormalDamping, NormalElastic};
+pub use normal::{AreaFormulation, NormalDamping, NormalElastic};
 pub use penetration::{
     ImpactLaw, NormalSpring, PairProperties, PenetrationDamping, PenetrationGeometry, PenetrationLaw,
     PenetrationLawError, PenetrationResponse, PenetrationState, RestitutionTable, RollingResistance, TangentialSpring,

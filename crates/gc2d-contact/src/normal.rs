@@ -1,21 +1,60 @@
-//! Normal sub-models: overlap-area elasticity (2.20) and clipped normal damping (2.21, E3, 2.22).
+//! Normal sub-models: overlap-area elasticity (2.20, or its energy-conserving variant) and clipped normal damping
+//! (2.21, E3, 2.22).
 
 use serde::{Deserialize, Serialize};
 
-/// Elastic normal force proportional to the overlap area: F⊥ = E·A/l (2.20), with h_eff = A/l (2.19).
+/// Elastic normal force of the overlap-area law, by one of two formulations (docs/model.md, "Contact law",
+/// "Energy of the area law").
 ///
-/// E is the 2D Young's modulus in N/m, one value per scene in gc2d (walls share it).
+/// E is the 2D Young's modulus in N/m, l the characteristic length frozen at the first contact step.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct NormalElastic {
     /// Young's modulus E, N/m.
     pub e_modulus: f64,
+    /// Which force law: gc2d's E·A/l or the exact gradient of the potential E·A²/(2l²). Default: the thesis's.
+    #[serde(default)]
+    pub formulation: AreaFormulation,
+}
+
+/// How the overlap-area law turns the overlap area A, the chord length c and the frozen length l into a force.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum AreaFormulation {
+    /// gc2d's thesis law F⊥ = E·A/l (2.20), with h_eff = A/l (2.19). Not the gradient of a potential when the chord
+    /// length changes along a path, so elastic collisions of angular bodies gain or lose energy (booked as opening
+    /// residual). Reproduces the thesis.
+    #[default]
+    Thesis,
+    /// The exact gradient of the potential W(A) = E·A²/(2l²) of the overlap area (Feng's energy-conserving contact
+    /// theory): F⊥ = W′(A)·c = (E·A/l)·(c/l), since ∂A/∂h = c. With the force at the chord midpoint the torques are
+    /// exact too, so an elastic contact returns all the energy it stored.
+    Conservative,
 }
 
 impl NormalElastic {
-    /// F⊥ = E·A/l (2.20) for overlap area `area` and characteristic length `length`, in N (repulsive, ≥ 0).
+    /// gc2d's thesis law with Young's modulus `e_modulus`, N/m.
+    pub fn thesis(e_modulus: f64) -> Self {
+        Self { e_modulus, formulation: AreaFormulation::Thesis }
+    }
+
+    /// The energy-conserving law with Young's modulus `e_modulus`, N/m.
+    pub fn conservative(e_modulus: f64) -> Self {
+        Self { e_modulus, formulation: AreaFormulation::Conservative }
+    }
+
+    /// The elastic normal force in N (repulsive, ≥ 0) for overlap area `area`, chord length `chord` and
+    /// characteristic length `length`: E·A/l (thesis) or E·A·c/l² (conservative).
     #[inline]
-    pub fn force(&self, area: f64, length: f64) -> f64 {
-        self.e_modulus * area / length
+    pub fn force(&self, area: f64, chord: f64, length: f64) -> f64 {
+        match self.formulation {
+            AreaFormulation::Thesis => self.e_modulus * area / length,
+            AreaFormulation::Conservative => self.e_modulus * area * chord / (length * length),
+        }
+    }
+
+    /// The conservative formulation's potential W(A) = E·A²/(2l²), J (per unit thickness).
+    #[inline]
+    pub fn potential(&self, area: f64, length: f64) -> f64 {
+        0.5 * self.e_modulus * area * area / (length * length)
     }
 }
 
@@ -55,9 +94,20 @@ mod tests {
 
     #[test]
     fn elastic_force_is_e_times_area_over_length() {
-        let law = NormalElastic { e_modulus: 1e7 };
-        assert_eq!(law.force(2e-9, 1e-3), 1e7 * 2e-9 / 1e-3);
-        assert!((law.force(2e-9, 1e-3) - 20.0).abs() < 1e-12);
+        let law = NormalElastic::thesis(1e7);
+        assert_eq!(law.force(2e-9, 5e-3, 1e-3), 1e7 * 2e-9 / 1e-3);
+        assert!((law.force(2e-9, 5e-3, 1e-3) - 20.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn conservative_force_is_the_derivative_of_the_potential_times_the_chord() {
+        let law = NormalElastic::conservative(1e7);
+        let (area, chord, length) = (2e-9, 5e-3, 1e-3);
+        let derivative =
+            (law.potential(area * (1.0 + 1e-6), length) - law.potential(area * (1.0 - 1e-6), length)) / (2e-6 * area);
+        assert!((law.force(area, chord, length) - derivative * chord).abs() < 1e-9 * law.force(area, chord, length));
+        // The thesis force times c/l.
+        assert!((law.force(area, chord, length) - 20.0 * chord / length).abs() < 1e-12);
     }
 
     #[test]

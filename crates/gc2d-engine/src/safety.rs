@@ -4,7 +4,7 @@
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::integrator::max_stable_time_step_elongated;
 use crate::interactions::{ContactModel, InteractionTable};
-use gc2d_contact::PairProperties;
+use gc2d_contact::{AreaFormulation, PairProperties};
 use gc2d_geometry::area_contact;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -195,12 +195,16 @@ pub struct ParticleInertia {
     pub inertia: f64,
     /// The radius penetration laws give it (a disk's radius, a polygon's equal-area radius), m.
     pub contact_radius: f64,
+    /// Distance of its farthest point from the centroid, m (bounds the contact chords it can have).
+    pub reach: f64,
 }
 
 /// The largest stable Δt of one particle against every contact model in `models`, s; `None` when none bounds it.
 ///
 /// The overlap-area law: (π/10)·sqrt(m/E) with the inscribed-circle mass m = π·r_in²·ρ (reference §3.6; for round
-/// particles within a few percent of the mass itself, for elongated ones the bound the thesis asks for). A
+/// particles within a few percent of the mass itself, for elongated ones the bound the thesis asks for); under the
+/// conservative formulation, whose stiffness is the thesis's times c/l ≤ 4R/r_in (chord c ≤ 2R, l ≥ r_in/2), that
+/// bound times sqrt(r_in/(4R)) with R the reach. A
 /// penetration law: [`gc2d_contact::PenetrationLaw::max_time_step`] at `max_impact_speed` for the two partners that
 /// bound it, a flat wall (m* = m, R* = R) and an equal particle (m* = m/2, R* = R/2).
 pub fn particle_time_step<'m>(
@@ -213,7 +217,11 @@ pub fn particle_time_step<'m>(
         .into_iter()
         .filter_map(|model| match model {
             ContactModel::OverlapArea(law) => {
-                max_stable_time_step_elongated(p.inscribed_radius, p.area_density, law.elastic.e_modulus)
+                let bound = max_stable_time_step_elongated(p.inscribed_radius, p.area_density, law.elastic.e_modulus);
+                match law.elastic.formulation {
+                    AreaFormulation::Thesis => bound,
+                    AreaFormulation::Conservative => bound.map(|dt| dt * conservative_time_step_factor(p)),
+                }
             }
             ContactModel::Penetration(law) => {
                 let lever = p.contact_radius * p.contact_radius / p.inertia;
@@ -254,11 +262,19 @@ pub fn stable_time_step(
                 mass: bodies.mass[i],
                 inertia: 1.0 / bodies.inverse_inertia[i],
                 contact_radius: bodies.contact_radius(i),
+                reach: bodies.reach[i] * scale,
             };
             let models = models[bodies.material[i].index()].iter().copied();
             particle_time_step(models, &inertia, max_impact_speed).map(|dt| TimeStepBound { dt, particle: id })
         })
         .min_by(|x, y| x.dt.total_cmp(&y.dt).then(x.particle.cmp(&y.particle)))
+}
+
+/// sqrt(r_in/(4R)): the conservative area law's stiffness E·c²/l² is at most 4R/r_in times the thesis law's E·c/l
+/// for a particle of inscribed radius r_in and reach R (1 when R is not a positive finite number).
+fn conservative_time_step_factor(p: &ParticleInertia) -> f64 {
+    let ratio = p.inscribed_radius / (4.0 * p.reach);
+    if ratio > 0.0 && ratio.is_finite() { ratio.min(1.0).sqrt() } else { 1.0 }
 }
 
 /// Refuses `dt` above the stable bound unless `limits` allow it.

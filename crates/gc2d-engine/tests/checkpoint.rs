@@ -23,7 +23,7 @@ fn scene() -> World {
         time_step: DT,
         integrator: Integrator::Gear6(GearC0::VelocityDependent),
         interactions: InteractionTable::uniform(ContactLaw {
-            elastic: NormalElastic { e_modulus: 1e5 },
+            elastic: NormalElastic::thesis(1e5),
             damping: Some(NormalDamping { gamma: 0.3 }),
             friction: Some(CundallStrack { mu: 0.5 }),
             cohesion: Some(Cohesion { k_coh: 2.0 }),
@@ -348,7 +348,7 @@ fn checkpoint_layout_is_pinned() {
     run(&mut world, 1);
     let payload = checkpoint_bytes(&world).len() - payload_offset();
     assert_eq!(
-        payload, 20491,
+        payload, 20492,
         "the checkpoint layout changed: bump CHECKPOINT_FORMAT_VERSION (now {CHECKPOINT_FORMAT_VERSION}) and pin the \
          new payload length"
     );

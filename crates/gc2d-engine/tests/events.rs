@@ -38,7 +38,7 @@ fn mixed_scene() -> World {
         ..PenetrationLaw::elastic(NormalSpring::Linear { stiffness_n_m: 2e4 })
     });
     let area = ContactModel::OverlapArea(ContactLaw {
-        elastic: NormalElastic { e_modulus: 1e5 },
+        elastic: NormalElastic::thesis(1e5),
         damping: Some(NormalDamping { gamma: 0.5 }),
         friction: Some(CundallStrack { mu: 0.5 }),
         cohesion: None,

@@ -21,6 +21,9 @@ fn describe(model: &ContactModel) -> String {
     match model {
         ContactModel::OverlapArea(law) => {
             let mut text = format!("overlap area, E = {:e} N/m", law.elastic.e_modulus);
+            if law.elastic.formulation == gc2d_contact::AreaFormulation::Conservative {
+                text += ", conservative";
+            }
             if let Some(damping) = law.damping {
                 text += &format!(", γ = {}", damping.gamma);
             }

@@ -76,7 +76,7 @@ impl<'a> Materials<'a> {
 /// sub-model is left out and costs nothing).
 pub(crate) fn overlap_area_law(youngs_modulus_n_m: f64, gamma: f64, mu: f64, cohesion_n_m: f64) -> ContactLaw {
     ContactLaw {
-        elastic: NormalElastic { e_modulus: youngs_modulus_n_m },
+        elastic: NormalElastic::thesis(youngs_modulus_n_m),
         damping: (gamma > 0.0).then_some(NormalDamping { gamma }),
         friction: (mu > 0.0).then_some(CundallStrack { mu }),
         cohesion: (cohesion_n_m > 0.0).then_some(Cohesion { k_coh: cohesion_n_m }),
@@ -387,7 +387,7 @@ fn check_interactions(scene: &Scene, materials: &Materials, errors: &mut Vec<Sce
         }
         seen.push(pair);
         let at = |field: &str| field_path(&field_path(&path, "law"), field);
-        if let InteractionLaw::OverlapArea { youngs_modulus_n_m, gamma, mu, cohesion_n_m } = &interaction.law {
+        if let InteractionLaw::OverlapArea { youngs_modulus_n_m, gamma, mu, cohesion_n_m, .. } = &interaction.law {
             if let Some(e) = youngs_modulus_n_m {
                 collect(errors, positive(&at("youngs_modulus_n_m"), *e).map(drop));
             }

@@ -26,7 +26,13 @@ fn scene() -> Scene {
     };
     let pair = |a: &str, mu: f64| Interaction {
         materials: [a.to_owned(), "ramp".to_owned()],
-        law: InteractionLaw::OverlapArea { youngs_modulus_n_m: None, gamma: None, mu: Some(mu), cohesion_n_m: None },
+        law: InteractionLaw::OverlapArea {
+            youngs_modulus_n_m: None,
+            gamma: None,
+            mu: Some(mu),
+            cohesion_n_m: None,
+            formulation: Default::default(),
+        },
     };
     Scene {
         name: "per_pair_friction".into(),

@@ -29,7 +29,7 @@ fn wall() -> BodyMotion {
 
 fn full_law(gamma: f64, mu: f64, k_coh: f64) -> ContactLaw {
     ContactLaw {
-        elastic: NormalElastic { e_modulus: E },
+        elastic: NormalElastic::thesis(E),
         damping: Some(NormalDamping { gamma }),
         friction: Some(CundallStrack { mu }),
         cohesion: Some(Cohesion { k_coh }),

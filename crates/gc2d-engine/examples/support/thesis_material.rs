@@ -24,7 +24,7 @@ pub fn thesis_config(seed: u64) -> WorldConfig {
         time_step: TIME_STEP,
         integrator: Default::default(),
         interactions: InteractionTable::uniform(ContactLaw {
-            elastic: NormalElastic { e_modulus: 1e7 },
+            elastic: NormalElastic::thesis(1e7),
             damping: Some(NormalDamping { gamma: 0.75 }),
             friction: Some(CundallStrack { mu: 0.6 }),
             cohesion: None,

@@ -22,7 +22,7 @@ pub const G: f64 = 9.81;
 /// A contact law with Young's modulus `e`, damping γ and friction μ; a zero γ or μ switches the sub-model off.
 pub fn law(e: f64, gamma: f64, mu: f64) -> ContactLaw {
     ContactLaw {
-        elastic: NormalElastic { e_modulus: e },
+        elastic: NormalElastic::thesis(e),
         damping: (gamma > 0.0).then_some(NormalDamping { gamma }),
         friction: (mu > 0.0).then_some(CundallStrack { mu }),
         cohesion: None,

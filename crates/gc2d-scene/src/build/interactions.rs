@@ -54,13 +54,15 @@ fn interaction_path(scene: &Scene, entry: &crate::schema::Interaction) -> String
 /// parameter is out of range.
 pub(crate) fn listed_model(law: &InteractionLaw, a: &Material, b: &Material) -> Result<ContactModel, String> {
     let model = match law {
-        InteractionLaw::OverlapArea { youngs_modulus_n_m, gamma, mu, cohesion_n_m } => {
-            ContactModel::OverlapArea(overlap_area_law(
+        InteractionLaw::OverlapArea { youngs_modulus_n_m, gamma, mu, cohesion_n_m, formulation } => {
+            let mut law = overlap_area_law(
                 youngs_modulus_n_m.unwrap_or_else(|| mix_stiffness(a.youngs_modulus_n_m, b.youngs_modulus_n_m)),
                 gamma.unwrap_or_else(|| mix(a.gamma, b.gamma)),
                 mu.unwrap_or_else(|| mix(a.mu, b.mu)),
                 cohesion_n_m.unwrap_or_else(|| mix(a.cohesion_n_m, b.cohesion_n_m)),
-            ))
+            );
+            law.elastic.formulation = *formulation;
+            ContactModel::OverlapArea(law)
         }
         InteractionLaw::Linear { stiffness_n_m, damping, friction, rolling, tensile_clamp } => {
             ContactModel::Penetration(PenetrationLaw {

@@ -47,6 +47,7 @@ impl TimeStepBound {
             mass: mass.mass,
             inertia: mass.inertia,
             contact_radius: shape.equivalent_radius(),
+            reach: shape.reach(),
         };
         particle_time_step(models.iter().copied(), &inertia, max_impact_speed).map(|time_step| Self {
             time_step,

@@ -4,6 +4,7 @@
 //! (docs/model.md, "Materials and mixing rules"); an entry overrides that for its pair, with the overlap-area law or
 //! a penetration law (a linear spring or Hertz, docs/model.md, "Penetration laws").
 
+pub use gc2d_contact::AreaFormulation;
 use serde::{Deserialize, Serialize};
 
 /// One entry of the scene's `interactions` list.
@@ -34,6 +35,10 @@ pub enum InteractionLaw {
         /// Cohesion k_coh, N/m. Default: mixed.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         cohesion_n_m: Option<f64>,
+        /// The elastic force law: `Thesis` (gc2d's F⊥ = E·A/l) or `Conservative` (the exact gradient of the
+        /// potential E·A²/(2l²), which keeps the energy of elastic collisions). Default: `Thesis`.
+        #[serde(default, skip_serializing_if = "is_thesis")]
+        formulation: AreaFormulation,
     },
     /// A linear spring on the penetration depth: F = k·δ.
     Linear {
@@ -136,4 +141,9 @@ pub struct Rolling {
 
 fn default_rolling_stiffness_ratio() -> f64 {
     0.25
+}
+
+/// True for the default formulation (left out when a scene is written).
+fn is_thesis(formulation: &AreaFormulation) -> bool {
+    *formulation == AreaFormulation::Thesis
 }

@@ -12,7 +12,7 @@ mod shapes;
 mod walls;
 
 pub use bodies::{Block, DragSpring, DropHeight, GridType, Particle, Source};
-pub use interactions::{Damping, Friction, FrictionStiffness, Interaction, InteractionLaw, Rolling};
+pub use interactions::{AreaFormulation, Damping, Friction, FrictionStiffness, Interaction, InteractionLaw, Rolling};
 pub use mill::{Balls, Mill, Rotor};
 pub use shapes::{CornerPositions, CountSpread, Orientation, Recipe, Shape, SizeSpread};
 pub use walls::{Motion, WallItem, Waveform};

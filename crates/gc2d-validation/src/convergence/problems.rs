@@ -82,7 +82,7 @@ pub fn all_problems() -> Vec<Problem> {
 
 fn contact_law(gamma: f64, mu: f64) -> ContactLaw {
     ContactLaw {
-        elastic: NormalElastic { e_modulus: E_MODULUS },
+        elastic: NormalElastic::thesis(E_MODULUS),
         damping: (gamma > 0.0).then_some(NormalDamping { gamma }),
         friction: (mu > 0.0).then_some(CundallStrack { mu }),
         cohesion: None,
