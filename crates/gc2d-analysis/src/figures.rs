@@ -315,3 +315,49 @@ fn draw_force_network(path: &Path, snapshot: &Snapshot) -> DrawResult {
     root.present()?;
     Ok(())
 }
+
+/// One annular cell of a [`polar_cell_map`]: inner and outer radius (m), first and last angle (rad CCW from +x) and
+/// its value.
+pub type PolarCell = ([f64; 2], [f64; 2], f64);
+
+/// A map of annular cells about `centre` coloured by value over the finite values' range (caption states it; cells
+/// without a value stay white), inside a circle of `radius` (a mill's sector maps).
+pub fn polar_cell_map(
+    path: &Path,
+    title: &str,
+    centre: DVec2,
+    radius: f64,
+    cells: &[PolarCell],
+) -> Result<(), AnalysisError> {
+    draw_polar_cell_map(path, title, centre, radius, cells).map_err(|e| figure_error(path, e))
+}
+
+fn draw_polar_cell_map(path: &Path, title: &str, centre: DVec2, radius: f64, cells: &[PolarCell]) -> DrawResult {
+    let (lo, hi) = cells
+        .iter()
+        .map(|c| c.2)
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+    let root = SVGBackend::new(path, (720, 760)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let caption = if lo <= hi { format!("{title} ({lo:.3e} … {hi:.3e})") } else { format!("{title} (no data)") };
+    let r = 1.05 * radius;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(caption, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(centre.x - r..centre.x + r, centre.y - r..centre.y + r)?;
+    chart.configure_mesh().disable_mesh().x_desc("x / m").y_desc("y / m").draw()?;
+    let point = |r: f64, a: f64| (centre.x + r * a.cos(), centre.y + r * a.sin());
+    let arc = |r: f64, [a0, a1]: [f64; 2]| (0..=8).map(move |k| point(r, a0 + (a1 - a0) * k as f64 / 8.0));
+    chart.draw_series(cells.iter().filter(|c| c.2.is_finite()).map(|&(radii, angles, value)| {
+        let t = if hi > lo { (value - lo) / (hi - lo) } else { 0.5 };
+        let outline: Vec<(f64, f64)> = arc(radii[1], angles).chain(arc(radii[0], [angles[1], angles[0]])).collect();
+        Polygon::new(outline, color_scale(t).filled())
+    }))?;
+    let rim = (0..=144).map(|k| point(radius, std::f64::consts::TAU * k as f64 / 144.0));
+    chart.draw_series(LineSeries::new(rim, BLACK))?;
+    root.present()?;
+    Ok(())
+}

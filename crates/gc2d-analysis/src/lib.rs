@@ -10,7 +10,10 @@ pub mod error;
 pub mod figures;
 pub mod geometry;
 pub mod janssen;
+pub mod mill_space;
+pub mod mill_speeds;
 pub mod output;
+pub mod particle_state;
 pub mod pressure;
 pub mod repose;
 pub mod run;
@@ -25,13 +28,17 @@ pub use density::{Grid, LocalDensity, bulk_packing_fraction, density_grid, local
 pub use error::AnalysisError;
 pub use geometry::{Rect, convex_hull, hull_area, polygon_area};
 pub use janssen::{JanssenFit, JanssenFreeKFit, JanssenParameters, fit_janssen, fit_janssen_free_k};
+pub use particle_state::{ParticleShape, ParticleState, particle_states};
 pub use pressure::{
     Facing, PressureProfile, ProfileOptions, WallForce, WallSelection, face_length, mean_pressure, pressure_profile,
     wall_forces,
 };
 pub use repose::{FlankFit, FlankOptions, PileShape, Repose, angle_of_repose, surface_envelope};
 pub use run::{AnalyzeOptions, Report, SceneKind, analyze_run, analyze_snapshot, detect_scene};
-pub use scene_mill::{CollisionClass, MillOptions, MillPower, MillReport, analyze_mill};
+pub use scene_mill::{
+    BallSpeeds, CollisionClass, MillOptions, MillPower, MillReport, StressEnergySpectrum, WarmUp, analyze_mill,
+    mill_report,
+};
 pub use scene_pile::{FloorPressureReport, PileReport};
 pub use scene_silo::SiloReport;
 pub use snapshot::{BodyRef, Contact, Particle, Snapshot, Wall};

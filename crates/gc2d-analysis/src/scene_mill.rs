@@ -1,16 +1,29 @@
-//! Collision statistics and the power balance of a ball-mill run (reference ballmill.md §7.6), from the run's
-//! `events.csv` (`gc2d-rs run --events`), `timeseries.csv` and final checkpoint.
+//! Collision statistics, ball speeds, where the balls are and the power balance of a ball-mill run (reference
+//! ballmill.md §7.6), from the run's `events.csv`, `dumps/` (per-particle state), `timeseries.csv` and `final.ckpt`.
 //!
-//! Per collision class (ball–ball, ball–chamber, ball–blade, ball–hub, ball–wall for other walls): the number of
-//! episodes that began in the averaging window, per second and per ball and second; the impact normal speeds'
+//! A disk particle is a ball, a polygon particle an ore grain. Per collision class (ball–ball, ball–ore, ore–ore, and
+//! each particle kind against the chamber, a blade, the hub or another wall) and over all classes: the number of
+//! episodes that began in the averaging window, per second and per particle and second; the impact normal speeds'
 //! mode, quartiles and the fractions above 0.5, 1 and 3 m/s; their histogram with √N bins, area-normalised; and
-//! ΣE_n = Σ ½·m·v_n² per second with m the ball's mass (the thesis's grinding-intensity measure, (20-2)). Blade
-//! hits per revolution. The power: the mean of the rotor's ω·τ and Σ F·v over the window's rows, the mean power the
-//! walls put in and the mean dissipation from the ledger, and the median-speed series' mean and spread.
+//! ΣE_n = Σ ½·m·v_n² per second with m the mass of the class's first particle (the thesis's grinding-intensity
+//! measure, (20-2)). Blade hits per revolution. On ore grains the stress-energy spectrum. From the dumps: the balls'
+//! |v| distribution and its upper/lower split in the outer ring, the median |v| series with its automatic warm-up cut
+//! and its autocorrelation, the radial profile and the sector maps. The power: the mean of the rotor's ω·τ and Σ F·v
+//! over the window's rows, the mean power the walls put in and the mean dissipation from the ledger, and their
+//! relative differences.
 
 use crate::error::AnalysisError;
+use crate::figures::{Labels, Mark, PolarCell, Series, bar_chart, line_chart, polar_cell_map};
+use crate::mill_space::{Chamber, RadialProfile, SectorCell, radial_profile, sector_map};
+use crate::mill_speeds::{
+    Autocorrelation, Histogram, SpeedDistribution, WarmUpCut, autocorrelation, quantile, warm_up_cut,
+};
 use crate::output::OutputDir;
+use crate::particle_state::csv::{DUMPS_DIR, dump_files, read_csv};
+use crate::particle_state::{ParticleShape, ParticleState};
 use gc2d_engine::{BodyKind, ShapeKind, World};
+use gc2d_geometry::DVec2;
+use plotters::style::RGBColor;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -19,29 +32,24 @@ use std::path::Path;
 pub const SPEED_THRESHOLDS: [f64; 3] = [0.5, 1.0, 3.0];
 
 /// Options of [`analyze_mill`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct MillOptions {
-    /// Start of the averaging window, s: episodes that begin earlier and rows before it are left out (the thesis
-    /// discards 0.2 s of warm-up).
-    pub warm_up_s: f64,
-}
-
-impl Default for MillOptions {
-    fn default() -> Self {
-        Self { warm_up_s: 0.2 }
-    }
+    /// Start of the averaging window, s: episodes that begin earlier and rows and dumps before it are left out.
+    /// `None`: the automatic cut of the median-speed series ([`warm_up_cut`]).
+    pub warm_up_s: Option<f64>,
 }
 
 /// The statistics of one collision class.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CollisionClass {
-    /// `ball–ball`, `ball–chamber`, `ball–blade`, `ball–hub` or `ball–wall`.
+    /// `ball–ball`, `ball–ore`, `ore–ore`, `ball–chamber`, `ball–blade`, `ball–hub`, `ball–wall`, the same with `ore`,
+    /// or `all`.
     pub class: String,
     /// Episodes that began in the window.
     pub collisions: usize,
     /// Per second.
     pub per_second: f64,
-    /// Per ball and second.
+    /// Per second and per particle of the class's first kind (balls; ore grains for `ore–…`; balls for `all`).
     pub per_ball_per_second: f64,
     /// Centre of the fullest histogram bin, m/s.
     pub mode_m_s: f64,
@@ -57,19 +65,74 @@ pub struct CollisionClass {
     pub densities: Vec<f64>,
 }
 
+/// The stress-energy spectrum of the ore grains: the energy ½·m_eff·v_n² of every collision an ore grain took
+/// (m_eff = m_a·m_b/(m_a + m_b) between particles, the grain's mass against a wall).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StressEnergySpectrum {
+    /// Ore collisions in the window with an impact (v_n > 0).
+    pub events: usize,
+    /// Ore collisions in the window without an approach speed (v_n = 0; left out of the bins).
+    pub without_impact: usize,
+    /// Stress events per second.
+    pub per_second: f64,
+    /// Median energy, J.
+    pub median_j: f64,
+    /// Mean energy, J.
+    pub mean_j: f64,
+    /// Σ energy per second, W.
+    pub energy_per_second_w: f64,
+    /// Bin edges, J: ⌈√N⌉ bins of equal width in log10 E from the smallest to the largest energy.
+    pub bin_edges_j: Vec<f64>,
+    /// Events per bin.
+    pub counts: Vec<usize>,
+    /// Share of the events per decade of energy (Σ density × bin width in decades = 1).
+    pub densities_per_decade: Vec<f64>,
+}
+
 /// The rotor's power and the ledger's balance over the window.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MillPower {
-    /// Mean of ω·τ over the window's rows, W.
+    /// ⟨P_torque⟩: mean of ω·τ over the window's rows, W.
     pub mean_power_torque_w: f64,
-    /// Mean of Σ F·v over the window's rows, W.
+    /// ⟨P_work⟩: mean of Σ F·v over the window's rows, W.
     pub mean_power_work_w: f64,
     /// Work the walls put in over the window divided by its length, W (the ledger's).
     pub power_in_w: f64,
-    /// Energy dissipated over the window divided by its length, W.
+    /// ⟨D⟩: energy dissipated over the window divided by its length, W.
     pub dissipation_w: f64,
-    /// (power in − dissipation)/power in.
+    /// (power in − ⟨D⟩)/power in.
     pub relative_imbalance: f64,
+    /// (⟨P_torque⟩ − ⟨P_work⟩)/⟨P_torque⟩.
+    pub relative_torque_work: f64,
+    /// (⟨P_torque⟩ − ⟨D⟩)/⟨P_torque⟩.
+    pub relative_torque_dissipation: f64,
+}
+
+/// How the window's start was chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WarmUp {
+    /// The start of the window used, s.
+    pub start_s: f64,
+    /// True when the user gave it (`--warm-up`), false when it is the automatic cut.
+    pub given: bool,
+    /// The automatic cut (also computed when a start was given; `None` for fewer than 8 samples).
+    pub automatic: Option<WarmUpCut>,
+    /// The median-speed series the cut and the autocorrelation use: `dumps` (balls' median |v| per dump) or
+    /// `timeseries` (all particles', per time-series row, when the run has fewer than 8 dumps).
+    pub series: &'static str,
+}
+
+/// The balls' speeds over the window's dumps.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BallSpeeds {
+    /// Dumps in the window.
+    pub dumps: usize,
+    /// Every ball in every dump.
+    pub all: SpeedDistribution,
+    /// Balls in the outer ring (r > R − 2d) above the centre.
+    pub upper_outer: SpeedDistribution,
+    /// Balls in the outer ring below the centre.
+    pub lower_outer: SpeedDistribution,
 }
 
 /// What [`analyze_mill`] computed, written as `mill.json`.
@@ -77,20 +140,70 @@ pub struct MillPower {
 pub struct MillReport {
     /// The averaging window, s.
     pub window_s: [f64; 2],
-    /// Balls (particles) in the final state.
+    /// How its start was chosen.
+    pub warm_up: WarmUp,
+    /// Balls (disk particles) in the final state.
     pub balls: usize,
+    /// Ore grains (polygon particles) in the final state.
+    pub ore_grains: usize,
     /// Rotor revolutions in the window (from its angular velocity at the end).
     pub revolutions: f64,
     /// Blade hits per revolution.
     pub blade_hits_per_revolution: f64,
     /// Per collision class.
     pub classes: Vec<CollisionClass>,
+    /// Every collision of the window together (class `all`).
+    pub all_classes: CollisionClass,
+    /// The ore grains' stress-energy spectrum, when there are ore grains.
+    pub stress_energy: Option<StressEnergySpectrum>,
     /// Power balance.
     pub power: MillPower,
-    /// Mean and standard deviation of the median particle speed over the window's rows, m/s.
+    /// Mean and standard deviation of the median-speed series over the window, m/s.
     pub median_speed_m_s: [f64; 2],
+    /// The autocorrelation of the median-speed series over the window (its values are in
+    /// `mill_autocorrelation.csv`).
+    pub autocorrelation: Option<Autocorrelation>,
+    /// The balls' speeds from the dumps (`None` without dumps in the window).
+    pub ball_speeds: Option<BallSpeeds>,
+    /// The chamber (`None` when the run has no circular chamber: no radial profile or sector maps then).
+    pub chamber: Option<Chamber>,
+    /// The radial residence profile of the balls.
+    pub radial_profile: Option<RadialProfile>,
+    /// True when events.csv has the collisions' begin points (the sector maps' collision counts).
+    pub collision_points_known: bool,
+    /// The sector maps (also in `mill_sectors.csv`).
+    #[serde(skip)]
+    pub sectors: Vec<SectorCell>,
+    /// The median-speed series over the whole run: (time s, median |v| m/s).
+    #[serde(skip)]
+    pub median_series: Vec<(f64, f64)>,
     /// The files written into the analysis directory.
     pub files: Vec<String>,
+}
+
+impl MillReport {
+    /// A few lines for the end of a run: median |v|, the powers, blade hits per revolution and the tail shares.
+    pub fn summary(&self) -> String {
+        let [from, to] = self.window_s;
+        let how = if self.warm_up.given { "given" } else { "automatic warm-up cut" };
+        let median = self.ball_speeds.as_ref().map_or(self.median_speed_m_s[0], |s| s.all.median_m_s);
+        let p = &self.power;
+        let f = &self.all_classes.fractions_above;
+        format!(
+            "Mill over {from:.3}–{to:.3} s ({how}): median ball speed {median:.3} m/s; <P_torque> {:.4} W, \
+             <P_work> {:.4} W, <D> {:.4} W ((P − D)/P = {:+.2} %);\n{:.2} blade hits per revolution; impacts faster \
+             than 0.5 / 1 / 3 m/s: {:.1} / {:.1} / {:.2} % of {} collisions.",
+            p.mean_power_torque_w,
+            p.mean_power_work_w,
+            p.dissipation_w,
+            100.0 * p.relative_torque_dissipation,
+            self.blade_hits_per_revolution,
+            100.0 * f[0],
+            100.0 * f[1],
+            100.0 * f[2],
+            self.all_classes.collisions,
+        )
+    }
 }
 
 /// A CSV file read as columns by name.
@@ -122,72 +235,150 @@ fn number(field: &str) -> f64 {
     field.parse().unwrap_or(f64::NAN)
 }
 
+/// `ball` for a disk particle, `ore` for a polygon particle.
+fn particle_kind(world: &World, i: usize) -> &'static str {
+    if world.bodies().shape[i] == ShapeKind::Disk { "ball" } else { "ore" }
+}
+
 /// The collision class of an episode between bodies `a` and `b` of the final World.
-fn class_of(world: &World, a: usize, b: usize) -> &'static str {
+fn class_of(world: &World, a: usize, b: usize) -> String {
     let bodies = world.bodies();
     let wall = [a, b].into_iter().find(|&i| bodies.kind[i] == BodyKind::Wall);
-    match wall.map(|w| bodies.shape[w]) {
-        None => "ball–ball",
-        Some(ShapeKind::InnerCircle) => "ball–chamber",
-        Some(ShapeKind::Capsule) => "ball–blade",
-        Some(ShapeKind::Disk) => "ball–hub",
-        Some(ShapeKind::Polygon) => "ball–wall",
-    }
+    let particle = if bodies.kind[a] == BodyKind::Particle { a } else { b };
+    let first = particle_kind(world, particle);
+    let second = match wall.map(|w| bodies.shape[w]) {
+        None => {
+            let other = particle_kind(world, a + b - particle);
+            return if first == other { format!("{first}–{first}") } else { "ball–ore".into() };
+        }
+        Some(ShapeKind::InnerCircle) => "chamber",
+        Some(ShapeKind::Capsule) => "blade",
+        Some(ShapeKind::Disk) => "hub",
+        Some(ShapeKind::Polygon) => "wall",
+    };
+    format!("{first}–{second}")
 }
 
-/// The `q`-quantile of sorted `values` by linear interpolation.
-fn quantile(sorted: &[f64], q: f64) -> f64 {
-    if sorted.is_empty() {
-        return f64::NAN;
-    }
-    let position = q * (sorted.len() - 1) as f64;
-    let (low, high) = (position.floor() as usize, position.ceil() as usize);
-    sorted[low] + (sorted[high] - sorted[low]) * (position - low as f64)
-}
-
-/// The statistics of one class from its impact speeds and ΣE_n over the window of length `span` s.
-fn class_report(class: &str, mut speeds: Vec<f64>, normal_energy: f64, span: f64, balls: usize) -> CollisionClass {
+/// The statistics of one class from its impact speeds and ΣE_n over the window of length `span` s, per `particles`.
+fn class_report(class: &str, mut speeds: Vec<f64>, normal_energy: f64, span: f64, particles: usize) -> CollisionClass {
     speeds.sort_by(f64::total_cmp);
     let n = speeds.len();
-    let bins = (n as f64).sqrt().ceil().max(1.0) as usize;
-    let top = speeds.last().copied().unwrap_or(0.0).max(f64::MIN_POSITIVE);
-    let width = top / bins as f64;
-    let mut counts = vec![0usize; bins];
-    for &v in &speeds {
-        counts[((v / width) as usize).min(bins - 1)] += 1;
-    }
-    let densities: Vec<f64> = counts.iter().map(|&c| c as f64 / (n.max(1) as f64 * width)).collect();
-    let fullest = counts.iter().enumerate().max_by_key(|&(k, &c)| (c, std::cmp::Reverse(k))).map_or(0, |(k, _)| k);
+    let histogram = Histogram::of(&speeds);
     CollisionClass {
         class: class.to_owned(),
         collisions: n,
         per_second: n as f64 / span,
-        per_ball_per_second: n as f64 / span / balls.max(1) as f64,
-        mode_m_s: (fullest as f64 + 0.5) * width,
+        per_ball_per_second: n as f64 / span / particles.max(1) as f64,
+        mode_m_s: histogram.mode,
         quartiles_m_s: [quantile(&speeds, 0.25), quantile(&speeds, 0.5), quantile(&speeds, 0.75)],
         fractions_above: SPEED_THRESHOLDS.map(|t| speeds.iter().filter(|&&v| v > t).count() as f64 / n.max(1) as f64),
         normal_energy_per_second_w: normal_energy / span,
-        bin_edges_m_s: (0..=bins).map(|k| k as f64 * width).collect(),
-        densities,
+        bin_edges_m_s: histogram.bin_edges,
+        densities: histogram.densities,
     }
 }
 
-/// Analyses the mill run in `run_dir` and writes `mill.json`, `mill_collisions.csv` and
-/// `mill_speed_histograms.csv` into its `analysis/` directory.
-pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport, AnalysisError> {
+/// The stress-energy spectrum of ore-collision `energies` (J) over a window of `span` s.
+pub fn stress_energy_spectrum(mut energies: Vec<f64>, span: f64) -> StressEnergySpectrum {
+    let without_impact = energies.iter().filter(|&&e| e <= 0.0 || e.is_nan()).count();
+    energies.retain(|&e| e > 0.0);
+    energies.sort_by(f64::total_cmp);
+    let n = energies.len();
+    let bins = (n as f64).sqrt().ceil().max(1.0) as usize;
+    let (mut lo, mut hi) = match (energies.first(), energies.last()) {
+        (Some(a), Some(b)) => (a.log10(), b.log10()),
+        _ => (0.0, 1.0),
+    };
+    if hi - lo < 1e-9 {
+        (lo, hi) = (lo - 0.5, hi + 0.5);
+    }
+    let width = (hi - lo) / bins as f64;
+    let mut counts = vec![0usize; bins];
+    for e in &energies {
+        counts[(((e.log10() - lo) / width) as usize).min(bins - 1)] += 1;
+    }
+    StressEnergySpectrum {
+        events: n,
+        without_impact,
+        per_second: n as f64 / span,
+        median_j: quantile(&energies, 0.5),
+        mean_j: energies.iter().sum::<f64>() / n as f64,
+        energy_per_second_w: energies.iter().sum::<f64>() / span,
+        bin_edges_j: (0..=bins).map(|k| 10f64.powf(lo + k as f64 * width)).collect(),
+        densities_per_decade: counts.iter().map(|&c| c as f64 / (n.max(1) as f64 * width)).collect(),
+        counts,
+    }
+}
+
+/// The chamber of the final World: its inner-circle wall, with the balls' median diameter.
+fn chamber_of(world: &World) -> Option<Chamber> {
+    let bodies = world.bodies();
+    let wall =
+        (0..bodies.len()).find(|&i| bodies.kind[i] == BodyKind::Wall && bodies.shape[i] == ShapeKind::InnerCircle)?;
+    let mut radii: Vec<f64> = bodies
+        .particles()
+        .map(|id| id.index())
+        .map(|i| if bodies.shape[i] == ShapeKind::Disk { bodies.radius[i] } else { bodies.reach[i] } * bodies.pose[i].scale)
+        .collect();
+    radii.sort_by(f64::total_cmp);
+    let pose = bodies.pose[wall];
+    Some(Chamber {
+        centre_m: pose.position.into(),
+        radius_m: bodies.radius[wall] * pose.scale,
+        ball_diameter_m: 2.0 * quantile(&radii, 0.5),
+    })
+}
+
+/// One dump reduced to the balls: its time and each ball's centre and speed.
+struct BallDump {
+    time: f64,
+    balls: Vec<(DVec2, f64)>,
+}
+
+impl BallDump {
+    /// The balls of `rows` (every particle when there are no disks).
+    fn of(rows: &[ParticleState]) -> Option<Self> {
+        let time = rows.first()?.time_s;
+        let disks = rows.iter().any(|r| r.shape == ParticleShape::Disk);
+        let balls = rows
+            .iter()
+            .filter(|r| !disks || r.shape == ParticleShape::Disk)
+            .map(|r| (DVec2::new(r.x_m, r.y_m), r.speed()))
+            .collect();
+        Some(Self { time, balls })
+    }
+
+    fn median_speed(&self) -> f64 {
+        let mut speeds: Vec<f64> = self.balls.iter().map(|b| b.1).collect();
+        speeds.sort_by(f64::total_cmp);
+        quantile(&speeds, 0.5)
+    }
+}
+
+/// The run's dumps up to `end` (dumps a longer earlier run left behind are not read).
+fn read_dumps(run_dir: &Path, end: f64, slack: f64) -> Result<Vec<BallDump>, AnalysisError> {
+    let mut dumps = Vec::new();
+    for (_, path) in dump_files(&run_dir.join(DUMPS_DIR))? {
+        if let Some(dump) = BallDump::of(&read_csv(&path)?)
+            && dump.time <= end + slack
+        {
+            dumps.push(dump);
+        }
+    }
+    Ok(dumps)
+}
+
+/// Computes the mill statistics of the run in `run_dir` without writing anything (what `gc2d-rs run` prints at its
+/// end and [`analyze_mill`] writes).
+pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, AnalysisError> {
     let checkpoint = run_dir.join("final.ckpt");
     let world = World::load_checkpoint_file(&checkpoint)
         .map_err(|source| AnalysisError::Checkpoint { path: checkpoint.clone(), source })?;
-    let start = options.warm_up_s;
     let end = world.time();
-    if !(start.is_finite() && start >= 0.0 && start < end) {
-        return Err(AnalysisError::InvalidParameter(format!(
-            "the warm-up {start} s must lie between 0 and the run's end, {end} s"
-        )));
-    }
-    let span = end - start;
     let bodies = world.bodies();
-    let balls = bodies.particles().count();
+    let slack = 0.5 * world.time_step();
+    let balls = bodies.particles().filter(|id| bodies.shape[id.index()] == ShapeKind::Disk).count();
+    let ore_grains = bodies.particles().count() - balls;
 
     let events_path = run_dir.join("events.csv");
     if !events_path.exists() {
@@ -196,6 +387,39 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
             events_path.display()
         )));
     }
+    let series = Table::read(&run_dir.join("timeseries.csv"))?;
+    let what = "timeseries.csv";
+    let time = series.column("time_s", what)?;
+    let dumps = read_dumps(run_dir, end, slack)?;
+
+    // The median-speed series: the balls' per dump, else the time series' column.
+    let (median_series, source): (Vec<(f64, f64)>, _) = if dumps.len() >= 8 {
+        (dumps.iter().map(|d| (d.time, d.median_speed())).collect(), "dumps")
+    } else {
+        let median = series.column("median_speed_m_s", what)?;
+        (series.rows.iter().map(|r| (number(&r[time]), number(&r[median]))).collect(), "timeseries")
+    };
+    let (times, medians): (Vec<f64>, Vec<f64>) = median_series.iter().copied().unzip();
+    let automatic = warm_up_cut(&times, &medians);
+    let start = match (options.warm_up_s, automatic) {
+        (Some(given), _) => given,
+        (None, Some(cut)) => cut.cut_s,
+        (None, None) => {
+            return Err(AnalysisError::NotEnoughData(format!(
+                "the median-speed series has {} samples, too few for the automatic warm-up cut: give --warm-up",
+                times.len()
+            )));
+        }
+    };
+    if !(start.is_finite() && start >= 0.0 && start < end) {
+        return Err(AnalysisError::InvalidParameter(format!(
+            "the warm-up {start} s must lie between 0 and the run's end, {end} s"
+        )));
+    }
+    let span = end - start;
+    let warm_up = WarmUp { start_s: start, given: options.warm_up_s.is_some(), automatic, series: source };
+
+    // Collisions.
     let events = Table::read(&events_path)?;
     let what = "events.csv";
     let (begin, a, b, speed) = (
@@ -204,34 +428,56 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
         events.column("b", what)?,
         events.column("impact_normal_speed_m_s", what)?,
     );
-    let mut by_class: BTreeMap<&'static str, (Vec<f64>, f64)> = BTreeMap::new();
+    let point_columns = events.column("begin_x_m", what).ok().zip(events.column("begin_y_m", what).ok());
+    let mut by_class: BTreeMap<String, (Vec<f64>, f64)> = BTreeMap::new();
+    let (mut all_speeds, mut all_energy, mut ore_energies, mut points) = (Vec::new(), 0.0, Vec::new(), Vec::new());
     for row in &events.rows {
         let (Ok(ia), Ok(ib)) = (row[a].parse::<usize>(), row[b].parse::<usize>()) else { continue };
         if number(&row[begin]) < start || ia.max(ib) >= bodies.len() {
             continue;
         }
         let v = number(&row[speed]).max(0.0);
-        let ball = if bodies.kind[ia] == BodyKind::Particle { ia } else { ib };
-        let entry = by_class.entry(class_of(&world, ia, ib)).or_default();
+        let first = if bodies.kind[ia] == BodyKind::Particle { ia } else { ib };
+        let second = ia + ib - first;
+        let (class, first) = match class_of(&world, ia, ib) {
+            // The class names the ball first.
+            c if c == "ball–ore" && particle_kind(&world, first) == "ore" => (c, second),
+            c => (c, first),
+        };
+        let energy = 0.5 * bodies.mass[first] * v * v;
+        let entry = by_class.entry(class).or_default();
         entry.0.push(v);
-        entry.1 += 0.5 * bodies.mass[ball] * v * v;
+        entry.1 += energy;
+        all_speeds.push(v);
+        all_energy += energy;
+        if [ia, ib].iter().any(|&i| bodies.kind[i] == BodyKind::Particle && particle_kind(&world, i) == "ore") {
+            let (ma, mb) = (bodies.mass[ia], bodies.mass[ib]);
+            let reduced = if ma.is_finite() && mb.is_finite() { ma * mb / (ma + mb) } else { ma.min(mb) };
+            ore_energies.push(0.5 * reduced * v * v);
+        }
+        if let Some((x, y)) = point_columns {
+            points.push(DVec2::new(number(&row[x]), number(&row[y])));
+        }
     }
     let classes: Vec<CollisionClass> = by_class
         .into_iter()
-        .map(|(class, (speeds, energy))| class_report(class, speeds, energy, span, balls))
+        .map(|(class, (speeds, energy))| {
+            let particles = if class.starts_with("ore") { ore_grains } else { balls };
+            class_report(&class, speeds, energy, span, particles)
+        })
         .collect();
+    let all_classes = class_report("all", all_speeds, all_energy, span, balls);
+    let stress_energy = (ore_grains > 0).then(|| stress_energy_spectrum(ore_energies, span));
 
     let rotor_speed = (0..bodies.len())
         .filter(|&i| bodies.kind[i] == BodyKind::Wall)
         .map(|i| bodies.angular_velocity[i].abs())
         .fold(0.0, f64::max);
     let revolutions = rotor_speed * span / std::f64::consts::TAU;
-    let blade_hits = classes.iter().find(|c| c.class == "ball–blade").map_or(0, |c| c.collisions);
+    let blade_hits: usize = classes.iter().filter(|c| c.class.ends_with("–blade")).map(|c| c.collisions).sum();
     let blade_hits_per_revolution = if revolutions > 0.0 { blade_hits as f64 / revolutions } else { f64::NAN };
 
-    let series = Table::read(&run_dir.join("timeseries.csv"))?;
-    let what = "timeseries.csv";
-    let time = series.column("time_s", what)?;
+    // Power.
     let window: Vec<&Vec<String>> = series.rows.iter().filter(|r| number(&r[time]) >= start).collect();
     let (first, last) = match (window.first(), window.last()) {
         (Some(first), Some(last)) if window.len() >= 2 => (first, last),
@@ -249,22 +495,108 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
     ];
     let power_in = change(&[series.column("work_in_j", what)?]);
     let dissipation_w = change(&dissipation);
+    let (torque, work) =
+        (mean(series.column("rotor_power_torque_w", what)?), mean(series.column("rotor_power_work_w", what)?));
     let power = MillPower {
-        mean_power_torque_w: mean(series.column("rotor_power_torque_w", what)?),
-        mean_power_work_w: mean(series.column("rotor_power_work_w", what)?),
+        mean_power_torque_w: torque,
+        mean_power_work_w: work,
         power_in_w: power_in,
         dissipation_w,
         relative_imbalance: (power_in - dissipation_w) / power_in,
+        relative_torque_work: (torque - work) / torque,
+        relative_torque_dissipation: (torque - dissipation_w) / torque,
     };
-    let median_column = series.column("median_speed_m_s", what)?;
-    let median_mean = mean(median_column);
-    let median_spread = (window.iter().map(|r| (number(&r[median_column]) - median_mean).powi(2)).sum::<f64>()
-        / window.len() as f64)
-        .sqrt();
 
+    // The median-speed series over the window.
+    let in_window: Vec<f64> = median_series.iter().filter(|s| s.0 >= start).map(|s| s.1).collect();
+    let median_mean = in_window.iter().sum::<f64>() / in_window.len() as f64;
+    let median_spread =
+        (in_window.iter().map(|m| (m - median_mean).powi(2)).sum::<f64>() / in_window.len() as f64).sqrt();
+    let window_times: Vec<f64> = median_series.iter().filter(|s| s.0 >= start).map(|s| s.0).collect();
+    let interval = match window_times.len() {
+        0 | 1 => f64::NAN,
+        n => (window_times[n - 1] - window_times[0]) / (n - 1) as f64,
+    };
+    let rotor_period = if rotor_speed > 0.0 { std::f64::consts::TAU / rotor_speed } else { f64::INFINITY };
+    let autocorrelation = autocorrelation(&in_window, interval, rotor_period);
+
+    // Ball speeds and places from the window's dumps.
+    let window_dumps: Vec<&BallDump> = dumps.iter().filter(|d| d.time >= start).collect();
+    let chamber = chamber_of(&world);
+    let samples: Vec<(DVec2, f64)> = window_dumps.iter().flat_map(|d| d.balls.iter().copied()).collect();
+    let ball_speeds = (!window_dumps.is_empty()).then(|| {
+        let outer = |upper: bool| {
+            let Some(c) = chamber else { return Vec::new() };
+            let centre = DVec2::from(c.centre_m);
+            samples
+                .iter()
+                .filter(|(p, _)| (*p - centre).length() > c.radius_m - 2.0 * c.ball_diameter_m)
+                .filter(|(p, _)| (p.y >= centre.y) == upper)
+                .map(|s| s.1)
+                .collect()
+        };
+        BallSpeeds {
+            dumps: window_dumps.len(),
+            all: SpeedDistribution::of(samples.iter().map(|s| s.1).collect()),
+            upper_outer: SpeedDistribution::of(outer(true)),
+            lower_outer: SpeedDistribution::of(outer(false)),
+        }
+    });
+    let radial = chamber.filter(|_| !samples.is_empty()).map(|c| {
+        let radii: Vec<f64> = samples.iter().map(|(p, _)| c.polar(*p).0).collect();
+        radial_profile(&c, &radii)
+    });
+    let sectors = chamber.map_or_else(Vec::new, |c| sector_map(&c, &samples, &points, span));
+
+    Ok(MillReport {
+        window_s: [start, end],
+        warm_up,
+        balls,
+        ore_grains,
+        revolutions,
+        blade_hits_per_revolution,
+        classes,
+        all_classes,
+        stress_energy,
+        power,
+        median_speed_m_s: [median_mean, median_spread],
+        autocorrelation,
+        ball_speeds,
+        chamber,
+        radial_profile: radial,
+        collision_points_known: point_columns.is_some(),
+        sectors,
+        median_series,
+        files: Vec::new(),
+    })
+}
+
+/// Colours of the figures' series, in order.
+const COLOURS: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+];
+
+/// A histogram as a step line: (edge, density) at both ends of every bin.
+fn steps(edges: &[f64], densities: &[f64]) -> Vec<(f64, f64)> {
+    densities.iter().enumerate().flat_map(|(k, &d)| [(edges[k], d), (edges[k + 1], d)]).collect()
+}
+
+/// Analyses the mill run in `run_dir` ([`mill_report`]) and writes its tables, figures and `mill.json` into its
+/// `analysis/` directory.
+pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport, AnalysisError> {
+    let mut report = mill_report(run_dir, options)?;
     let mut out = OutputDir::create(&run_dir.join("analysis"))?;
-    let rows: Vec<String> = classes
+    let rows: Vec<String> = report
+        .classes
         .iter()
+        .chain([&report.all_classes])
         .map(|c| {
             format!(
                 "{},{},{},{},{},{},{},{},{},{},{},{}",
@@ -291,7 +623,8 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
             rows.join("\n")
         ),
     )?;
-    let histogram_rows: Vec<String> = classes
+    let histogram_rows: Vec<String> = report
+        .classes
         .iter()
         .flat_map(|c| {
             c.densities
@@ -304,19 +637,157 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
         "mill_speed_histograms.csv",
         &format!("class,from_m_s,to_m_s,density_s_m\n{}\n", histogram_rows.join("\n")),
     )?;
+    let class_series: Vec<(String, Vec<(f64, f64)>)> =
+        report.classes.iter().map(|c| (c.class.clone(), steps(&c.bin_edges_m_s, &c.densities))).collect();
+    let series: Vec<Series> = class_series
+        .iter()
+        .enumerate()
+        .map(|(k, (label, points))| Series { label, points, color: COLOURS[k % COLOURS.len()], mark: Mark::Line })
+        .collect();
+    let labels = Labels { title: "Impact normal speed per class", x: "v_n (m/s)", y: "density (s/m)" };
+    line_chart(&out.file("mill_impact_speeds.svg"), labels, &series)?;
+
+    let cut = report.warm_up.start_s;
+    let median_rows: Vec<Vec<f64>> =
+        report.median_series.iter().map(|&(t, m)| vec![t, m, f64::from(u8::from(t >= cut))]).collect();
+    out.write_csv("mill_median_speed.csv", &["time_s", "median_speed_m_s", "in_window"], &median_rows)?;
+    let (lo, hi) =
+        report.median_series.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), s| (l.min(s.1), h.max(s.1)));
+    let cut_line = [(cut, lo), (cut, hi)];
+    let labels = Labels { title: "Median speed and the warm-up cut", x: "t (s)", y: "median |v| (m/s)" };
+    line_chart(
+        &out.file("mill_median_speed.svg"),
+        labels,
+        &[
+            Series { label: "median |v|", points: &report.median_series, color: COLOURS[0], mark: Mark::Line },
+            Series { label: "start of the window", points: &cut_line, color: COLOURS[3], mark: Mark::Line },
+        ],
+    )?;
+    if let Some(a) = &report.autocorrelation {
+        let rows: Vec<Vec<f64>> = a.values.iter().enumerate().map(|(k, &r)| vec![k as f64 * a.interval_s, r]).collect();
+        out.write_csv("mill_autocorrelation.csv", &["lag_s", "autocorrelation"], &rows)?;
+        let points: Vec<(f64, f64)> = rows.iter().map(|r| (r[0], r[1])).collect();
+        let labels = Labels { title: "Autocorrelation of the median speed", x: "lag (s)", y: "ρ" };
+        line_chart(
+            &out.file("mill_autocorrelation.svg"),
+            labels,
+            &[Series { label: "ρ", points: &points, color: COLOURS[0], mark: Mark::Line }],
+        )?;
+    }
+    if let Some(s) = &report.ball_speeds {
+        let parts = [("all", &s.all), ("upper_outer", &s.upper_outer), ("lower_outer", &s.lower_outer)];
+        let rows: Vec<String> = parts
+            .iter()
+            .flat_map(|(name, d)| {
+                let h = &d.histogram;
+                h.densities
+                    .iter()
+                    .enumerate()
+                    .map(move |(k, v)| format!("{name},{},{},{v}", h.bin_edges[k], h.bin_edges[k + 1]))
+            })
+            .collect();
+        out.write_text("mill_ball_speeds.csv", &format!("part,from_m_s,to_m_s,density_s_m\n{}\n", rows.join("\n")))?;
+        let lines: Vec<(&str, Vec<(f64, f64)>)> = parts
+            .iter()
+            .filter(|(_, d)| d.samples > 0)
+            .map(|(name, d)| (*name, steps(&d.histogram.bin_edges, &d.histogram.densities)))
+            .collect();
+        let series: Vec<Series> = lines
+            .iter()
+            .enumerate()
+            .map(|(k, (label, points))| Series { label, points, color: COLOURS[k], mark: Mark::Line })
+            .collect();
+        let labels = Labels { title: "Ball speeds", x: "|v| (m/s)", y: "density (s/m)" };
+        line_chart(&out.file("mill_ball_speeds.svg"), labels, &series)?;
+    }
+    if let Some(p) = &report.radial_profile {
+        let rows: Vec<Vec<f64>> = p.rings.iter().map(|r| vec![r.from_m, r.to_m, r.share, r.area_share]).collect();
+        out.write_csv("mill_radial_profile.csv", &["from_m", "to_m", "share", "area_share"], &rows)?;
+        let bars: Vec<(f64, f64, f64)> = p.rings.iter().map(|r| (r.from_m, r.to_m, r.share)).collect();
+        let labels = Labels { title: "Where the balls are: share per ring", x: "r (m)", y: "share of ball samples" };
+        bar_chart(&out.file("mill_radial_profile.svg"), labels, &bars)?;
+    }
+    if let Some(c) = report.chamber.filter(|_| !report.sectors.is_empty()) {
+        let rows: Vec<Vec<f64>> = report
+            .sectors
+            .iter()
+            .map(|s| {
+                vec![
+                    s.ring as f64,
+                    s.sector as f64,
+                    s.radii_m[0],
+                    s.radii_m[1],
+                    s.angles_rad[0],
+                    s.angles_rad[1],
+                    s.ball_share,
+                    s.mean_speed_m_s,
+                    s.collisions as f64,
+                    s.collisions_per_second,
+                ]
+            })
+            .collect();
+        out.write_csv(
+            "mill_sectors.csv",
+            &[
+                "ring",
+                "sector",
+                "from_m",
+                "to_m",
+                "from_rad",
+                "to_rad",
+                "ball_share",
+                "mean_speed_m_s",
+                "collisions",
+                "collisions_per_second",
+            ],
+            &rows,
+        )?;
+        let (centre, radius) = (DVec2::from(c.centre_m), c.radius_m);
+        let cells = |value: fn(&SectorCell) -> f64| -> Vec<PolarCell> {
+            report.sectors.iter().map(|s| (s.radii_m, s.angles_rad, value(s))).collect()
+        };
+        let speed = cells(|s| s.mean_speed_m_s);
+        polar_cell_map(&out.file("mill_sector_speed.svg"), "Mean ball speed (m/s)", centre, radius, &speed)?;
+        if report.collision_points_known {
+            let rate = cells(|s| s.collisions_per_second);
+            let title = "Collisions per second, where they began";
+            polar_cell_map(&out.file("mill_sector_collisions.svg"), title, centre, radius, &rate)?;
+        }
+    }
+    if let Some(s) = &report.stress_energy {
+        let rows: Vec<Vec<f64>> = s
+            .counts
+            .iter()
+            .enumerate()
+            .map(|(k, &c)| vec![s.bin_edges_j[k], s.bin_edges_j[k + 1], c as f64, s.densities_per_decade[k]])
+            .collect();
+        out.write_csv("mill_stress_energy.csv", &["from_j", "to_j", "events", "density_per_decade"], &rows)?;
+        let bars: Vec<(f64, f64, f64)> = (0..s.counts.len())
+            .map(|k| (s.bin_edges_j[k].log10(), s.bin_edges_j[k + 1].log10(), s.densities_per_decade[k]))
+            .collect();
+        let labels = Labels { title: "Stress energy on ore", x: "log10 E (J)", y: "share per decade" };
+        bar_chart(&out.file("mill_stress_energy.svg"), labels, &bars)?;
+    }
     let json_path = out.file("mill.json");
-    let mut report = MillReport {
-        window_s: [start, end],
-        balls,
-        revolutions,
-        blade_hits_per_revolution,
-        classes,
-        power,
-        median_speed_m_s: [median_mean, median_spread],
-        files: Vec::new(),
-    };
     report.files = out.written().to_vec();
     let json = serde_json::to_string_pretty(&report)?;
     std::fs::write(&json_path, json).map_err(|source| AnalysisError::Io { path: json_path.clone(), source })?;
     Ok(report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_stress_energy_spectrum_has_log_bins_of_unit_area_per_decade() {
+        // Four impacts spread over three decades and one without approach: 2 bins of 1.5 decades.
+        let s = stress_energy_spectrum(vec![1e-6, 1e-5, 0.0, 1e-4, 1e-3], 2.0);
+        assert_eq!((s.events, s.without_impact, s.counts.clone()), (4, 1, vec![2, 2]));
+        assert!((s.bin_edges_j[1] / 10f64.powf(-4.5) - 1.0).abs() < 1e-12);
+        assert!(s.densities_per_decade.iter().all(|d| (d - 0.5 / 1.5).abs() < 1e-12));
+        assert!((s.energy_per_second_w - 1.111e-3 / 2.0).abs() < 1e-15);
+        assert_eq!(s.per_second, 2.0);
+        assert!((s.median_j - 5.5e-5).abs() < 1e-18);
+    }
 }

@@ -2,8 +2,9 @@
 //!
 //! Each row is an episode from its first touching step to its first step apart (docs/model.md, "Contact events"):
 //! the two bodies and their kinds and materials, the impact speeds at first touch, the largest overlap, the energy
-//! dissipated, the impulse on body a and, against a wall turning about a pivot, the angular impulse it took. Episodes
-//! still open when the run stops are in the final checkpoint, not in the file; a resumed run writes them when they end.
+//! dissipated, the impulse on body a, against a wall turning about a pivot the angular impulse it took, and the contact
+//! point at first touch (where the collision happened). Episodes still open when the run stops are in the final
+//! checkpoint, not in the file; a resumed run writes them when they end.
 
 use crate::runner::FrameSink;
 use gc2d_engine::{BodyKind, ContactEvent, ContactEventKind, World};
@@ -12,7 +13,7 @@ use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
 /// Column names of `events.csv`, in order.
-pub const EVENT_COLUMNS: [&str; 16] = [
+pub const EVENT_COLUMNS: [&str; 18] = [
     "begin_time_s",
     "end_time_s",
     "a",
@@ -29,6 +30,8 @@ pub const EVENT_COLUMNS: [&str; 16] = [
     "impulse_on_a_y_n_s",
     "wall_angular_impulse_n_m_s",
     "duration_s",
+    "begin_x_m",
+    "begin_y_m",
 ];
 
 /// Appends the finished episodes of every step to `events.csv`; as a frame sink it flushes on the frame cadence.
@@ -91,7 +94,7 @@ impl EventsWriter {
         let angular = event.wall_angular_impulse.map_or(String::new(), |l| format!("{l:e}"));
         writeln!(
             self.file,
-            "{},{},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e}",
+            "{},{},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e},{:e}",
             e.begin_time,
             event.time,
             event.a.0,
@@ -108,6 +111,8 @@ impl EventsWriter {
             e.impulse_on_a.y,
             angular,
             event.time - e.begin_time,
+            e.begin_point.x,
+            e.begin_point.y,
         )
     }
 }

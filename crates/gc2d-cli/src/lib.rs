@@ -3,8 +3,10 @@
 
 pub mod chatter;
 pub mod console;
+pub mod dumps;
 pub mod events;
 pub mod import;
+pub mod live;
 pub mod outputs;
 pub mod resume;
 pub mod runner;

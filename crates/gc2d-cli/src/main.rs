@@ -4,9 +4,11 @@
 //! Ctrl-C, SIGTERM or SIGHUP.
 
 use clap::{Parser, Subcommand};
-use gc2d_analysis::{AnalyzeOptions, MillOptions, SceneKind, analyze_mill, analyze_run};
+use gc2d_analysis::{AnalyzeOptions, MillOptions, SceneKind, analyze_mill, analyze_run, mill_report};
 use gc2d_cli::console;
+use gc2d_cli::dumps::StateDumps;
 use gc2d_cli::events::EventsWriter;
+use gc2d_cli::live::LiveSink;
 use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_scene_copy};
 use gc2d_cli::resume::{ResumePoint, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
@@ -68,9 +70,10 @@ enum Command {
         /// Cell size of the density and stress grids, m [default: about 150 particles per cell].
         #[arg(long)]
         grid: Option<f64>,
-        /// Mill: the warm-up left out of the averages, s.
-        #[arg(long, default_value_t = 0.2)]
-        warm_up: f64,
+        /// Mill: the warm-up left out of the averages, s [default: the automatic cut of the median-speed series by
+        /// its stationarity test, docs/analysis.md].
+        #[arg(long)]
+        warm_up: Option<f64>,
     },
     /// Convert a legacy gc2d input file (.gsi) into a RON scene; prints its `$` comments and every warning.
     ImportGsi {
@@ -162,9 +165,21 @@ struct RunArgs {
     #[arg(long)]
     record: Option<PathBuf>,
     /// Write every finished contact episode to <out>/events.csv (impact speeds, largest overlap, dissipated energy,
-    /// impulses; docs/model.md, "Contact events").
-    #[arg(long)]
+    /// impulses, contact point; docs/model.md, "Contact events") [default for a scene with a mill].
+    #[arg(long, overrides_with = "no_events")]
+    /// Serve the run live to the Foxglove app (Foxglove WebSocket) at ADDR, host:port [default: 127.0.0.1:8765];
+    /// frames at the scene's frames_per_second, built only while a client is subscribed.
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = gc2d_record::DEFAULT_LIVE_ADDRESS)]
+    live: Option<String>,
     events: bool,
+    /// Do not write events.csv (a mill scene writes it unless told so).
+    #[arg(long)]
+    no_events: bool,
+    /// Write the state of every particle (position, angle, velocities, forces, contacts) every this many simulated
+    /// seconds into <out>/dumps/particles_<k>.csv; 0 writes none [default: a mill scene at its frames_per_second,
+    /// other scenes none].
+    #[arg(long)]
+    dump_every: Option<f64>,
     /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/).
     #[arg(long)]
     png_every: Option<f64>,
@@ -250,6 +265,11 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     if args.threads == Some(0) {
         return Err(Failure::input("--threads must be at least 1"));
     }
+    if let Some(interval) = args.dump_every
+        && !(interval.is_finite() && interval >= 0.0)
+    {
+        return Err(Failure::input(format!("--dump-every must be a time in seconds (0: no dumps), got {interval}")));
+    }
     for (flag, interval) in [("--checkpoint-every", args.checkpoint_every), ("--png-every", args.png_every)] {
         if let Some(interval) = interval
             && !(interval.is_finite() && interval > 0.0)
@@ -330,13 +350,21 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
         None => None,
     };
+    let live_options = RecordOptions { colour_by: args.colour_by.into(), ..RecordOptions::default() };
+    let mut live = match &args.live {
+        Some(address) => Some(LiveSink::start(address, live_options, frame_interval).map_err(Failure::input)?),
+        None => None,
+    };
     let mut pictures = args.png_every.map(|interval| PngFrames {
         dir: out.join("frames"),
         interval,
         options: PngOptions { colour_by: args.colour_by.into(), ..PngOptions::default() },
         written: 0,
     });
-    let mut events = if args.events {
+    let mill = scene.mill.is_some();
+    let dump_interval = args.dump_every.unwrap_or(if mill { frame_interval } else { 0.0 });
+    let mut dumps = (dump_interval > 0.0).then(|| StateDumps::new(&out, dump_interval, scene.material_names()));
+    let mut events = if args.events || (mill && !args.no_events) {
         Some(start_events(&out, &scene, &mut world, args.resume.is_some(), frame_interval)?)
     } else {
         None
@@ -344,6 +372,9 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     let mut sinks: Vec<&mut dyn FrameSink> = vec![&mut segments];
     if let Some(e) = events.as_mut() {
         sinks.push(e);
+    }
+    if let Some(d) = dumps.as_mut() {
+        sinks.push(d);
     }
     if let Some(c) = checkpoints.as_mut() {
         sinks.push(c);
@@ -355,6 +386,9 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         sinks.push(p);
     }
     let started = Instant::now();
+    if let Some(l) = live.as_mut() {
+        sinks.push(l);
+    }
     let RunOutcome { status, chatter } =
         pool.install(|| run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet));
     drop(sinks);
@@ -362,6 +396,9 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         (RunStatus::Completed, Some(Err(e))) => RunStatus::Failed(format!("could not finish the recording: {e}")),
         (status, _) => status,
     };
+    if let Some(l) = live {
+        l.stop();
+    }
     let wall_time = started.elapsed().as_secs_f64();
     let final_checkpoint = out.join("final.ckpt");
     let status = match (status, world.save_checkpoint_file(&final_checkpoint)) {
@@ -382,7 +419,26 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     summary
         .write(&out.join("summary.json"))
         .map_err(|e| Failure { code: 1, report: format!("could not write the summary: {e}") })?;
-    report_outcome(&status, &world, &out, wall_time)
+    let code = report_outcome(&status, &world, &out, wall_time)?;
+    if mill && status == RunStatus::Completed {
+        print_mill_summary(&out, world.time());
+    }
+    Ok(code)
+}
+
+/// The thesis's averaging window starts at 0.2 s and ends at 1 s (ballmill.md §7.8).
+const THESIS_WINDOW_S: [f64; 2] = [0.2, 1.0];
+
+/// Prints the mill's statistics in a few lines (gc2d-analysis's [`gc2d_analysis::mill_report`], the numbers
+/// `gc2d-rs analyze --kind mill` writes): over the thesis's window when the run reaches its end, else from the
+/// automatic warm-up cut. A run without the files it needs says so instead.
+fn print_mill_summary(out: &Path, end: f64) {
+    let warm_up_s = (end >= THESIS_WINDOW_S[1]).then_some(THESIS_WINDOW_S[0]);
+    let analyze = format!("`gc2d-rs analyze {} --kind mill`", out.display());
+    match mill_report(out, &MillOptions { warm_up_s }) {
+        Ok(report) => console::err(&format!("{}\nTables, maps and figures: {analyze}.", report.summary())),
+        Err(e) => console::err(&format!("No mill summary: {e}.")),
+    }
 }
 
 /// Opens `events.csv` (continued on a resumed run that has one) and has the World record contact events.
@@ -482,7 +538,13 @@ fn snapshot(run: &Path, output: Option<PathBuf>, width: u32, colour_by: Colour, 
 }
 
 /// `analyze`: runs the analysis of a finished run and says where the tables and figures are.
-fn analyze(run: &Path, kind: Kind, window: Option<f64>, grid: Option<f64>, warm_up: f64) -> Result<u8, Failure> {
+fn analyze(
+    run: &Path,
+    kind: Kind,
+    window: Option<f64>,
+    grid: Option<f64>,
+    warm_up: Option<f64>,
+) -> Result<u8, Failure> {
     let failed = |e: gc2d_analysis::AnalysisError| Failure::input(format!("cannot analyse {}: {e}", run.display()));
     let scene = match kind {
         Kind::Auto => SceneKind::Auto,
@@ -492,7 +554,7 @@ fn analyze(run: &Path, kind: Kind, window: Option<f64>, grid: Option<f64>, warm_
             let report = analyze_mill(run, &MillOptions { warm_up_s: warm_up }).map_err(failed)?;
             let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
             console::out(&json).map_err(|e| Failure::stdout(&e))?;
-            console::err(&format!("Tables in {}.", run.join("analysis").display()));
+            console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
             return Ok(0);
         }
     };

@@ -31,6 +31,8 @@ pub struct Episode {
     pub impact_normal_speed: f64,
     /// Tangential (sliding) speed of the contact points at first touch, m/s (≥ 0).
     pub impact_tangential_speed: f64,
+    /// The contact point at first touch, m (where the collision happened: a mill's sector maps).
+    pub begin_point: DVec2,
     /// Largest overlap of the episode, as the pair's `overlap_fraction` (area fraction for the overlap-area law,
     /// depth over the smaller diameter for penetration laws).
     pub max_overlap: f64,
@@ -117,7 +119,13 @@ impl ContactEventLog {
 
     /// Opens an episode at `time` with the impact speeds at first touch, and writes its `Begin` event.
     pub fn begin(&mut self, step: &PairStep, time: f64, impact_normal_speed: f64, impact_tangential_speed: f64) {
-        let episode = Episode { begin_time: time, impact_normal_speed, impact_tangential_speed, ..Episode::default() };
+        let episode = Episode {
+            begin_time: time,
+            impact_normal_speed,
+            impact_tangential_speed,
+            begin_point: step.point,
+            ..Episode::default()
+        };
         self.open.insert((step.a.0, step.b.0), episode);
         self.events.push(ContactEvent {
             kind: ContactEventKind::Begin,
