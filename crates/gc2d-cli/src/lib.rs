@@ -12,3 +12,4 @@ pub mod resume;
 pub mod runner;
 pub mod segments;
 pub mod sinks;
+pub mod sweep;

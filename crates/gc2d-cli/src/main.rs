@@ -86,6 +86,9 @@ enum Command {
         #[arg(long, value_enum, default_value_t)]
         part_size: gc2d_cli::import::PartSizeOption,
     },
+    /// Run a parameter sweep or ensemble: a run per point, several at once, resumable; a table and plots of the
+    /// results; or a Slurm job-array script (docs/sweeps.md).
+    Sweep(gc2d_cli::sweep::SweepArgs),
     /// Error against run time of the integrators on reference problems (docs/validation.md).
     Convergence {
         /// Output directory for the tables and figures.
@@ -218,6 +221,7 @@ fn main() -> ExitCode {
         Command::Snapshot { run, output, width, colour_by, forces } => snapshot(&run, output, width, colour_by, forces),
         Command::Analyze { run, kind, window, grid, warm_up } => analyze(&run, kind, window, grid, warm_up),
         Command::Convergence { out, quick } => convergence(out, quick),
+        Command::Sweep(args) => gc2d_cli::sweep::sweep(&args).map_err(|e| Failure { code: e.code, report: e.report }),
         Command::ImportGsi { gsi, output, part_size } => {
             gc2d_cli::import::import_gsi(&gsi, output.as_deref(), part_size)
                 .map(|_| 0)
