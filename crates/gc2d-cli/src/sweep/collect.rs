@@ -1,0 +1,220 @@
+//! Gathering the sweep's results into one table, a row per point: the point's name, its parameter values and seed,
+//! the run's outcome, then every number of its `summary.json` and of each scene-type analysis it has
+//! (`analysis/<kind>.json`, the mill's run first where it is missing), read generically as flattened JSON, so that
+//! fields an analysis gains later appear as new columns.
+
+use super::SweepError;
+use super::scenes::PointScene;
+use super::spec::{SEED, Sweep};
+use super::state::outcome;
+use gc2d_analysis::{MillOptions, analyze_mill};
+use serde_json::Value;
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Numeric arrays up to this length become a column per element (`quartiles_m_s[1]`); longer ones (histograms) are
+/// left out.
+pub const MAX_ARRAY_COLUMNS: usize = 8;
+
+/// One point's results.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// The run directory's name.
+    pub point: String,
+    /// The parameter values as written in the scene.
+    pub parameters: Vec<String>,
+    /// The seed.
+    pub seed: u64,
+    /// `completed`, `interrupted` or `failed`; `None` when the point has no summary yet.
+    pub outcome: Option<String>,
+    /// The numbers by column name.
+    pub numbers: HashMap<String, f64>,
+}
+
+/// The table: the parameter names, the numeric columns in the order first met, and the rows in point order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    /// Names of the parameter columns.
+    pub parameters: Vec<String>,
+    /// Names of the numeric columns.
+    pub numbers: Vec<String>,
+    /// One per point.
+    pub rows: Vec<Row>,
+}
+
+impl Table {
+    /// The values of numeric column `name` (`None` where a row lacks it), or `None` if there is no such column.
+    pub fn column(&self, name: &str) -> Option<Vec<Option<f64>>> {
+        self.numbers
+            .contains(&name.to_owned())
+            .then(|| self.rows.iter().map(|r| r.numbers.get(name).copied()).collect())
+    }
+}
+
+/// Reads every point's results (running the mill analysis where a finished mill run lacks it). Problems with single
+/// points (a missing summary, an analysis that fails) are listed in the returned warnings, not fatal.
+pub fn collect(sweep: &Sweep, points: &[PointScene]) -> (Table, Vec<String>) {
+    let mut warnings = Vec::new();
+    let mut numbers: Vec<String> = Vec::new();
+    let mut rows = Vec::with_capacity(points.len());
+    for point in points {
+        let dir = &point.dir;
+        let outcome = outcome(dir);
+        let mut values = Vec::new();
+        match read_json(&dir.join("summary.json")) {
+            Ok(summary) => flatten("", &summary, &mut values),
+            Err(message) => warnings.push(format!("{}: {message}", point.name)),
+        }
+        if point.is_mill && outcome.as_deref() == Some("completed") && !dir.join("analysis/mill.json").is_file() {
+            let options = MillOptions { warm_up_s: sweep.file.analysis.warm_up_s };
+            if let Err(e) = analyze_mill(dir, &options) {
+                warnings.push(format!("{}: the mill analysis failed: {e}", point.name));
+            }
+        }
+        for (kind, path) in analyses(dir) {
+            match read_json(&path) {
+                Ok(report) => flatten(&kind, &report, &mut values),
+                Err(message) => warnings.push(format!("{}: {message}", point.name)),
+            }
+        }
+        for (name, _) in &values {
+            if !numbers.contains(name) {
+                numbers.push(name.clone());
+            }
+        }
+        rows.push(Row {
+            point: point.name.clone(),
+            parameters: point.point.values.clone(),
+            seed: point.point.seed,
+            outcome,
+            numbers: values.into_iter().collect(),
+        });
+    }
+    let parameters = sweep.parameters.iter().map(|p| p.name.clone()).collect();
+    (Table { parameters, numbers, rows }, warnings)
+}
+
+/// The scene-type analyses of a run directory: `analysis/<kind>.json`, by kind, in name order.
+fn analyses(dir: &Path) -> Vec<(String, std::path::PathBuf)> {
+    let Ok(entries) = std::fs::read_dir(dir.join("analysis")) else { return Vec::new() };
+    let mut found: Vec<(String, std::path::PathBuf)> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .filter_map(|p| Some((p.file_stem()?.to_string_lossy().into_owned(), p.clone())))
+        .collect();
+    found.sort();
+    found
+}
+
+fn read_json(path: &Path) -> Result<Value, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| format!("cannot read {}: {e}", path.display()))
+}
+
+/// The numbers of a JSON value with their dotted names: objects by key (`energy.kinetic_j`), booleans as 1 or 0,
+/// short numeric arrays by index (`quartiles_m_s[1]`), arrays of objects by each object's first text field
+/// (`classes[ball–ball].per_second`) or else by index; strings, nulls and long arrays are left out.
+pub fn flatten(prefix: &str, value: &Value, out: &mut Vec<(String, f64)>) {
+    let join = |key: &str| if prefix.is_empty() { key.to_owned() } else { format!("{prefix}.{key}") };
+    match value {
+        Value::Number(n) => {
+            if let Some(x) = n.as_f64() {
+                out.push((prefix.to_owned(), x));
+            }
+        }
+        Value::Bool(b) => out.push((prefix.to_owned(), f64::from(u8::from(*b)))),
+        Value::Object(map) => map.iter().for_each(|(key, v)| flatten(&join(key), v, out)),
+        Value::Array(items) if items.iter().all(Value::is_number) => {
+            if items.len() <= MAX_ARRAY_COLUMNS {
+                items.iter().enumerate().for_each(|(i, v)| flatten(&format!("{prefix}[{i}]"), v, out));
+            }
+        }
+        Value::Array(items) if items.iter().all(Value::is_object) => {
+            let keys: Vec<Option<&str>> = items.iter().map(first_text).collect();
+            let distinct = keys.iter().flatten().collect::<std::collections::HashSet<_>>().len() == items.len();
+            for (i, item) in items.iter().enumerate() {
+                let key = match keys[i] {
+                    Some(key) if distinct => key.to_owned(),
+                    _ => i.to_string(),
+                };
+                flatten(&format!("{prefix}[{key}]"), item, out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The first text field of a JSON object.
+fn first_text(value: &Value) -> Option<&str> {
+    value.as_object()?.values().find_map(Value::as_str)
+}
+
+/// Writes the table as CSV: `point`, the parameters, `seed`, `outcome`, then the numbers (empty where a row lacks
+/// one; numbers in Rust's shortest form that reads back to the same f64).
+pub fn write_csv(table: &Table, path: &Path) -> Result<(), SweepError> {
+    let mut text = String::new();
+    let header: Vec<String> = ["point".to_owned()]
+        .into_iter()
+        .chain(table.parameters.iter().cloned())
+        .chain([SEED.to_owned(), "outcome".to_owned()])
+        .chain(table.numbers.iter().cloned())
+        .map(|h| csv_field(&h))
+        .collect();
+    text.push_str(&header.join(","));
+    text.push('\n');
+    for row in &table.rows {
+        let mut fields = vec![csv_field(&row.point)];
+        fields.extend(row.parameters.iter().map(|v| csv_field(v.trim_matches('"'))));
+        fields.push(row.seed.to_string());
+        fields.push(row.outcome.clone().unwrap_or_default());
+        fields.extend(table.numbers.iter().map(|n| row.numbers.get(n).map_or(String::new(), |x| x.to_string())));
+        text.push_str(&fields.join(","));
+        text.push('\n');
+    }
+    std::fs::write(path, text).map_err(|e| SweepError::failed(format!("cannot write {}: {e}", path.display())))
+}
+
+/// A CSV field, quoted when it holds a comma, a quote or a line break.
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n']) { format!("\"{}\"", text.replace('"', "\"\"")) } else { text.to_owned() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn json_flattens_to_named_numbers() {
+        let json: Value = serde_json::from_str(
+            r#"{"a": 1, "b": {"c": 2.5, "ok": true, "s": "x"}, "q": [1, 2, 3], "long": [1,2,3,4,5,6,7,8,9],
+                "classes": [{"class": "ball–ball", "n": 4}, {"class": "ball–hub", "n": 5}], "none": null}"#,
+        )
+        .unwrap();
+        let mut out = Vec::new();
+        flatten("mill", &json, &mut out);
+        let names: Vec<&str> = out.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "mill.a",
+                "mill.b.c",
+                "mill.b.ok",
+                "mill.classes[ball–ball].n",
+                "mill.classes[ball–hub].n",
+                "mill.q[0]",
+                "mill.q[1]",
+                "mill.q[2]"
+            ]
+        );
+        assert_eq!(out[2].1, 1.0);
+        assert_eq!(out[4].1, 5.0);
+    }
+
+    #[test]
+    fn csv_fields_are_quoted_when_needed() {
+        assert_eq!(csv_field("a,b"), "\"a,b\"");
+        assert_eq!(csv_field("say \"x\""), "\"say \"\"x\"\"\"");
+        assert_eq!(csv_field("plain"), "plain");
+    }
+}

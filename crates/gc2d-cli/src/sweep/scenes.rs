@@ -1,0 +1,131 @@
+//! The scene of every point, made and checked before anything runs: the base scene loaded, each parameter's path
+//! checked against it (errors at the parameter in the sweep file, with the scene loader's "did you mean"), every
+//! point's values put in, and the result loaded and built like `gc2d-rs check` does (errors name the point).
+
+use super::SweepError;
+use super::apply::{PathProblem, Target, put, target};
+use super::spec::{ParameterSpec, Point, Sweep};
+use crate::outputs::SCENE_COPY;
+use gc2d_scene::{ErrorKind, Scene};
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+/// The path of the seed in a scene.
+const SEED_PATH: &str = "run.seed";
+
+/// Longest list of further failing points a report names.
+const LISTED_FAILURES: usize = 10;
+
+/// A point with its run directory and scene.
+#[derive(Debug, Clone)]
+pub struct PointScene {
+    /// The point.
+    pub point: Point,
+    /// Its directory name (`rpm=1700_count=130_seed=1`).
+    pub name: String,
+    /// Its run directory.
+    pub dir: PathBuf,
+    /// The scene as RON text with every field written, as `scene.ron` holds it.
+    pub text: String,
+    /// True for a mill scene (its runs record contact events and are analysed with `analyze --kind mill`).
+    pub is_mill: bool,
+}
+
+/// Makes and checks the scene of every point.
+pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, SweepError> {
+    let base = Scene::from_path(&sweep.scene).map_err(|e| {
+        SweepError::input(format!(
+            "the base scene of {} does not load:\n{}",
+            sweep.path.display(),
+            super::file::render(&e)
+        ))
+    })?;
+    let base_text =
+        base.to_ron_string().map_err(|e| SweepError::failed(format!("cannot write the base scene: {e}")))?;
+    for parameter in &sweep.parameters {
+        check_path(sweep, &base_text, parameter)?;
+    }
+    let points = sweep.points(base.run.seed);
+    let mut seen: HashMap<String, usize> = HashMap::new();
+    for point in &points {
+        let name = sweep.dir_name(point);
+        if let Some(other) = seen.insert(name.clone(), point.index) {
+            return Err(SweepError::input(format!(
+                "points {other} and {} both get the directory name `{name}` (values that differ only in characters a \
+                 directory name cannot hold): give different values",
+                point.index
+            )));
+        }
+    }
+    let made: Vec<Result<PointScene, (String, String)>> =
+        points.par_iter().map(|point| point_scene(sweep, &base_text, point)).collect();
+    let mut scenes = Vec::with_capacity(made.len());
+    let mut failures = Vec::new();
+    for result in made {
+        match result {
+            Ok(scene) => scenes.push(scene),
+            Err(failure) => failures.push(failure),
+        }
+    }
+    if let Some((first, report)) = failures.first() {
+        let mut message = format!("the scene of point {first} is invalid:\n{report}");
+        if failures.len() > 1 {
+            let others: Vec<&str> = failures[1..].iter().take(LISTED_FAILURES).map(|(n, _)| n.as_str()).collect();
+            let more = failures.len() - 1 - others.len();
+            message.push_str(&format!(
+                "\n{} of {} points fail; the others: {}{}",
+                failures.len(),
+                points.len(),
+                others.join(", "),
+                if more > 0 { format!(" and {more} more") } else { String::new() }
+            ));
+        }
+        return Err(SweepError::input(message));
+    }
+    Ok(scenes)
+}
+
+/// The point's scene, loaded and built; on failure the point's name and values and the scene's error.
+fn point_scene(sweep: &Sweep, base_text: &str, point: &Point) -> Result<PointScene, (String, String)> {
+    let name = sweep.dir_name(point);
+    let dir = sweep.out.join(&name);
+    let file = dir.join(SCENE_COPY);
+    let fail = |report: String| (format!("`{name}` ({})", sweep.describe(point)), report);
+    let mut text = base_text.to_owned();
+    let assignments = sweep.parameters.iter().map(|p| p.path.as_str()).zip(point.values.iter().cloned());
+    for (path, value) in std::iter::once((SEED_PATH, point.seed.to_string())).chain(assignments) {
+        let at = target(&text, path).map_err(|p| fail(format!("`{path}`: {}", p.message)))?;
+        text = put(&text, &at, &value);
+    }
+    let scene = Scene::from_str(&text, &file.display().to_string()).map_err(|e| fail(super::file::render(&e)))?;
+    scene.summary().map_err(|e| fail(super::file::render(&e)))?;
+    let text = scene.to_ron_string().map_err(|e| fail(format!("cannot write the scene: {e}")))?;
+    Ok(PointScene { point: point.clone(), name, dir, text, is_mill: scene.mill.is_some() })
+}
+
+/// Refuses a parameter whose path does not lead to a field of the base scene: located at the parameter in the sweep
+/// file, with the loader's suggestion where the name is misspelled.
+fn check_path(sweep: &Sweep, base_text: &str, parameter: &ParameterSpec) -> Result<(), SweepError> {
+    let first = &parameter.values[0];
+    let (probe, problem) = match target(base_text, &parameter.path) {
+        Ok(Target::Value(_)) => return Ok(()),
+        Ok(insert) => (Some((insert, first.as_str())), None),
+        Err(problem) => (problem.probe.clone().map(|t| (t, "()")), Some(problem)),
+    };
+    if let Some((at, value)) = probe
+        && let Err(error) = Scene::from_str(&put(base_text, &at, value), "probe")
+        && error.kind() == ErrorKind::UnknownName
+        && parameter.path.starts_with(error.path())
+    {
+        return Err(sweep.parameter_error(
+            parameter,
+            format!("`{}` is not a field of the scene: {}", parameter.path, error.message()),
+            error.help_text().map(str::to_owned),
+        ));
+    }
+    match problem {
+        Some(PathProblem { message, help, .. }) => Err(sweep.parameter_error(parameter, message, help)),
+        None => Ok(()),
+    }
+}

@@ -1,0 +1,309 @@
+//! The sweep as it runs: the sweep file checked field by field (grids, names, seeds, plots), each parameter's values
+//! as the RON text put into the scene, and the points, their full grid.
+
+use super::SweepError;
+use super::file::{Parsed, Plot, Seeds, SweepFile, Values, render};
+use gc2d_scene::{ErrorKind, SceneError, SourceText};
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Most points one sweep may have (a grid with a step in the wrong unit would otherwise make millions).
+pub const MAX_POINTS: usize = 100_000;
+
+/// The column and directory name of the seed.
+pub const SEED: &str = "seed";
+
+/// A parameter with its values written out.
+#[derive(Debug, Clone)]
+pub struct ParameterSpec {
+    /// Field path into the scene.
+    pub path: String,
+    /// Column and directory name.
+    pub name: String,
+    /// Each value as RON text, as put into the scene.
+    pub values: Vec<String>,
+    /// The parameter's index in the sweep file (for locating errors).
+    pub index: usize,
+}
+
+/// A checked sweep file.
+pub struct Sweep {
+    /// The sweep file.
+    pub path: PathBuf,
+    /// Its text, for locating errors.
+    pub source: Arc<SourceText>,
+    /// The base scene file.
+    pub scene: PathBuf,
+    /// The output directory.
+    pub out: PathBuf,
+    /// The parameters.
+    pub parameters: Vec<ParameterSpec>,
+    /// The seeds; `None` keeps the base scene's seed (and its count is then 1).
+    pub seeds: Option<SeedSpec>,
+    /// What the file says, for the run, analysis and plot options.
+    pub file: SweepFile,
+}
+
+/// The seeds as given.
+#[derive(Debug, Clone)]
+pub enum SeedSpec {
+    /// The base scene's seed and the ones after it.
+    Count(u64),
+    /// These.
+    List(Vec<u64>),
+}
+
+/// One point of the sweep: a value of every parameter and a seed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    /// Its place in the sweep, from 0 (the first parameter varies slowest, the seed fastest).
+    pub index: usize,
+    /// The value of each parameter, as RON text, in the order of the sweep file.
+    pub values: Vec<String>,
+    /// The random seed.
+    pub seed: u64,
+}
+
+impl Sweep {
+    /// Checks the parsed file read from `path`; `out` overrides its output directory.
+    pub fn new(path: &Path, parsed: Parsed, out: Option<PathBuf>) -> Result<Self, SweepError> {
+        let Parsed { file, source } = parsed;
+        let error = |field: String, message: String| {
+            SweepError::input(render(&SceneError::new(ErrorKind::Value, field, message).located(Some(&source))))
+        };
+        let folder = path.parent().unwrap_or(Path::new(""));
+        let scene = folder.join(&file.scene);
+        let out = out.unwrap_or_else(|| match &file.out {
+            Some(out) => folder.join(out),
+            None => PathBuf::from("out").join(path.file_stem().unwrap_or_default()),
+        });
+        let mut parameters = Vec::new();
+        let mut names = HashSet::from([SEED.to_owned()]);
+        for (index, parameter) in file.parameters.iter().enumerate() {
+            let field = |name: &str| format!("parameters[{index}].{name}");
+            if parameter.path == "run.seed" {
+                return Err(error(field("path"), "the seed is set by `seeds`, not as a parameter".into()));
+            }
+            let name = parameter.name.clone().unwrap_or_else(|| last_field(&parameter.path).to_owned());
+            if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.') {
+                return Err(error(
+                    field(if parameter.name.is_some() { "name" } else { "path" }),
+                    format!("`{name}` cannot name a column and a directory: use letters, digits, `_` and `.`"),
+                ));
+            }
+            if !names.insert(name.clone()) {
+                return Err(error(
+                    field(if parameter.name.is_some() { "name" } else { "path" }),
+                    format!("a second parameter (or the seed) is named `{name}`: give one a `name`"),
+                ));
+            }
+            let values = match &parameter.values {
+                Values::Grid { start, stop, step } => {
+                    grid(*start, *stop, *step).map_err(|message| error(field("values"), message))?
+                }
+                Values::List(values) => (0..values.len())
+                    .map(|k| list_value(&source, &format!("parameters[{index}].values[{k}]"), &values[k]))
+                    .collect::<Vec<_>>(),
+            };
+            if values.is_empty() {
+                return Err(error(field("values"), "the list of values is empty".into()));
+            }
+            if let Some(twice) = first_repeat(&values) {
+                return Err(error(field("values"), format!("the value `{twice}` is given twice")));
+            }
+            parameters.push(ParameterSpec { path: parameter.path.clone(), name, values, index });
+        }
+        let seeds = match &file.seeds {
+            None => None,
+            Some(Seeds::Count(0)) => return Err(error("seeds".into(), "at least one seed is needed".into())),
+            Some(Seeds::Count(n)) => Some(SeedSpec::Count(*n)),
+            Some(Seeds::List(list)) => {
+                if list.is_empty() {
+                    return Err(error("seeds".into(), "the list of seeds is empty".into()));
+                }
+                if let Some(twice) = first_repeat(list) {
+                    return Err(error("seeds".into(), format!("the seed {twice} is given twice")));
+                }
+                Some(SeedSpec::List(list.clone()))
+            }
+        };
+        let seed_count = match &seeds {
+            None => 1,
+            Some(SeedSpec::Count(n)) => usize::try_from(*n).unwrap_or(usize::MAX),
+            Some(SeedSpec::List(list)) => list.len(),
+        };
+        let count = parameters.iter().map(|p| p.values.len()).chain([seed_count]).try_fold(1usize, usize::checked_mul);
+        if count.is_none_or(|n| n > MAX_POINTS) {
+            return Err(error(
+                "parameters".into(),
+                format!("the grid has more than {MAX_POINTS} points: check the steps and the seed count"),
+            ));
+        }
+        if let Some(every) = file.run.checkpoint_every_s
+            && !(every.is_finite() && every > 0.0)
+        {
+            return Err(error("run.checkpoint_every_s".into(), format!("must be a positive time in s, got {every}")));
+        }
+        check_plots(&file.plots, &parameters).map_err(|(field, message)| error(field, message))?;
+        Ok(Self { path: path.to_path_buf(), source, scene, out, parameters, seeds, file })
+    }
+
+    /// Every point: the full grid of the parameters' values, each with every seed. `base_seed` is the base scene's.
+    pub fn points(&self, base_seed: u64) -> Vec<Point> {
+        let seeds: Vec<u64> = match &self.seeds {
+            None => vec![base_seed],
+            Some(SeedSpec::Count(n)) => (0..*n).map(|k| base_seed.wrapping_add(k)).collect(),
+            Some(SeedSpec::List(list)) => list.clone(),
+        };
+        let mut combinations: Vec<Vec<String>> = vec![Vec::new()];
+        for parameter in &self.parameters {
+            combinations = combinations
+                .iter()
+                .flat_map(|head| {
+                    parameter.values.iter().map(move |value| {
+                        let mut next = head.clone();
+                        next.push(value.clone());
+                        next
+                    })
+                })
+                .collect();
+        }
+        combinations
+            .into_iter()
+            .flat_map(|values| seeds.iter().map(move |&seed| (values.clone(), seed)))
+            .enumerate()
+            .map(|(index, (values, seed))| Point { index, values, seed })
+            .collect()
+    }
+
+    /// The directory name of a point: `rpm=1700_count=130_seed=1`.
+    pub fn dir_name(&self, point: &Point) -> String {
+        let mut parts: Vec<String> =
+            self.parameters.iter().zip(&point.values).map(|(p, v)| format!("{}={}", p.name, label(v))).collect();
+        parts.push(format!("{SEED}={}", point.seed));
+        parts.join("_")
+    }
+
+    /// The point's values for a message: `mill.rotor.rpm = 1700, run.seed = 1`.
+    pub fn describe(&self, point: &Point) -> String {
+        let mut parts: Vec<String> =
+            self.parameters.iter().zip(&point.values).map(|(p, v)| format!("{} = {v}", p.path)).collect();
+        parts.push(format!("run.seed = {}", point.seed));
+        parts.join(", ")
+    }
+
+    /// An error located at a parameter's `path` field in the sweep file.
+    pub fn parameter_error(&self, parameter: &ParameterSpec, message: String, help: Option<String>) -> SweepError {
+        let mut error =
+            SceneError::new(ErrorKind::UnknownName, format!("parameters[{}].path", parameter.index), message);
+        if let Some(help) = help {
+            error = error.with_help(help);
+        }
+        SweepError::input(render(&error.located(Some(&self.source))))
+    }
+}
+
+/// The plots name a parameter on x and their outputs at all.
+fn check_plots(plots: &[Plot], parameters: &[ParameterSpec]) -> Result<(), (String, String)> {
+    for (k, plot) in plots.iter().enumerate() {
+        if !parameters.iter().any(|p| p.name == plot.x) {
+            let names: Vec<&str> = parameters.iter().map(|p| p.name.as_str()).collect();
+            let hint =
+                gc2d_scene::error::suggest(&plot.x, &names).map_or(String::new(), |s| format!(", did you mean `{s}`?"));
+            return Err((
+                format!("plots[{k}].x"),
+                format!(
+                    "`{}` is not a parameter of this sweep{hint} (the parameters are {})",
+                    plot.x,
+                    names.join(", ")
+                ),
+            ));
+        }
+        if plot.y.is_empty() {
+            return Err((format!("plots[{k}].y"), "name at least one output column".into()));
+        }
+    }
+    Ok(())
+}
+
+/// The values start + k·step up to stop, each rounded to 12 significant digits (so 0.1 + 2·0.1 reads 0.3) and
+/// written the way RON reads it back.
+fn grid(start: f64, stop: f64, step: f64) -> Result<Vec<String>, String> {
+    if !(start.is_finite() && stop.is_finite() && step.is_finite()) {
+        return Err("start, stop and step must be finite numbers".into());
+    }
+    if step <= 0.0 {
+        return Err(format!("the step must be positive, got {step}"));
+    }
+    if stop < start {
+        return Err(format!("stop ({stop}) is below start ({start})"));
+    }
+    let steps = ((stop - start) / step + 1e-9).floor();
+    if steps >= MAX_POINTS as f64 {
+        return Err(format!("the grid has more than {MAX_POINTS} values: is the step in the right unit?"));
+    }
+    Ok((0..=steps as usize).map(|k| number(start + k as f64 * step)).collect())
+}
+
+/// A grid value as RON text: integers without a decimal point (so they also fit integer fields such as a count),
+/// others rounded to 12 significant digits.
+fn number(value: f64) -> String {
+    let rounded: f64 = format!("{value:.11e}").parse().unwrap_or(value);
+    if rounded.fract() == 0.0 && rounded.abs() < 1e15 { format!("{}", rounded as i64) } else { format!("{rounded}") }
+}
+
+/// A listed value as written in the sweep file (its text at `field`), or as ron writes it where the text is not
+/// found.
+fn list_value(source: &SourceText, field: &str, value: &ron::Value) -> String {
+    match source.span_of(field) {
+        Some(span) if source.path_at(span.start) == Some(field) => source.text()[span].trim().to_owned(),
+        _ => ron::to_string(value).unwrap_or_default(),
+    }
+}
+
+/// The first element that occurs twice.
+fn first_repeat<T: std::hash::Hash + Eq + std::fmt::Display>(values: &[T]) -> Option<&T> {
+    let mut seen = HashSet::new();
+    values.iter().find(|v| !seen.insert(*v))
+}
+
+/// The last field name of a path: `materials[0].mu` → `mu`, `mill.rotor.rpm` → `rpm`.
+fn last_field(path: &str) -> &str {
+    let last = path.rsplit('.').next().unwrap_or(path);
+    last.split('[').next().unwrap_or(last)
+}
+
+/// A value as part of a directory name: quotes dropped, anything but letters, digits, `.`, `+` and `-` as `-`.
+fn label(value: &str) -> String {
+    value
+        .trim_matches('"')
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() || matches!(c, '.' | '+' | '-') { c } else { '-' })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grids_include_the_stop_and_read_as_ron_numbers() {
+        assert_eq!(grid(800.0, 2000.0, 200.0).unwrap(), ["800", "1000", "1200", "1400", "1600", "1800", "2000"]);
+        assert_eq!(grid(0.1, 0.3, 0.1).unwrap(), ["0.1", "0.2", "0.3"]);
+        assert_eq!(grid(1.0, 1.9, 0.5).unwrap(), ["1", "1.5"]);
+        assert_eq!(grid(2e-7, 2e-7, 1e-7).unwrap(), ["0.0000002"]);
+        assert!(grid(1.0, 0.0, 1.0).is_err());
+        assert!(grid(0.0, 1.0, 0.0).is_err());
+        assert!(grid(0.0, 1e9, 1e-3).is_err());
+    }
+
+    #[test]
+    fn names_and_labels() {
+        assert_eq!(last_field("mill.rotor.rpm"), "rpm");
+        assert_eq!(last_field("materials[0].youngs_modulus_pa"), "youngs_modulus_pa");
+        assert_eq!(last_field("materials[1]"), "materials");
+        assert_eq!(label("\"steel 2\""), "steel-2");
+        assert_eq!(label("1.5e-3"), "1.5e-3");
+    }
+}
