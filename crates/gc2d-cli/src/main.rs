@@ -167,13 +167,13 @@ struct RunArgs {
     /// Record the run for Foxglove into this MCAP file (frames at the scene's frames_per_second).
     #[arg(long)]
     record: Option<PathBuf>,
-    /// Write every finished contact episode to <out>/events.csv (impact speeds, largest overlap, dissipated energy,
-    /// impulses, contact point; docs/model.md, "Contact events") [default for a scene with a mill].
-    #[arg(long, overrides_with = "no_events")]
     /// Serve the run live to the Foxglove app (Foxglove WebSocket) at ADDR, host:port [default: 127.0.0.1:8765];
     /// frames at the scene's frames_per_second, built only while a client is subscribed.
     #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = gc2d_record::DEFAULT_LIVE_ADDRESS)]
     live: Option<String>,
+    /// Write every finished contact episode to <out>/events.csv (impact speeds, largest overlap, dissipated energy,
+    /// impulses, contact point; docs/model.md, "Contact events") [default for a scene with a mill].
+    #[arg(long, overrides_with = "no_events")]
     events: bool,
     /// Do not write events.csv (a mill scene writes it unless told so).
     #[arg(long)]
@@ -350,13 +350,13 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         checkpoint_interval.unwrap_or(frame_interval),
     )
     .map_err(|e| Failure::input(format!("cannot write {}: {e}", segments_path.display())))?;
-    let mut recording = match &args.record {
-        Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
-        None => None,
-    };
     let live_options = RecordOptions { colour_by: args.colour_by.into(), ..RecordOptions::default() };
     let mut live = match &args.live {
         Some(address) => Some(LiveSink::start(address, live_options, frame_interval).map_err(Failure::input)?),
+        None => None,
+    };
+    let mut recording = match &args.record {
+        Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
         None => None,
     };
     let mut pictures = args.png_every.map(|interval| PngFrames {
@@ -386,23 +386,23 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     if let Some(r) = recording.as_mut() {
         sinks.push(r);
     }
+    if let Some(l) = live.as_mut() {
+        sinks.push(l);
+    }
     if let Some(p) = pictures.as_mut() {
         sinks.push(p);
     }
     let started = Instant::now();
-    if let Some(l) = live.as_mut() {
-        sinks.push(l);
-    }
     let RunOutcome { status, chatter } =
         pool.install(|| run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet));
     drop(sinks);
+    if let Some(l) = live {
+        l.stop();
+    }
     let status = match (status, recording.and_then(|r| r.recorder).map(Recorder::finish)) {
         (RunStatus::Completed, Some(Err(e))) => RunStatus::Failed(format!("could not finish the recording: {e}")),
         (status, _) => status,
     };
-    if let Some(l) = live {
-        l.stop();
-    }
     let wall_time = started.elapsed().as_secs_f64();
     let final_checkpoint = out.join("final.ckpt");
     let status = match (status, world.save_checkpoint_file(&final_checkpoint)) {
