@@ -130,6 +130,7 @@ impl Scene {
         }
         if let Some(mill) = &self.mill {
             initial = initial.saturating_add(mill.balls.count);
+            initial = initial.saturating_add(mill.ore.as_ref().map_or(0, |ore| ore.count));
         }
         if initial > MAX_INITIAL_PARTICLES {
             errors.push(SceneError::value(
@@ -163,6 +164,7 @@ impl Scene {
                 ("mill.chamber_material", &mill.chamber_material),
                 ("mill.rotor_material", &mill.rotor_material),
                 ("mill.balls.material", &mill.balls.material),
+                ("mill.ore.material", &mill.ore.as_ref().and_then(|ore| ore.material.clone())),
             ] {
                 collect(&mut errors, materials.resolve(name.as_deref(), field).map(drop));
             }

@@ -1,7 +1,9 @@
 //! The ball mill section: chamber, rotor and balls as the scene builds them, and its located errors.
 
-use gc2d_engine::{BodyKind, ShapeKind};
+use gc2d_engine::{BodyId, BodyKind, ShapeKind};
+use gc2d_geometry::{DVec2, area_contact, cross};
 use gc2d_scene::{ErrorKind, Scene};
+use std::f64::consts::{FRAC_PI_2, TAU};
 use std::path::PathBuf;
 
 fn mill_scene() -> Scene {
@@ -84,4 +86,179 @@ fn the_rotor_power_from_torque_equals_its_work_on_the_balls_at_every_step() {
         driving_steps += usize::from(scale > 0.0);
     }
     assert!(driving_steps > 100, "the rotor hit balls on {driving_steps} steps");
+}
+
+/// A scene file from scenes/.
+fn preset(name: &str) -> Scene {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../scenes/{name}.ron"));
+    Scene::from_path(path).unwrap_or_else(|e| panic!("{}", e.render_plain()))
+}
+
+/// A steel mill scene with the given `mill` fields after the rotor, gravity off, and `particles`.
+fn steel_mill(rotor: &str, rest: &str, particles: &str) -> Scene {
+    let text = format!(
+        "Scene(mass_model: SphereEquivalent, gravity: Constant(0.0), run: (max_impact_speed_m_s: 40.0),
+         materials: [(name: \"steel\", density_kg_m3: 7850, youngs_modulus_pa: 196.2e9, poisson_ratio: 0.3)],
+         interactions: [(materials: (\"steel\", \"steel\"), law: Hertz(damping: SteelReichardt, friction: (mu: 0.2)))],
+         mill: (rotor: ({rotor}), {rest}), particles: [{particles}])"
+    );
+    Scene::from_str(&text, "mill_test.ron").unwrap_or_else(|e| panic!("{}", e.render_plain()))
+}
+
+/// The world-frame corners of wall `i`.
+fn corners(world: &gc2d_engine::World, i: usize) -> Vec<DVec2> {
+    world.bodies().world_vertices_of(BodyId(i as u32)).to_vec()
+}
+
+/// True if bodies `i` and `j` overlap.
+fn overlap(world: &gc2d_engine::World, i: usize, j: usize) -> bool {
+    let b = world.bodies();
+    area_contact(b.shape_view(BodyId(i as u32)), b.shape_view(BodyId(j as u32))).is_some()
+}
+
+/// Asserts that no particle overlaps a wall or another particle.
+fn assert_nothing_overlaps(world: &gc2d_engine::World) {
+    let b = world.bodies();
+    let particles: Vec<usize> = b.particles().map(|id| id.index()).collect();
+    for (k, &i) in particles.iter().enumerate() {
+        for j in (0..b.len()).filter(|&j| b.kind[j] == BodyKind::Wall).chain(particles[k + 1..].iter().copied()) {
+            assert!(!overlap(world, i, j), "particle {i} overlaps body {j} ({:?})", b.shape[j]);
+        }
+    }
+}
+
+#[test]
+fn ramps_rise_at_their_tilt_in_the_rotors_direction_at_the_top_and_the_bottom() {
+    let world = preset("mill_ramps").build().unwrap();
+    let b = world.bodies();
+    let walls: Vec<ShapeKind> = (0..b.len()).filter(|&i| b.kind[i] == BodyKind::Wall).map(|i| b.shape[i]).collect();
+    use ShapeKind::{Capsule, Disk, InnerCircle, Polygon};
+    assert_eq!(walls, [InnerCircle, Polygon, Polygon, Disk, Capsule, Capsule]);
+    let (radius, height, tilt) = (0.073, 0.005, std::f64::consts::FRAC_PI_6);
+    for (wall, middle) in [(1, FRAC_PI_2), (2, 3.0 * FRAC_PI_2)] {
+        let points = corners(&world, wall);
+        assert_eq!(points.len(), 3);
+        let crest = *points.iter().min_by(|a, b| a.length().total_cmp(&b.length())).unwrap();
+        assert!((crest.length() - (radius - height)).abs() < 1e-12, "the crest is {height} m inside the circle");
+        let on_circle: Vec<DVec2> = points.iter().copied().filter(|&p| p != crest).collect();
+        assert!(on_circle.iter().all(|p| (p.length() - radius).abs() < 1e-12));
+        // The foot is the corner away from the crest's ray; the rotor turns CCW, so the crest lies CCW of the foot.
+        let (foot, behind) = if cross(on_circle[0], crest).abs() > cross(on_circle[1], crest).abs() {
+            (on_circle[0], on_circle[1])
+        } else {
+            (on_circle[1], on_circle[0])
+        };
+        assert!(cross(behind, crest).abs() < 1e-15, "the ramp drops back along the radius");
+        assert!(cross(foot, crest) > 0.0, "the ramp rises counter-clockwise, with the rotor");
+        let tangent = foot.perp().normalize();
+        let up = (crest - foot).normalize();
+        assert!((up.dot(tangent).acos() - tilt).abs() < 1e-12, "the ramp leaves the circle at 30°");
+        let centre_angle = (foot + behind).to_angle().rem_euclid(TAU);
+        assert!((centre_angle - middle).abs() < 1e-12, "the ramp is centred at {middle} rad, not {centre_angle}");
+    }
+    assert_eq!(b.particles().count(), 130);
+    assert_nothing_overlaps(&world);
+}
+
+#[test]
+fn a_ramp_turns_the_other_way_for_a_clockwise_rotor() {
+    let world = steel_mill("rpm: -1000", "chamber: Ramps(), balls: (count: 0)", "").build().unwrap();
+    let points = corners(&world, 1);
+    let crest = *points.iter().min_by(|a, b| a.length().total_cmp(&b.length())).unwrap();
+    let foot = points.iter().copied().max_by(|a, b| cross(*a, crest).abs().total_cmp(&cross(*b, crest).abs())).unwrap();
+    assert!(cross(foot, crest) < 0.0, "the ramp rises clockwise, with the rotor");
+}
+
+/// Shoots a 5 mm ball from `start` at `velocity` (m/s) and steps until it has bounced and moves away from the wall
+/// for 0.2 ms; asserts it never got further from the centre than `limit` (m) and returns the rebound speed, m/s.
+fn shoot(scene_rest: &str, start: DVec2, velocity: DVec2, limit: f64) -> f64 {
+    let particle = format!(
+        "(shape: Disk(radius_m: 0.0025), position_m: ({}, {}), velocity_m_s: ({}, {}))",
+        start.x, start.y, velocity.x, velocity.y
+    );
+    let mut world = steel_mill("rpm: 0.0", &format!("{scene_rest}, balls: (count: 0)"), &particle).build().unwrap();
+    let ball = world.bodies().particles().next().unwrap().index();
+    let mut furthest: f64 = 0.0;
+    let mut rebound_at = None;
+    while rebound_at.is_none_or(|t| world.time() < t + 2e-4) {
+        world.step().unwrap();
+        let b = world.bodies();
+        furthest = furthest.max(b.pose[ball].position.length());
+        if rebound_at.is_none() && b.velocity[ball].dot(velocity) < 0.0 && world.contacts().next().is_none() {
+            rebound_at = Some(world.time());
+        }
+        assert!(world.time() < 0.01, "the ball never came back");
+    }
+    assert!(furthest <= limit, "the ball reached {furthest} m from the centre, beyond {limit} m");
+    assert_nothing_overlaps(&world);
+    world.bodies().velocity[ball].length()
+}
+
+#[test]
+fn a_fast_ball_hitting_a_ramps_corner_stays_inside() {
+    // At the top ramp's foot, where the ramp leaves the circle: a 30 m/s ball straight at the corner.
+    let world = steel_mill("rpm: 0.0", "chamber: Ramps(), balls: (count: 0)", "").build().unwrap();
+    let points = corners(&world, 1);
+    let crest = *points.iter().min_by(|a, b| a.length().total_cmp(&b.length())).unwrap();
+    let foot = points.iter().copied().max_by(|a, b| cross(*a, crest).abs().total_cmp(&cross(*b, crest).abs())).unwrap();
+    let direction = foot.normalize();
+    let speed = shoot("chamber: Ramps()", foot - 0.01 * direction, 30.0 * direction, 0.073 - 0.0025 + 2e-4);
+    assert!(speed > 5.0 && speed < 30.0, "rebound at {speed} m/s");
+}
+
+#[test]
+fn the_wavy_chamber_is_a_closed_ring_of_thin_quadrilaterals_on_its_curve() {
+    let world = preset("mill_wavy").build().unwrap();
+    let b = world.bodies();
+    let (radius, amplitude, segments) = (0.073, 0.004, 1024);
+    let chamber: Vec<usize> =
+        (0..b.len()).filter(|&i| b.kind[i] == BodyKind::Wall && b.shape[i] == ShapeKind::Polygon).collect();
+    assert_eq!(chamber, (0..segments).collect::<Vec<_>>());
+    let curve = |phi: f64| radius + amplitude * (6.0 * phi).cos();
+    for k in 0..segments {
+        let quad = corners(&world, k);
+        let next = corners(&world, (k + 1) % segments);
+        assert_eq!(quad.len(), 4);
+        let on_curve = quad.iter().filter(|p| (p.length() - curve(p.to_angle())).abs() < 1e-12).count();
+        assert_eq!(on_curve, 2, "piece {k} has two corners on the curve");
+        let shared = quad.iter().filter(|p| next.iter().any(|q| p.distance(*q) < 1e-15)).count();
+        assert_eq!(shared, 2, "pieces {k} and {} share an edge", (k + 1) % segments);
+        for p in &quad {
+            let off = p.length() - curve(p.to_angle());
+            assert!(off > -1e-12 && off < 0.005 + 1e-12, "piece {k}: a corner {off} m off the curve");
+        }
+    }
+    assert_eq!(b.particles().count(), 130);
+    for id in b.particles() {
+        let p = b.pose[id.index()].position;
+        assert!(p.length() + 0.0025 < curve(p.to_angle()), "ball {} pokes out", id.index());
+    }
+    assert_nothing_overlaps(&world);
+}
+
+#[test]
+fn a_fast_ball_hitting_a_joint_of_the_wavy_wall_stays_inside() {
+    // 1200 pieces: joint 0 is on a crest of the wall (outermost), 100 in a trough, 50 on a flank.
+    let wavy = "chamber: Wavy(amplitude_m: 0.004, segments: 1200)";
+    let curve = |phi: f64| 0.073 + 0.004 * (6.0 * phi).cos();
+    let steel = |v: f64| 0.985 / (v + 0.9494f64).powf(0.291);
+    for joint in [0, 50, 100] {
+        let angle = TAU * joint as f64 / 1200.0;
+        let direction = DVec2::from_angle(angle);
+        let start = (curve(angle) - 0.0025 - 0.005) * direction;
+        let speed = shoot(wavy, start, 30.0 * direction, curve(angle) - 0.0025 + 2e-4);
+        // Two pieces push at a joint, each with the law's dashpot: more damping than one wall (docs/scene-format.md).
+        assert!(speed > 0.1 * 30.0 && speed < steel(30.0) * 30.0, "joint {joint}: rebound at {speed} m/s");
+    }
+}
+
+#[test]
+fn a_slow_ball_bounces_off_a_wavy_piece_as_off_the_circle_and_a_little_softer_at_a_joint() {
+    let wavy = "chamber: Wavy(amplitude_m: 0.004, segments: 1200)";
+    let steel = 0.985 / (1.0 + 0.9494f64).powf(0.291);
+    let middle = DVec2::from_angle(TAU * 0.5 / 1200.0);
+    let e_piece = shoot(wavy, 0.0695 * middle, middle, 0.08);
+    let e_joint = shoot(wavy, 0.0695 * DVec2::X, DVec2::X, 0.08);
+    assert!((e_piece - steel).abs() < 1e-3, "off a piece e = {e_piece}, the steel law {steel}");
+    assert!(e_joint < e_piece && e_joint > 0.9 * steel, "at a joint e = {e_joint}");
 }

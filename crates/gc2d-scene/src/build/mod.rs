@@ -82,7 +82,7 @@ impl Scene {
     pub fn max_impact_speed(&self) -> f64 {
         self.run.max_impact_speed_m_s.unwrap_or_else(|| match &self.mill {
             Some(mill) => {
-                let fall = (2.0 * self.gravity.largest_magnitude() * 2.0 * mill.chamber_radius_m).sqrt();
+                let fall = (2.0 * self.gravity.largest_magnitude() * 2.0 * mill::outer_radius(mill)).sqrt();
                 (2.0 * mill::tip_speed(mill)).max(fall)
             }
             None => gc2d_engine::safety::DEFAULT_MAX_IMPACT_SPEED,
@@ -109,8 +109,8 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
     }
     let mut particles = plan_particles(scene, &materials, &mut rng)?;
     if let Some(mill) = &scene.mill {
-        let mill_walls = mill::walls(mill, "mill");
-        particles.extend(mill::balls(mill, &mill_walls, &materials, scene.mass_model, &mut rng, "mill")?);
+        let mill_walls = mill::walls(mill, "mill")?;
+        particles.extend(mill::particles(mill, &mill_walls, &materials, scene.mass_model, &mut rng, "mill")?);
         walls.extend(mill_walls);
     }
     let sources = plan_sources(scene, &materials)?;

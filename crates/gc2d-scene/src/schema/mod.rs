@@ -13,7 +13,7 @@ mod walls;
 
 pub use bodies::{Block, DragSpring, DropHeight, GridType, Particle, Source};
 pub use interactions::{AreaFormulation, Damping, Friction, FrictionStiffness, Interaction, InteractionLaw, Rolling};
-pub use mill::{Balls, Mill, Rotor};
+pub use mill::{BallPlacement, Balls, Chamber, Mill, Ore, Rotor};
 pub use shapes::{CornerPositions, CountSpread, Orientation, Recipe, Shape, SizeSpread};
 pub use walls::{Motion, WallItem, Waveform};
 
