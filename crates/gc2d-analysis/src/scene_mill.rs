@@ -35,7 +35,7 @@ pub const SPEED_THRESHOLDS: [f64; 3] = [0.5, 1.0, 3.0];
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct MillOptions {
     /// Start of the averaging window, s: episodes that begin earlier and rows and dumps before it are left out.
-    /// `None`: the automatic cut of the median-speed series ([`warm_up_cut`]).
+    /// `None`: the automatic cut of the median-speed series ([`warm_up_cut`]), or 0 when the series is too short.
     pub warm_up_s: Option<f64>,
 }
 
@@ -115,7 +115,8 @@ pub struct WarmUp {
     pub start_s: f64,
     /// True when the user gave it (`--warm-up`), false when it is the automatic cut.
     pub given: bool,
-    /// The automatic cut (also computed when a start was given; `None` for fewer than 8 samples).
+    /// The automatic cut (also computed when a start was given); `None` for a series of fewer than 8 samples, which
+    /// is not cut (the window is the whole run unless a start is given).
     pub automatic: Option<WarmUpCut>,
     /// The median-speed series the cut and the autocorrelation use: `dumps` (balls' median |v| per dump) or
     /// `timeseries` (all particles', per time-series row, when the run has fewer than 8 dumps).
@@ -185,18 +186,24 @@ impl MillReport {
     /// A few lines for the end of a run: median |v|, the powers, blade hits per revolution and the tail shares.
     pub fn summary(&self) -> String {
         let [from, to] = self.window_s;
-        let how = if self.warm_up.given { "given" } else { "automatic warm-up cut" };
+        let how = match (self.warm_up.given, self.warm_up.automatic) {
+            (true, _) => "fixed start",
+            (false, Some(_)) => "automatic warm-up cut",
+            (false, None) => "no warm-up cut: too few samples for the test",
+        };
         let median = self.ball_speeds.as_ref().map_or(self.median_speed_m_s[0], |s| s.all.median_m_s);
         let p = &self.power;
         let f = &self.all_classes.fractions_above;
+        let relative = p.relative_torque_dissipation;
+        let relative =
+            if relative.is_finite() { format!("{:+.2} %", 100.0 * relative) } else { "undefined".to_string() };
         format!(
             "Mill over {from:.3}–{to:.3} s ({how}): median ball speed {median:.3} m/s; <P_torque> {:.4} W, \
-             <P_work> {:.4} W, <D> {:.4} W ((P − D)/P = {:+.2} %);\n{:.2} blade hits per revolution; impacts faster \
+             <P_work> {:.4} W, <D> {:.4} W ((P − D)/P {relative});\n{:.2} blade hits per revolution; impacts faster \
              than 0.5 / 1 / 3 m/s: {:.1} / {:.1} / {:.2} % of {} collisions.",
             p.mean_power_torque_w,
             p.mean_power_work_w,
             p.dissipation_w,
-            100.0 * p.relative_torque_dissipation,
             self.blade_hits_per_revolution,
             100.0 * f[0],
             100.0 * f[1],
@@ -401,16 +408,8 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     };
     let (times, medians): (Vec<f64>, Vec<f64>) = median_series.iter().copied().unzip();
     let automatic = warm_up_cut(&times, &medians);
-    let start = match (options.warm_up_s, automatic) {
-        (Some(given), _) => given,
-        (None, Some(cut)) => cut.cut_s,
-        (None, None) => {
-            return Err(AnalysisError::NotEnoughData(format!(
-                "the median-speed series has {} samples, too few for the automatic warm-up cut: give --warm-up",
-                times.len()
-            )));
-        }
-    };
+    // A series too short for the test is not cut.
+    let start = options.warm_up_s.unwrap_or(automatic.map_or(0.0, |cut| cut.cut_s));
     if !(start.is_finite() && start >= 0.0 && start < end) {
         return Err(AnalysisError::InvalidParameter(format!(
             "the warm-up {start} s must lie between 0 and the run's end, {end} s"

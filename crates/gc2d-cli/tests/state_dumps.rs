@@ -1,0 +1,122 @@
+//! `gc2d-rs run --dump-every`: per-particle state in `dumps/particles_<k>.csv`, on by default for a mill (with
+//! events), the same bytes for any thread count and across a resume, and the mill summary at the end of the run.
+
+use assert_cmd::Command;
+use gc2d_analysis::particle_state::csv::{PARTICLE_STATE_COLUMNS, read_csv};
+use gc2d_analysis::{ParticleShape, particle_states};
+use gc2d_engine::World;
+use std::path::{Path, PathBuf};
+
+/// The bundled mill with six balls (a few milliseconds of it take well under a second in release).
+fn small_mill(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/mill.ron")).unwrap();
+    assert!(text.contains("count: 130"));
+    let path = dir.join("mill6.ron");
+    std::fs::write(&path, text.replace("count: 130", "count: 6")).unwrap();
+    path
+}
+
+fn gc2d() -> Command {
+    Command::cargo_bin("gc2d-rs").unwrap()
+}
+
+/// Runs `scene` to `until` into `out` with the extra arguments; returns stderr.
+fn run(scene: &Path, out: &Path, until: &str, extra: &[&str]) -> String {
+    let output = gc2d()
+        .arg("run")
+        .arg(scene)
+        .args(["--quiet", "--until", until])
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(output.status.success(), "{stderr}");
+    stderr
+}
+
+/// The dump files of a run directory, name and content, in order.
+fn dumps(out: &Path) -> Vec<(String, String)> {
+    let mut files: Vec<(String, String)> = std::fs::read_dir(out.join("dumps"))
+        .unwrap()
+        .map(|e| e.unwrap())
+        .map(|e| (e.file_name().into_string().unwrap(), std::fs::read_to_string(e.path()).unwrap()))
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn a_mill_run_dumps_its_balls_at_the_frame_rate_and_the_last_dump_is_the_final_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = small_mill(dir.path());
+    let out = dir.path().join("one");
+    let stderr = run(&scene, &out, "0.01", &["--threads", "1"]);
+    // 500 frames per second: dumps 0 … 5 at t = 0, 2, …, 10 ms, and events by default.
+    let files = dumps(&out);
+    let names: Vec<&str> = files.iter().map(|f| f.0.as_str()).collect();
+    assert_eq!(names, (0..=5).map(|k| format!("particles_{k:06}.csv")).collect::<Vec<_>>());
+    assert!(out.join("events.csv").exists());
+    let first = read_csv(&out.join("dumps/particles_000000.csv")).unwrap();
+    assert_eq!(files[0].1.lines().next().unwrap(), PARTICLE_STATE_COLUMNS.join(","));
+    assert_eq!(first.len(), 6);
+    for ball in &first {
+        // The scene's start: 1 m/s in a random direction, no contact, inside the chamber (73 mm less a radius).
+        assert_eq!(ball.time_s, 0.0);
+        assert!((ball.speed() - 1.0).abs() < 1e-12, "{}", ball.speed());
+        assert_eq!((ball.shape, ball.material.as_str(), ball.contacts), (ParticleShape::Disk, "steel", 0));
+        assert!(ball.x_m.hypot(ball.y_m) <= 0.073 - 0.0025);
+    }
+    for (k, (_, text)) in files.iter().enumerate() {
+        let rows = text.lines().count() - 1;
+        assert_eq!(rows, 6, "dump {k}");
+    }
+    // The last dump is the final checkpoint's state, bit for bit.
+    let world = World::load_checkpoint_file(out.join("final.ckpt")).unwrap();
+    let last = read_csv(&out.join("dumps/particles_000005.csv")).unwrap();
+    assert_eq!(last, particle_states(&world, &["steel".to_string()]));
+    assert_eq!(last[0].time_s, world.time());
+    assert!(last.iter().all(|b| b.id as usize >= world.bodies().len() - 6), "balls come after the walls");
+    // The summary at the end of the run names the window, the speeds and powers, and the analysis command.
+    assert!(stderr.contains("Mill over") && stderr.contains("median ball speed"), "{stderr}");
+    assert!(stderr.contains("blade hits per revolution") && stderr.contains("gc2d-rs analyze"), "{stderr}");
+
+    // Two threads write the same bytes; so does a run stopped at 4 ms and resumed.
+    let two = dir.path().join("two");
+    run(&scene, &two, "0.01", &["--threads", "2"]);
+    assert!(dumps(&two) == files, "dumps differ between one and two threads");
+    let split = dir.path().join("split");
+    run(&scene, &split, "0.004", &[]);
+    let resumed =
+        gc2d().arg("run").arg(&scene).args(["--quiet", "--until", "0.01", "--resume"]).arg(&split).output().unwrap();
+    assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
+    assert!(dumps(&split) == files, "dumps differ across a resume");
+}
+
+#[test]
+fn dumps_and_events_can_be_switched_off_for_a_mill_and_on_for_any_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = small_mill(dir.path());
+    let off = dir.path().join("off");
+    let stderr = run(&scene, &off, "0.002", &["--dump-every", "0", "--no-events"]);
+    assert!(!off.join("dumps").exists() && !off.join("events.csv").exists());
+    assert!(stderr.contains("No mill summary") && stderr.contains("events.csv is missing"), "{stderr}");
+    // Every 1 ms instead of the frame rate: t = 0, 1, 2 ms.
+    let fine = dir.path().join("fine");
+    run(&scene, &fine, "0.002", &["--dump-every", "0.001"]);
+    assert_eq!(dumps(&fine).len(), 3);
+    let bad = gc2d().arg("run").arg(&scene).args(["--dump-every=-1"]).output().unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--dump-every"));
+
+    // A scene without a mill dumps only when asked.
+    let balls = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/balls.ron");
+    let plain = dir.path().join("plain");
+    run(&balls, &plain, "0.0", &[]);
+    assert!(!plain.join("dumps").exists() && !plain.join("events.csv").exists());
+    run(&balls, &plain, "0.0", &["--dump-every", "0.01"]);
+    let rows = read_csv(&plain.join("dumps/particles_000000.csv")).unwrap();
+    let world = World::load_checkpoint_file(plain.join("final.ckpt")).unwrap();
+    assert_eq!(rows.len(), world.bodies().particles().count());
+}
