@@ -3,7 +3,9 @@
 //! A [`Recorder`] observes a World after each step ([`Observer`]) and, at the [`Cadence`] of about 30 frames per
 //! simulated second, writes the particles, walls, force network and statistics as Foxglove messages. Each frame is
 //! its own compressed chunk, flushed when written, so an interrupted run leaves a readable file. [`render_png`] draws
-//! one state with the same colours. See docs/recording.md for opening the files in Foxglove.
+//! one state with the same colours. [`FrameBuilder`] builds a frame's messages for both the recorder and the
+//! `LiveView` (feature `live`, on by default), which serves them over the Foxglove WebSocket protocol while a run goes
+//! on. See docs/recording.md for opening the files in Foxglove.
 //!
 //! The engine does not depend on this crate; the program that runs the World drives the recorder.
 

@@ -7,7 +7,7 @@
 //! - `/walls` — `foxglove.SceneUpdate`: the walls, in the first frame and then only in frames where a wall moved.
 //! - `/contacts` — `foxglove.SceneUpdate`: the force network (reference §5.5), if enabled: one entity `forces`
 //!   with a line list per width class.
-//! - `/stats` — JSON ([`FrameStats`]): time, energies, contacts, overlap, coordination.
+//! - `/stats` — JSON ([`FrameStats`](crate::FrameStats)): time, energies, contacts, overlap, coordination.
 //!
 //! The file also holds a Metadata record `gc2d-rs` (program version, seed, command line, cadence) and, if given,
 //! the scene file as an attachment. Log times are simulated nanoseconds since t = 0.
