@@ -106,9 +106,14 @@ fn written_at(index: &SpanIndex, path: &str) -> Option<Range<usize>> {
     (index.path_at(span.start) == Some(path)).then_some(span)
 }
 
-/// The root value: the whole text from its first `(` or identifier.
+/// The root value: the whole text after any `#![enable(…)]` attributes, from its first `(` or identifier.
 fn root_span(text: &str) -> Option<Range<usize>> {
-    let start = text.find(|c: char| c == '(' || c.is_ascii_alphabetic())?;
+    let mut from = 0;
+    while let Some(attribute) = text[from..].trim_start().strip_prefix("#![") {
+        let close = attribute.find(']')?;
+        from = text.len() - attribute.len() + close + 1;
+    }
+    let start = from + text[from..].find(|c: char| c == '(' || c.is_ascii_alphabetic())?;
     Some(start..text.len())
 }
 
@@ -159,13 +164,13 @@ fn segments(path: &str) -> Vec<(String, Segment)> {
 mod tests {
     use super::*;
 
-    const SCENE: &str = "Scene(\n    name: \"m\",\n    run: Run(\n        seed: 1,\n        end_time_s: 1.0,\n    ),\n    \
+    const SCENE: &str = "#![enable(implicit_some)]\nScene(\n    name: \"m\",\n    run: Run(\n        seed: 1,\n        end_time_s: 1.0,\n    ),\n    \
                          materials: [\n        Material(name: \"steel\", mu: 0.2),\n    ],\n    gravity: Constant(9.81),\n)";
 
     #[test]
     fn written_fields_are_replaced() {
         let t = target(SCENE, "run.seed").unwrap();
-        assert_eq!(put(SCENE, &t, "7").lines().nth(3), Some("        seed: 7,"));
+        assert_eq!(put(SCENE, &t, "7").lines().nth(4), Some("        seed: 7,"));
         let t = target(SCENE, "materials[0].mu").unwrap();
         assert!(put(SCENE, &t, "0.5").contains("Material(name: \"steel\", mu: 0.5)"));
     }
@@ -177,7 +182,7 @@ mod tests {
         let t = target(SCENE, "materials[0].gamma").unwrap();
         assert!(put(SCENE, &t, "0.3").contains("Material(gamma: 0.3, name:"));
         let t = target(SCENE, "description").unwrap();
-        assert!(put(SCENE, &t, "\"d\"").starts_with("Scene(description: \"d\", \n"));
+        assert!(put(SCENE, &t, "\"d\"").contains("\nScene(description: \"d\", \n"));
     }
 
     #[test]

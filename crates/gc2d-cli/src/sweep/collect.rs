@@ -125,10 +125,8 @@ pub fn flatten(prefix: &str, value: &Value, out: &mut Vec<(String, f64)>) {
         }
         Value::Bool(b) => out.push((prefix.to_owned(), f64::from(u8::from(*b)))),
         Value::Object(map) => map.iter().for_each(|(key, v)| flatten(&join(key), v, out)),
-        Value::Array(items) if items.iter().all(Value::is_number) => {
-            if items.len() <= MAX_ARRAY_COLUMNS {
-                items.iter().enumerate().for_each(|(i, v)| flatten(&format!("{prefix}[{i}]"), v, out));
-            }
+        Value::Array(items) if items.len() <= MAX_ARRAY_COLUMNS && items.iter().all(Value::is_number) => {
+            items.iter().enumerate().for_each(|(i, v)| flatten(&format!("{prefix}[{i}]"), v, out));
         }
         Value::Array(items) if items.iter().all(Value::is_object) => {
             let keys: Vec<Option<&str>> = items.iter().map(first_text).collect();
@@ -168,11 +166,22 @@ pub fn write_csv(table: &Table, path: &Path) -> Result<(), SweepError> {
         fields.extend(row.parameters.iter().map(|v| csv_field(v.trim_matches('"'))));
         fields.push(row.seed.to_string());
         fields.push(row.outcome.clone().unwrap_or_default());
-        fields.extend(table.numbers.iter().map(|n| row.numbers.get(n).map_or(String::new(), |x| x.to_string())));
+        fields.extend(table.numbers.iter().map(|n| row.numbers.get(n).map_or(String::new(), |&x| number(x))));
         text.push_str(&fields.join(","));
         text.push('\n');
     }
     std::fs::write(path, text).map_err(|e| SweepError::failed(format!("cannot write {}: {e}", path.display())))
+}
+
+/// A number in Rust's shortest form that reads back to the same f64: plain for integers and for magnitudes from 1e-3
+/// to 1e15, with an exponent otherwise (`8.968520370800093e-16`).
+pub fn number(x: f64) -> String {
+    let magnitude = x.abs();
+    if x.fract() == 0.0 && magnitude < 1e15 || (1e-3..1e15).contains(&magnitude) {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
 }
 
 /// A CSV field, quoted when it holds a comma, a quote or a line break.
@@ -209,6 +218,15 @@ mod tests {
         );
         assert_eq!(out[2].1, 1.0);
         assert_eq!(out[4].1, 5.0);
+    }
+
+    #[test]
+    fn numbers_read_back_exactly() {
+        for x in [0.0, 5882.0, 0.05, 8.968520370800093e-16, 1.7e-6, -2.5e20, 0.1 + 0.2] {
+            assert_eq!(number(x).parse::<f64>().unwrap().to_bits(), x.to_bits(), "{x}");
+        }
+        assert_eq!(number(5882.0), "5882");
+        assert_eq!(number(1.7e-6), "1.7e-6");
     }
 
     #[test]

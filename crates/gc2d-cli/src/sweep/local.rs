@@ -27,7 +27,7 @@ pub struct RunSettings {
     pub threads: usize,
     /// `--checkpoint-every` of each run, s.
     pub checkpoint_every_s: Option<f64>,
-    /// `--events` for every run (`None`: for mill scenes only).
+    /// `--events` (true) or `--no-events` (false) for every run; `None`: `run`'s default (events for a mill scene).
     pub events: Option<bool>,
     /// The sweep file (named in each `scene.ron`).
     pub sweep_file: PathBuf,
@@ -146,8 +146,14 @@ fn spawn(exe: &Path, point: &PointScene, resume: bool, settings: &RunSettings) -
     if resume {
         command.arg("--resume").arg(&point.dir);
     }
-    if settings.events.unwrap_or(point.is_mill) {
-        command.arg("--events");
+    match settings.events {
+        Some(true) => {
+            command.arg("--events");
+        }
+        Some(false) => {
+            command.arg("--no-events");
+        }
+        None => {}
     }
     if let Some(every) = settings.checkpoint_every_s {
         command.arg("--checkpoint-every").arg(every.to_string());

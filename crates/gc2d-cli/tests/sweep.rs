@@ -1,0 +1,317 @@
+//! `gc2d-rs sweep` on a tiny scene: the points' run directories and scenes, --jobs, skipping finished points,
+//! resuming interrupted ones bitwise, the collected table (CSV and Parquet), the Slurm script and task selection, and
+//! located errors for bad sweep files.
+
+use assert_cmd::Command;
+use predicates::str::contains;
+use std::path::{Path, PathBuf};
+
+fn gc2d() -> Command {
+    Command::cargo_bin("gc2d-rs").unwrap()
+}
+
+/// A folder with tiny_pile.ron and a sweep file `sweep.ron` with `body` inside `Sweep(scene: "tiny_pile.ron", …)`.
+fn sweep_folder(body: &str) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/tiny_pile.ron");
+    std::fs::copy(scene, dir.path().join("tiny_pile.ron")).unwrap();
+    let text =
+        format!("// A sweep for the tests.\nSweep(\n    scene: \"tiny_pile.ron\",\n    out: \"out\",\n{body})\n");
+    std::fs::write(dir.path().join("sweep.ron"), text).unwrap();
+    dir
+}
+
+/// 2 × 2 points: two friction coefficients and two end times (0.02 and 0.03 s), the scene's seed, checkpoints every
+/// 0.01 s.
+const TWO_BY_TWO: &str = r#"    parameters: [
+        (path: "materials[0].mu", values: List([0.3, 0.6])),
+        (path: "run.end_time_s", name: "end", values: Grid(start: 0.02, stop: 0.03, step: 0.01)),
+    ],
+    run: (checkpoint_every_s: 0.01),
+    plots: [(x: "end", y: ["energy.kinetic_j"])],
+"#;
+
+const POINTS: [&str; 4] =
+    ["mu=0.3_end=0.02_seed=3", "mu=0.3_end=0.03_seed=3", "mu=0.6_end=0.02_seed=3", "mu=0.6_end=0.03_seed=3"];
+
+fn sweep(dir: &Path) -> Command {
+    let mut command = gc2d();
+    command.current_dir(dir).args(["sweep", "sweep.ron", "--quiet"]);
+    command
+}
+
+fn read(path: impl AsRef<Path>) -> Vec<u8> {
+    std::fs::read(path.as_ref()).unwrap_or_else(|e| panic!("{}: {e}", path.as_ref().display()))
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_slice(&read(dir.join("summary.json"))).unwrap()
+}
+
+/// The CSV as a header and rows of fields (no field of these tables is quoted).
+fn csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = String::from_utf8(read(path)).unwrap();
+    let mut lines = text.lines().map(|l| l.split(',').map(str::to_owned).collect::<Vec<_>>());
+    let header = lines.next().unwrap();
+    (header, lines.collect())
+}
+
+#[test]
+fn a_two_by_two_sweep_runs_skips_and_collects() {
+    let dir = sweep_folder(TWO_BY_TWO);
+    sweep(dir.path())
+        .args(["--jobs", "2", "--threads", "1"])
+        .assert()
+        .success()
+        .stderr(contains("4 points: 4 run, 0 resumed, 0 already done"));
+    let out = dir.path().join("out");
+    for (k, name) in POINTS.iter().enumerate() {
+        let run = out.join(name);
+        // The scene as used: the base scene with the point's values, read back by the scene loader.
+        let scene = gc2d_scene::Scene::from_path(run.join("scene.ron")).unwrap();
+        assert_eq!(scene.materials[0].mu, [0.3, 0.6][k / 2]);
+        assert_eq!(scene.run.end_time_s, [0.02, 0.03][k % 2]);
+        assert_eq!(scene.run.seed, 3);
+        assert_eq!(scene.name, "tiny_pile");
+        let summary = summary(&run);
+        assert_eq!(summary["outcome"]["status"], "completed");
+        assert!((summary["time_s"].as_f64().unwrap() - scene.run.end_time_s).abs() < 2e-6);
+    }
+
+    // A second run finds every point finished and leaves the run directories alone.
+    let before: Vec<Vec<u8>> = POINTS.iter().map(|p| read(out.join(p).join("summary.json"))).collect();
+    sweep(dir.path()).assert().success().stderr(contains("4 points: 0 run, 0 resumed, 4 already done"));
+    let after: Vec<Vec<u8>> = POINTS.iter().map(|p| read(out.join(p).join("summary.json"))).collect();
+    assert!(before == after, "a finished point was run again");
+
+    // The table: the point, the parameters, the seed and the outcome, then the summary's numbers.
+    let (header, rows) = csv(&out.join("sweep.csv"));
+    assert_eq!(header[..5], ["point", "mu", "end", "seed", "outcome"]);
+    for column in ["energy.kinetic_j", "particles", "steps", "time_s", "chatter.warned"] {
+        assert!(header.iter().any(|h| h == column), "no column {column} in {header:?}");
+    }
+    assert!(!header.iter().any(|h| h == "program_version" || h == "scene"), "text fields are not numbers");
+    assert_eq!(rows.len(), 4);
+    let kinetic = header.iter().position(|h| h == "energy.kinetic_j").unwrap();
+    let steps = header.iter().position(|h| h == "steps").unwrap();
+    for (row, name) in rows.iter().zip(POINTS) {
+        assert_eq!(row[0], name);
+        assert_eq!(row[3], "3");
+        assert_eq!(row[4], "completed");
+        let summary = summary(&out.join(name));
+        let value: f64 = row[kinetic].parse().unwrap();
+        assert_eq!(value.to_bits(), summary["energy"]["kinetic_j"].as_f64().unwrap().to_bits());
+        assert_eq!(row[steps], summary["steps"].to_string());
+    }
+    assert_eq!(rows[1][1..3], ["0.3".to_owned(), "0.03".to_owned()]);
+
+    // The Parquet file holds the same table.
+    let file = std::fs::File::open(out.join("sweep.parquet")).unwrap();
+    let reader = parquet::file::reader::SerializedFileReader::new(file).unwrap();
+    let parquet_rows: Vec<parquet::record::Row> =
+        parquet::file::reader::FileReader::get_row_iter(&reader, None).unwrap().map(Result::unwrap).collect();
+    assert_eq!(parquet_rows.len(), 4);
+    for (row, csv_row) in parquet_rows.iter().zip(&rows) {
+        let fields: Vec<(&String, &parquet::record::Field)> = row.get_column_iter().collect();
+        assert_eq!(fields.len(), header.len());
+        assert_eq!(fields[0].1, &parquet::record::Field::Str(csv_row[0].clone()));
+        assert_eq!(fields[1].1, &parquet::record::Field::Double(csv_row[1].parse().unwrap()));
+        assert_eq!(fields[3].1, &parquet::record::Field::ULong(3));
+        assert_eq!(fields[kinetic].0, "energy.kinetic_j");
+        assert_eq!(fields[kinetic].1, &parquet::record::Field::Double(csv_row[kinetic].parse().unwrap()));
+    }
+    // One figure per output named in `plots`.
+    let figure = String::from_utf8(read(out.join("plots/energy_kinetic_j_vs_end.svg"))).unwrap();
+    assert!(figure.contains("<svg") && figure.contains("mu=0.3") && figure.contains("mu=0.6"));
+
+    // --collect alone writes the same table again.
+    std::fs::remove_file(out.join("sweep.csv")).unwrap();
+    sweep(dir.path()).arg("--collect").assert().success().stderr(contains("Collected 4 points (4 completed"));
+    assert_eq!(csv(&out.join("sweep.csv")).1, rows);
+}
+
+#[test]
+fn an_interrupted_point_is_resumed_to_the_uninterrupted_result() {
+    let dir = sweep_folder(TWO_BY_TWO);
+    sweep(dir.path()).args(["--jobs", "2", "--threads", "1"]).assert().success();
+    let out = dir.path().join("out");
+    let point = out.join(POINTS[3]);
+    let reference_state = read(point.join("final.ckpt"));
+    let reference_series = read(point.join("timeseries.csv"));
+
+    // What a run killed without warning at 0.025 s leaves: its scene, periodic checkpoints at 0.01 and 0.02 s, a time
+    // series, and no summary or final checkpoint.
+    let scene_copy = read(point.join("scene.ron"));
+    std::fs::remove_dir_all(&point).unwrap();
+    std::fs::create_dir_all(&point).unwrap();
+    std::fs::write(point.join("scene.ron"), scene_copy).unwrap();
+    gc2d()
+        .arg("run")
+        .arg(point.join("scene.ron"))
+        .args(["--quiet", "--until", "0.025", "--checkpoint-every", "0.01", "--out"])
+        .arg(&point)
+        .assert()
+        .success();
+    std::fs::remove_file(point.join("summary.json")).unwrap();
+    std::fs::remove_file(point.join("final.ckpt")).unwrap();
+
+    sweep(dir.path()).assert().success().stderr(contains("4 points: 0 run, 1 resumed, 3 already done"));
+    assert!(read(point.join("final.ckpt")) == reference_state, "the resumed point's final state differs");
+    assert!(read(point.join("timeseries.csv")) == reference_series, "the resumed point's time series differs");
+}
+
+#[test]
+fn a_stopped_sweep_stops_its_runs_with_a_checkpoint_and_resumes_them() {
+    // One point long enough to be stopped while it runs (0.5 s of simulated time).
+    let dir = sweep_folder(
+        r#"    parameters: [(path: "run.end_time_s", name: "end", values: List([0.5]))],
+"#,
+    );
+    let reference = tempfile::tempdir().unwrap();
+    gc2d()
+        .current_dir(dir.path())
+        .args(["sweep", "sweep.ron", "--quiet", "--out"])
+        .arg(reference.path())
+        .assert()
+        .success();
+
+    let point = dir.path().join("out/end=0.5_seed=3");
+    let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("gc2d-rs"))
+        .current_dir(dir.path())
+        .args(["sweep", "sweep.ron", "--quiet"])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Stop it (as Ctrl-C or a batch system would) once its run has written a few rows.
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while std::fs::read_to_string(point.join("timeseries.csv")).map_or(0, |t| t.lines().count()) < 5 {
+        assert!(std::time::Instant::now() < deadline, "the point's run wrote no rows");
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    // SAFETY: kill(2) on our own child with SIGTERM.
+    unsafe {
+        libc::kill(child.id() as libc::pid_t, libc::SIGTERM);
+    }
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted: end=0.5_seed=3"), "{stderr}");
+    assert_eq!(summary(&point)["outcome"]["status"], "interrupted");
+
+    sweep(dir.path()).assert().success().stderr(contains("1 point: 0 run, 1 resumed, 0 already done"));
+    let reference_point = reference.path().join("end=0.5_seed=3");
+    assert!(read(point.join("final.ckpt")) == read(reference_point.join("final.ckpt")), "the resumed state differs");
+}
+
+#[test]
+fn seeds_multiply_the_points_and_slurm_tasks_take_chunks() {
+    let dir = sweep_folder(
+        r#"    parameters: [(path: "materials[0].gamma", values: List([0.5, 0.75, 1.0]))],
+    seeds: List([7, 9]),
+"#,
+    );
+    sweep(dir.path())
+        .args(["--slurm", "--points-per-task", "4", "--time", "0:10:00", "--checkpoint-every", "0.01"])
+        .assert()
+        .success()
+        .stderr(contains("6 points in 2 array tasks"));
+    let script = String::from_utf8(read(dir.path().join("out/slurm/sweep.sbatch"))).unwrap();
+    for line in ["#SBATCH --array=0-1", "#SBATCH --time=0:10:00", "#SBATCH --requeue", "#SBATCH --signal=B:TERM@120"] {
+        assert!(script.contains(line), "no `{line}` in\n{script}");
+    }
+    assert!(script.contains("--task \"$SLURM_ARRAY_TASK_ID\" --points-per-task 4"), "{script}");
+    assert!(script.contains("--checkpoint-every 0.01"), "{script}");
+    assert!(script.contains("scontrol requeue"), "{script}");
+
+    // Task 1 holds the last two points: gamma = 1.0 with seeds 7 and 9.
+    sweep(dir.path())
+        .args(["--task", "1", "--points-per-task", "4"])
+        .assert()
+        .success()
+        .stderr(contains("2 points: 2 run"));
+    let made: Vec<PathBuf> = std::fs::read_dir(dir.path().join("out"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("summary.json").exists())
+        .collect();
+    let mut names: Vec<String> = made.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, ["gamma=1.0_seed=7", "gamma=1.0_seed=9"]);
+    assert_eq!(gc2d_scene::Scene::from_path(made[0].join("scene.ron")).unwrap().materials[0].gamma, 1.0);
+    sweep(dir.path())
+        .args(["--task", "2", "--points-per-task", "4"])
+        .assert()
+        .code(2)
+        .stderr(contains("the sweep has 2 tasks of up to 4 points (0 to 1)"));
+}
+
+/// The error `gc2d-rs sweep` gives for a sweep with `body`, with the exit code 2; the lines miette wraps joined again
+/// (every run of spaces and frame characters `│` read as one space).
+fn sweep_error(body: &str) -> String {
+    let dir = sweep_folder(body);
+    let output = sweep(dir.path()).assert().code(2).get_output().clone();
+    assert!(!dir.path().join("out").exists(), "nothing may run or be written for an invalid sweep");
+    let text = String::from_utf8(output.stderr).unwrap();
+    text.split(|c: char| c.is_whitespace() || c == '│').filter(|w| !w.is_empty()).collect::<Vec<_>>().join(" ")
+}
+
+#[test]
+fn a_misspelled_path_is_located_in_the_sweep_file_with_the_nearest_field() {
+    let error = sweep_error(
+        r#"    parameters: [
+        (path: "run.end_time_s", values: List([0.01])),
+        (path: "materials[0].muu", values: List([0.3, 0.6])),
+    ],
+"#,
+    );
+    assert!(error.contains("sweep.ron:7:"), "{error}");
+    assert!(error.contains("`parameters[1].path`"), "{error}");
+    assert!(
+        error.contains("`materials[0].muu` is not a field of the scene: unknown field `muu`, did you mean `mu`?"),
+        "{error}"
+    );
+    let error = sweep_error("    parameters: [(path: \"run.sed\", values: List([1]))],\n");
+    assert!(error.contains("did you mean `seed`?"), "{error}");
+}
+
+#[test]
+fn paths_outside_the_scene_say_where_they_stop() {
+    let error = sweep_error("    parameters: [(path: \"mill.rotor.rpm\", values: List([1700]))],\n");
+    assert!(error.contains("sweep.ron:5:"), "{error}");
+    assert!(error.contains("`mill.rotor.rpm`: the scene does not write `mill`"), "{error}");
+    let error = sweep_error("    parameters: [(path: \"materials[2].mu\", values: List([0.1]))],\n");
+    assert!(error.contains("`materials` has 1 element, so no [2]"), "{error}");
+}
+
+#[test]
+fn a_point_whose_scene_is_invalid_is_named_with_the_scene_error() {
+    let error = sweep_error("    parameters: [(path: \"materials[0].mu\", values: List([0.5, -1.0, -2.0]))],\n");
+    assert!(
+        error.contains("the scene of point `mu=-1.0_seed=3` (materials[0].mu = -1.0, run.seed = 3) is invalid"),
+        "{error}"
+    );
+    assert!(error.contains("materials[0].mu"), "{error}");
+    assert!(error.contains("2 of 3 points fail; the others: `mu=-2.0_seed=3`"), "{error}");
+}
+
+#[test]
+fn bad_sweep_files_are_located() {
+    let error = sweep_error("    parameter: [],\n");
+    assert!(error.contains("unknown field `parameter`, did you mean `parameters`?"), "{error}");
+    assert!(error.contains("sweep.ron:5:"), "{error}");
+    let error =
+        sweep_error("    parameters: [(path: \"run.end_time_s\", values: Grid(start: 0.1, stop: 0.0, step: 0.1))],\n");
+    assert!(error.contains("`parameters[0].values`: stop (0) is below start (0.1)"), "{error}");
+    let error = sweep_error(
+        "    parameters: [(path: \"materials[0].mu\", values: List([0.5])), (path: \"run.end_time_s\", name: \"mu\", values: List([0.1]))],\n",
+    );
+    assert!(error.contains("a second parameter (or the seed) is named `mu`"), "{error}");
+    let error = sweep_error("    seeds: Count(0),\n");
+    assert!(error.contains("`seeds`: at least one seed is needed"), "{error}");
+    let error = sweep_error("    parameters: [(path: \"run.seed\", values: List([1]))],\n");
+    assert!(error.contains("the seed is set by `seeds`"), "{error}");
+    let error = sweep_error(
+        "    parameters: [(path: \"materials[0].mu\", values: List([0.5]))],\n    plots: [(x: \"m\", y: [\"time_s\"])],\n",
+    );
+    assert!(error.contains("`m` is not a parameter of this sweep, did you mean `mu`?"), "{error}");
+}
