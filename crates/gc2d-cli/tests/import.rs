@@ -96,3 +96,24 @@ fn dollar_comments_are_printed_with_their_line() {
     assert_eq!(scene.description, "A box (imported from a gc2d gsi file)");
     assert_eq!(scene.run.time_step_s, Some(1e-5));
 }
+
+#[test]
+fn a_wall_overlapping_the_particles_is_blamed_not_the_time_step() {
+    // The piston's floor moved up 3 cm into the block: DELTA_T is above the particles' bound as before, so the
+    // import leaves the time step automatic (it used to keep DELTA_T once the overlap stopped the scene from building,
+    // and the load-back check then blamed the time step).
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(piston_gsi()).unwrap();
+    let floor = "WALL\n        Offset              0.0        0.0\n        Corners\n                -0.3    -0.01";
+    assert!(text.contains(floor));
+    let gsi = dir.path().join("overlap.gsi");
+    std::fs::write(&gsi, text.replacen(floor, &floor.replace("0.0        0.0", "0.0        0.03"), 1)).unwrap();
+    let output = gc2d().env("NO_COLOR", "1").arg("import-gsi").arg(&gsi).output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("overlap.gsi:4: warning: DELTA_T is not converted"), "{stderr}");
+    assert!(stderr.contains("overlap.ron was written but is not a valid scene"), "{stderr}");
+    assert!(stderr.contains("gc2d_scene::overlap"), "{stderr}");
+    assert!(stderr.contains("`blocks[0]`: a particle and a wall"), "{stderr}");
+    assert!(!stderr.contains("gc2d_scene::time_step"), "{stderr}");
+}

@@ -136,10 +136,14 @@ impl Converter {
     }
 
     /// Keeps `DELTA_T` unless it is above the stable bound of the scene's particles, which the scene refuses; then
-    /// the scene leaves Δt automatic (`AUTOMATIC_TIME_STEP_FRACTION` of the bound) and a warning gives both numbers. A scene that does
-    /// not build for other reasons keeps `DELTA_T`: loading it reports those reasons.
+    /// the scene leaves Δt automatic (`AUTOMATIC_TIME_STEP_FRACTION` of the bound) and a warning gives both numbers.
+    /// The bound depends on the particles' shapes and materials, not on where they sit, so it is measured with the
+    /// overlap check off: a wall that overlaps the particles is then reported as such when the scene is loaded back,
+    /// not as a time step above the bound. A scene that does not build for other reasons keeps `DELTA_T`: loading it
+    /// reports those reasons.
     fn fit_time_step(&mut self, scene: &mut Scene, time_step: &Sourced<f64>) {
-        let automatic = Scene { run: Run { time_step_s: None, ..scene.run.clone() }, ..scene.clone() };
+        let run = Run { time_step_s: None, max_overlap_fraction: f64::MAX, ..scene.run.clone() };
+        let automatic = Scene { run, ..scene.clone() };
         let Ok(summary) = automatic.summary() else { return };
         let Some(bound) = summary.stable_time_step_s else { return };
         if time_step.value > bound {
