@@ -161,3 +161,16 @@ fn a_websocket_client_subscribes_and_decodes_stats_and_particles_of_a_running_wo
     assert_eq!(update.entities.len(), 1, "12 particles in block particles/0");
     assert_eq!(points, 7 * count, "every heptagon of the frame at {log_time} ns");
 }
+
+#[test]
+fn bad_addresses_and_a_taken_port_are_errors_that_name_the_address() {
+    for address in ["8765", "127.0.0.1:port", ":8765", "127.0.0.1:70000"] {
+        let error = LiveView::start(address, RecordOptions::default()).err().expect(address).to_string();
+        assert!(error.contains("host:port") && error.contains(address), "{address}: {error}");
+    }
+    let first = LiveView::start("127.0.0.1:0", RecordOptions::default()).unwrap();
+    let taken = format!("127.0.0.1:{}", first.port());
+    let error = LiveView::start(&taken, RecordOptions::default()).err().expect("the port is taken").to_string();
+    assert!(error.contains(&taken), "{error}");
+    first.stop();
+}
