@@ -317,15 +317,18 @@ pub fn stress_energy_spectrum(mut energies: Vec<f64>, span: f64) -> StressEnergy
     }
 }
 
-/// The chamber of the final World: its inner-circle wall, with the balls' median diameter.
+/// The chamber of the final World: its inner-circle wall, with the balls' median diameter (the particles' largest
+/// extent when there are no balls).
 fn chamber_of(world: &World) -> Option<Chamber> {
     let bodies = world.bodies();
     let wall =
         (0..bodies.len()).find(|&i| bodies.kind[i] == BodyKind::Wall && bodies.shape[i] == ShapeKind::InnerCircle)?;
+    let disks = bodies.particles().any(|id| bodies.shape[id.index()] == ShapeKind::Disk);
     let mut radii: Vec<f64> = bodies
         .particles()
         .map(|id| id.index())
-        .map(|i| if bodies.shape[i] == ShapeKind::Disk { bodies.radius[i] } else { bodies.reach[i] } * bodies.pose[i].scale)
+        .filter(|&i| !disks || bodies.shape[i] == ShapeKind::Disk)
+        .map(|i| if disks { bodies.radius[i] } else { bodies.reach[i] } * bodies.pose[i].scale)
         .collect();
     radii.sort_by(f64::total_cmp);
     let pose = bodies.pose[wall];

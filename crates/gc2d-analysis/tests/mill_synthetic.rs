@@ -1,0 +1,226 @@
+//! `analyze_mill` on a hand-made run directory with known answers: a World of a chamber, a turning blade, a hub, two
+//! balls and two ore grains saved as `final.ckpt`, and written `events.csv`, `timeseries.csv` and state dumps.
+
+use gc2d_analysis::particle_state::csv::{dump_file_name, write_csv};
+use gc2d_analysis::particle_states;
+use gc2d_analysis::{MillOptions, analyze_mill};
+use gc2d_contact::{ContactLaw, NormalElastic};
+use gc2d_engine::motion::Rotation;
+use gc2d_engine::schedules::GravitySchedule;
+use gc2d_engine::{BodyShape, InteractionTable, MassModel, TimeWindow, WallMotion, World, WorldConfig};
+use gc2d_geometry::{DVec2, Pose, regular_polygon};
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+/// Chamber radius and ball diameter, m.
+const R: f64 = 0.05;
+const D: f64 = 0.005;
+/// Rotor speed, rad/s (10 revolutions per second).
+const OMEGA: f64 = 20.0 * std::f64::consts::PI;
+
+/// Bodies 0 chamber, 1 blade, 2 hub, 3 and 4 balls, 5 and 6 ore grains; nothing touches.
+fn world() -> World {
+    let config = WorldConfig {
+        time_step: 1e-3,
+        integrator: Default::default(),
+        interactions: InteractionTable::uniform(ContactLaw {
+            elastic: NormalElastic::thesis(100.0),
+            damping: None,
+            friction: None,
+            cohesion: None,
+        }),
+        mass_model: MassModel::PerUnitThickness,
+        gravity: GravitySchedule::constant(0.0),
+        heating: None,
+        safety: Default::default(),
+        domain: None,
+        seed: 1,
+    };
+    let mut world = World::new(config).unwrap();
+    let origin = Pose::new(DVec2::ZERO, 0.0);
+    world.add_wall(BodyShape::InnerCircle { radius: R }, origin, DVec2::ZERO, WallMotion::Static);
+    let rotation = Rotation {
+        pivot: DVec2::ZERO,
+        angular_velocity: OMEGA,
+        window: TimeWindow::new(0.0, f64::INFINITY),
+        spin_up: 0.0,
+    };
+    world.add_wall(
+        BodyShape::Capsule { half_length: 0.004, radius: 0.001 },
+        origin,
+        DVec2::ZERO,
+        WallMotion::Rotating(rotation),
+    );
+    world.add_wall(BodyShape::Disk { radius: 0.002 }, origin, DVec2::ZERO, WallMotion::Static);
+    for y in [0.046, -0.046] {
+        world
+            .add_particle(
+                BodyShape::Disk { radius: 0.5 * D },
+                Pose::new(DVec2::new(0.0, y), 0.0),
+                7800.0,
+                DVec2::ZERO,
+                0.0,
+            )
+            .unwrap();
+    }
+    let grain = regular_polygon(4, 0.002).unwrap();
+    for x in [0.03, -0.03] {
+        world.add_particle(&grain, Pose::new(DVec2::new(x, 0.0), 0.0), 3000.0, DVec2::ZERO, 0.0).unwrap();
+    }
+    world
+}
+
+/// One events.csv row: begin time, bodies, impact normal speed and begin point.
+fn event(text: &mut String, begin: f64, a: u32, b: u32, speed: f64, at: DVec2) {
+    let _ = writeln!(text, "{begin},{begin},{a},{b},x,x,m,m,{speed:e},0,0,0,0,0,,0,{:e},{:e}", at.x, at.y);
+}
+
+fn run_dir() -> (PathBuf, World) {
+    let mut world = world();
+    world.run_until(1.0).unwrap();
+    let dir = std::env::temp_dir().join(format!("gc2d-mill-synthetic-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("dumps")).unwrap();
+    world.save_checkpoint_file(dir.join("final.ckpt")).unwrap();
+
+    // Dumps every 10 ms: both balls at 5 m/s until 0.3 s, then ball 3 at 1 m/s in the upper and ball 4 at 3 m/s in
+    // the lower half of the outer ring (r = 46 mm > R − 2d = 40 mm).
+    let template = particle_states(&world, &["m".to_string()]);
+    for k in 0..=100u64 {
+        let t = k as f64 * 0.01;
+        let rows: Vec<_> = template
+            .iter()
+            .map(|row| {
+                let speed = match (row.id, t < 0.3) {
+                    (3 | 4, true) => 5.0,
+                    (3, false) => 1.0,
+                    (4, false) => 3.0,
+                    _ => 7.0,
+                };
+                gc2d_analysis::ParticleState { time_s: t, vx_m_s: speed, vy_m_s: 0.0, ..row.clone() }
+            })
+            .collect();
+        let mut bytes = Vec::new();
+        write_csv(&rows, &mut bytes).unwrap();
+        std::fs::write(dir.join("dumps").join(dump_file_name(k)), bytes).unwrap();
+    }
+
+    // Time series: ω·τ = Σ F·v = 2 W, the walls put in 2 W and 1.9 W is dissipated.
+    let mut series = String::from(
+        "time_s,median_speed_m_s,rotor_power_torque_w,rotor_power_work_w,work_in_j,dissipated_normal_damping_j,\
+         dissipated_tangential_damping_j,dissipated_sliding_j\n",
+    );
+    for k in 0..=100 {
+        let t = k as f64 * 0.01;
+        let _ = writeln!(series, "{t},0,2,2,{},{},{},{}", 2.0 * t, 1.0 * t, 0.5 * t, 0.4 * t);
+    }
+    std::fs::write(dir.join("timeseries.csv"), series).unwrap();
+
+    let mut events = String::from(
+        "begin_time_s,end_time_s,a,b,kind_a,kind_b,material_a,material_b,impact_normal_speed_m_s,\
+         impact_tangential_speed_m_s,max_overlap_fraction,dissipated_j,impulse_on_a_x_n_s,impulse_on_a_y_n_s,\
+         wall_angular_impulse_n_m_s,duration_s,begin_x_m,begin_y_m\n",
+    );
+    let at = |r: f64, degrees: f64| r * DVec2::from_angle(degrees.to_radians());
+    event(&mut events, 0.1, 1, 4, 9.0, at(0.004, 10.0)); // in the warm-up: left out
+    event(&mut events, 0.4, 1, 4, 4.0, at(0.004, 10.0)); // ball–blade
+    event(&mut events, 0.5, 3, 4, 2.0, at(0.048, 95.0)); // ball–ball
+    event(&mut events, 0.6, 3, 5, 1.0, at(0.048, 100.0)); // ball–ore
+    event(&mut events, 0.7, 5, 6, 2.0, at(0.03, 180.0)); // ore–ore
+    event(&mut events, 0.8, 0, 5, 1.0, at(0.049, 0.0)); // ore–chamber
+    event(&mut events, 0.9, 2, 3, 0.5, at(0.001, 270.0)); // ball–hub
+    std::fs::write(dir.join("events.csv"), events).unwrap();
+    (dir, world)
+}
+
+#[test]
+fn a_hand_made_mill_run_gives_the_known_statistics() {
+    let (dir, world) = run_dir();
+    let report = analyze_mill(&dir, &MillOptions::default()).unwrap();
+    let mass = |i: usize| world.bodies().mass[i];
+
+    // The warm-up: 101 samples in 20 blocks of 5; the step at sample 30 ends it.
+    let cut = report.warm_up.automatic.unwrap();
+    assert_eq!((cut.blocks, cut.block_samples, cut.reference_mean_m_s), (20, 5, 2.0));
+    let end = world.time();
+    assert_eq!(report.window_s, [30.0 * 0.01, end]);
+    assert!(!report.warm_up.given && report.warm_up.series == "dumps");
+    let span = end - 30.0 * 0.01;
+    assert_eq!((report.balls, report.ore_grains), (2, 2));
+
+    // Classes in the window, one collision each; the blade hit before the cut is left out.
+    let names: Vec<&str> = report.classes.iter().map(|c| c.class.as_str()).collect();
+    assert_eq!(names, ["ball–ball", "ball–blade", "ball–hub", "ball–ore", "ore–chamber", "ore–ore"]);
+    assert!(report.classes.iter().all(|c| c.collisions == 1));
+    let class = |name: &str| report.classes.iter().find(|c| c.class == name).unwrap();
+    assert!((class("ore–ore").per_ball_per_second - 1.0 / span / 2.0).abs() < 1e-12);
+    // ΣE_n with the ball's mass for ball–ore (body 5 is the grain), the grain's for ore–chamber.
+    assert!((class("ball–ore").normal_energy_per_second_w - 0.5 * mass(3) / span).abs() < 1e-15);
+    assert!((class("ore–chamber").normal_energy_per_second_w - 0.5 * mass(5) / span).abs() < 1e-15);
+    assert_eq!(report.all_classes.collisions, 6);
+    assert_eq!(report.all_classes.fractions_above, [5.0 / 6.0, 3.0 / 6.0, 1.0 / 6.0]);
+    // 10 revolutions a second over 0.7 s, one blade hit.
+    assert!((report.revolutions - 7.0).abs() < 1e-12);
+    assert!((report.blade_hits_per_revolution - 1.0 / 7.0).abs() < 1e-12);
+
+    // Stress energy on ore: ball–ore ½ m* 1², ore–ore ½ (m/2) 2², ore–chamber ½ m 1².
+    let s = report.stress_energy.as_ref().unwrap();
+    let reduced = mass(3) * mass(5) / (mass(3) + mass(5));
+    let mut expected = [0.5 * reduced, 0.5 * 0.5 * mass(5) * 4.0, 0.5 * mass(5)];
+    expected.sort_by(f64::total_cmp);
+    assert_eq!((s.events, s.without_impact, s.counts.iter().sum::<usize>()), (3, 0, 3));
+    assert!((s.median_j - expected[1]).abs() < 1e-15 * expected[1].max(1.0));
+    assert!((s.energy_per_second_w - expected.iter().sum::<f64>() / span).abs() < 1e-12);
+    assert!((s.bin_edges_j[0] / expected[0] - 1.0).abs() < 1e-12);
+    assert!((s.bin_edges_j.last().unwrap() / expected[2] - 1.0).abs() < 1e-12);
+
+    // Power: 2 W in by both methods, 1.9 W dissipated.
+    let p = report.power;
+    assert_eq!((p.mean_power_torque_w, p.mean_power_work_w, p.relative_torque_work), (2.0, 2.0, 0.0));
+    assert!((p.dissipation_w - 1.9).abs() < 1e-9 && (p.relative_torque_dissipation - 0.05).abs() < 1e-9);
+
+    // Ball speeds: 71 dumps in the window, half the samples at 1 m/s (upper), half at 3 m/s (lower).
+    let speeds = report.ball_speeds.as_ref().unwrap();
+    assert_eq!((speeds.dumps, speeds.all.samples), (71, 142));
+    assert_eq!((speeds.all.median_m_s, speeds.all.mean_m_s, speeds.all.p90_m_s), (2.0, 2.0, 3.0));
+    assert_eq!((speeds.upper_outer.samples, speeds.upper_outer.median_m_s), (71, 1.0));
+    assert_eq!((speeds.lower_outer.samples, speeds.lower_outer.median_m_s), (71, 3.0));
+    assert_eq!(report.median_speed_m_s, [2.0, 0.0]);
+    assert!(report.autocorrelation.is_none(), "a constant series has no autocorrelation");
+
+    // Where: every ball sample at r = 46 mm, in the outer ring and the ring 45–50 mm.
+    let chamber = report.chamber.unwrap();
+    assert_eq!((chamber.radius_m, chamber.ball_diameter_m), (R, D));
+    let profile = report.radial_profile.as_ref().unwrap();
+    assert_eq!(profile.outer_ring_share, 1.0);
+    assert_eq!(profile.rings.last().unwrap().share, 1.0);
+    assert_eq!(profile.rings.len(), 10);
+    // Sector cells of 22.5°, rings at R √(k/5): the ball at 90° (upper) in ring 4, sector 4, at 1 m/s; the
+    // ball–ball and ball–ore collisions began in the same cell.
+    assert!(report.collision_points_known);
+    let cell = |ring: usize, sector: usize| &report.sectors[ring * 16 + sector];
+    assert_eq!((cell(4, 4).ball_share, cell(4, 4).mean_speed_m_s, cell(4, 4).collisions), (0.5, 1.0, 2));
+    assert_eq!((cell(4, 12).ball_share, cell(4, 12).mean_speed_m_s), (0.5, 3.0));
+    assert_eq!(report.sectors.iter().map(|c| c.collisions).sum::<usize>(), 6);
+
+    // A given start replaces the cut and keeps the blade hit at 0.1 s.
+    let given = analyze_mill(&dir, &MillOptions { warm_up_s: Some(0.0) }).unwrap();
+    assert!(given.warm_up.given && given.window_s[0] == 0.0);
+    assert_eq!(given.classes.iter().find(|c| c.class == "ball–blade").unwrap().collisions, 2);
+    for file in [
+        "mill.json",
+        "mill_collisions.csv",
+        "mill_ball_speeds.csv",
+        "mill_median_speed.csv",
+        "mill_radial_profile.csv",
+        "mill_sectors.csv",
+        "mill_stress_energy.csv",
+        "mill_sector_speed.svg",
+        "mill_sector_collisions.svg",
+        "mill_median_speed.svg",
+        "mill_stress_energy.svg",
+    ] {
+        assert!(dir.join("analysis").join(file).exists(), "{file} is missing");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
