@@ -166,3 +166,18 @@ fn frictionless_balls_lock_into_a_ring_that_turns_with_the_rotor() {
     let (with_friction, _) = mean_and_deviation(&reference().window.median_speeds);
     assert!(mean > 2.5 * with_friction, "{mean} against {with_friction} m/s with friction");
 }
+
+#[test]
+fn a_mill_started_from_a_bed_at_rest_reaches_the_same_median_speed() {
+    let bed = run_window("mill_ci_bed.ron");
+    let (from_bed, _) = mean_and_deviation(&bed.window.median_speeds);
+    let (spread_out, _) = mean_and_deviation(&reference().window.median_speeds);
+    let power = |run: &MillRun| run.window.work_in / run.window.duration;
+    eprintln!(
+        "over the window: median speed {spread_out:.4} m/s spread out at 1 m/s, {from_bed:.4} m/s from a bed; ⟨P⟩ \
+         {:.3} and {:.3} W",
+        power(reference()),
+        power(&bed)
+    );
+    assert!((from_bed - spread_out).abs() <= 0.03 * spread_out, "{from_bed} against {spread_out} m/s");
+}
