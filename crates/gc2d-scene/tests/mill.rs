@@ -262,3 +262,119 @@ fn a_slow_ball_bounces_off_a_wavy_piece_as_off_the_circle_and_a_little_softer_at
     assert!((e_piece - steel).abs() < 1e-3, "off a piece e = {e_piece}, the steel law {steel}");
     assert!(e_joint < e_piece && e_joint > 0.9 * steel, "at a joint e = {e_joint}");
 }
+
+#[test]
+fn a_bed_is_a_loose_triangular_packing_at_rest_at_the_bottom_and_stays_put() {
+    let mut world = preset("mill_spinup").build().unwrap();
+    let b = world.bodies();
+    let balls: Vec<usize> = b.particles().map(|id| id.index()).collect();
+    assert_eq!(balls.len(), 130);
+    let spacing = 0.005 * 1.01;
+    let start: Vec<DVec2> = balls.iter().map(|&i| b.pose[i].position).collect();
+    for (k, &p) in start.iter().enumerate() {
+        assert_eq!(b.velocity[balls[k]], DVec2::ZERO, "ball {k} is at rest");
+        assert!(p.y < -0.073 / 3.0, "ball {k} at y = {} m is not in the lower part", p.y);
+        // Rows 0.866 spacings apart from 2.5 mm above the bottom; places half a spacing apart, alternating.
+        let row = (p.y - (-0.073 + 0.0025)) / (spacing * 0.75f64.sqrt());
+        assert!((row - row.round()).abs() < 1e-9, "ball {k} is off the rows");
+        let place = p.x / (0.5 * spacing);
+        assert!((place - place.round()).abs() < 1e-9 && (place.round() + row.round()) % 2.0 == 0.0);
+        let neighbours = start.iter().filter(|q| (q.distance(p) - spacing).abs() < 1e-12).count();
+        assert!(neighbours >= 1, "ball {k} has no neighbour one spacing away");
+        assert!(start[k + 1..].iter().all(|q| q.distance(p) > 0.005), "ball {k} touches another");
+    }
+    assert_nothing_overlaps(&world);
+    // Rows fill from the bottom: the top row is the only partial one, and it is centred.
+    let top = start.iter().map(|p| p.y).fold(f64::MIN, f64::max);
+    let top_row: Vec<f64> = start.iter().filter(|p| p.y == top).map(|p| p.x).collect();
+    let mean = top_row.iter().sum::<f64>() / top_row.len() as f64;
+    assert!(mean.abs() <= 0.5 * spacing, "the top row is centred, its mean x is {mean} m");
+    // At rest under gravity it settles by less than the gaps: after 2 ms (the rotor barely turning) no ball has moved
+    // more than 0.2 mm or is faster than 0.1 m/s.
+    world.run_until(0.002).unwrap();
+    let b = world.bodies();
+    for (k, &i) in balls.iter().enumerate() {
+        assert!(b.pose[i].position.distance(start[k]) < 2e-4, "ball {k} moved");
+        assert!(b.velocity[i].length() < 0.1, "ball {k} moves at {} m/s", b.velocity[i].length());
+    }
+}
+
+#[test]
+fn ore_grains_are_polygons_of_their_material_placed_among_the_balls_without_overlap() {
+    let scene = preset("mill_ore");
+    let world = scene.build().unwrap();
+    let b = world.bodies();
+    let particles: Vec<usize> = b.particles().map(|id| id.index()).collect();
+    let (balls, grains): (Vec<usize>, Vec<usize>) = particles.iter().partition(|&&i| b.shape[i] == ShapeKind::Disk);
+    assert_eq!((balls.len(), grains.len()), (100, 40));
+    let (steel, calcite) = (b.material[balls[0]], b.material[grains[0]]);
+    assert_ne!(steel, calcite);
+    for &i in &grains {
+        assert_eq!(b.shape[i], ShapeKind::Polygon);
+        assert_eq!(b.material[i], calcite);
+        assert!((b.velocity[i].length() - 1.0).abs() < 1e-12, "a grain starts at the balls' speed");
+        let corners = world.bodies().world_vertices_of(BodyId(i as u32));
+        assert!(corners.iter().all(|c| c.length() < 0.073), "grain {i} pokes out of the chamber");
+    }
+    assert!(balls.iter().all(|&i| b.material[i] == steel));
+    assert_nothing_overlaps(&world);
+    // The same seed places the same grains; the balls come first and are drawn as without ore.
+    let again = scene.build().unwrap();
+    assert!(
+        particles.iter().all(|&i| again.bodies().pose[i] == b.pose[i] && again.bodies().velocity[i] == b.velocity[i])
+    );
+    let mut without = scene.clone();
+    without.mill.as_mut().unwrap().ore = None;
+    let without = without.build().unwrap();
+    assert!(balls.iter().all(|&i| without.bodies().pose[i] == b.pose[i]));
+}
+
+#[test]
+fn chamber_placement_and_ore_errors_name_the_field() {
+    let scene = |chamber: &str, balls: &str, ore: &str| {
+        format!(
+            "Scene(mass_model: SphereEquivalent, materials: [(name: \"steel\", density_kg_m3: 7850)],
+             mill: (chamber: {chamber}, rotor: (rpm: 1000), balls: ({balls}){ore}))"
+        )
+    };
+    let error = |text: String| Scene::from_str(&text, "bad.ron").and_then(|s| s.build().map(drop)).unwrap_err();
+    let cases = [
+        (scene("Ramps(tilt_rad: 1.6)", "count: 10", ""), "mill.chamber.tilt_rad", "tilt"),
+        (scene("Ramps(height_m: 0.012)", "count: 10", ""), "mill.chamber.height_m", "stays within"),
+        (scene("Ramps(tilt_rad: 1.0, height_m: 0.0105)", "count: 10", ""), "mill.chamber.height_m", "crest"),
+        (scene("Wavy(amplitude_m: 0.012)", "count: 10", ""), "mill.chamber.amplitude_m", "smallest radius"),
+        (scene("Wavy(amplitude_m: 0.004, lobes: 40)", "count: 10", ""), "mill.chamber.amplitude_m", "tightest bend"),
+        (scene("Wavy(amplitude_m: 0.004, lobes: 0)", "count: 10", ""), "mill.chamber.lobes", "wave"),
+        (scene("Wavy(amplitude_m: 0.004, segments: 100)", "count: 10", ""), "mill.chamber.segments", "256"),
+        (
+            scene("Wavy(amplitude_m: 0.004, segments: 256)", "count: 10, radius_m: 0.0015", ""),
+            "mill.chamber.segments",
+            "ball radius",
+        ),
+        (scene("Circle", "count: 10, placement: Bed, speed_m_s: 1.0", ""), "mill.balls.speed_m_s", "at rest"),
+        (scene("Circle", "count: 900, placement: Bed", ""), "mill.balls.count", "bed"),
+        (
+            scene("Circle", "count: 10", ", ore: (count: 5, shape: (semi_axes_m: (0.002, 0.002), corners: 2))"),
+            "mill.ore.shape.corners",
+            "",
+        ),
+        (
+            scene("Circle", "count: 10", ", ore: (count: 5, material: \"rock\", shape: (semi_axes_m: (0.002, 0.002)))"),
+            "mill.ore.material",
+            "",
+        ),
+        (
+            scene("Circle", "count: 10", ", ore: (count: 2000, shape: (semi_axes_m: (0.002, 0.002)))"),
+            "mill.ore.count",
+            "found room",
+        ),
+    ];
+    for (text, path, words) in cases {
+        let e = Scene::from_str(&text, "bad.ron").and_then(|s| s.build().map(drop)).expect_err(path);
+        assert_eq!(e.path(), path, "{}", e.render_plain());
+        assert!(e.message().contains(words), "{}", e.render_plain());
+        assert!(e.location().is_some(), "{path} is located in the file: {}", e.render_plain());
+    }
+    let e = error(scene("Oval", "count: 10", ""));
+    assert_eq!((e.kind(), e.path()), (ErrorKind::UnknownName, "mill.chamber"), "{}", e.render_plain());
+}

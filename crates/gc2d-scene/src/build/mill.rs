@@ -26,7 +26,7 @@ const PLACEMENT_ATTEMPTS_PER_BALL: usize = 1000;
 pub const MIN_CHAMBER_SEGMENTS: usize = 256;
 /// Most straight pieces of a wavy chamber.
 pub const MAX_CHAMBER_SEGMENTS: usize = 10_000;
-/// The longest piece of a wavy chamber, as a fraction of the ball radius.
+/// The longest piece of a wavy chamber, in ball radii.
 const MAX_SEGMENT_PER_BALL_RADIUS: f64 = 1.0;
 /// The gap between neighbouring balls of a bed, as a fraction of the ball diameter (a loose packing).
 const BED_GAP: f64 = 0.01;
@@ -190,7 +190,7 @@ fn check_chamber(mill: &Mill, path: &str) -> Result<(), SceneError> {
                 return Err(SceneError::value(
                     at("segments"),
                     format!(
-                        "{segments} segments: the pieces are up to {} m long, more than half the ball radius ({} m)",
+                        "{segments} segments: the pieces are up to {} m long, longer than the ball radius ({} m)",
                         number(longest),
                         number(limit)
                     ),
