@@ -12,8 +12,8 @@ use serde_json::Value;
 use std::collections::HashMap;
 use std::path::Path;
 
-/// Numeric arrays up to this length become a column per element (`quartiles_m_s[1]`); longer ones (histograms) are
-/// left out.
+/// Numeric arrays up to this length become a column per element (`quartiles_m_s[1]`); longer ones are left out, and so
+/// are arrays whose length differs between the points (histograms with a bin count that follows the sample count).
 pub const MAX_ARRAY_COLUMNS: usize = 8;
 
 /// One point's results.
@@ -56,7 +56,7 @@ impl Table {
 pub fn collect(sweep: &Sweep, points: &[PointScene]) -> (Table, Vec<String>) {
     let mut warnings = Vec::new();
     let mut numbers: Vec<String> = Vec::new();
-    let mut rows = Vec::with_capacity(points.len());
+    let mut rows: Vec<Row> = Vec::with_capacity(points.len());
     for point in points {
         let dir = &point.dir;
         let outcome = outcome(dir);
@@ -90,8 +90,37 @@ pub fn collect(sweep: &Sweep, points: &[PointScene]) -> (Table, Vec<String>) {
             numbers: values.into_iter().collect(),
         });
     }
+    let uneven = uneven_arrays(&numbers, &rows);
+    numbers.retain(|name| !array_family(name).is_some_and(|family| uneven.contains(family)));
+    for row in &mut rows {
+        row.numbers.retain(|name, _| !array_family(name).is_some_and(|family| uneven.contains(family)));
+    }
     let parameters = sweep.parameters.iter().map(|p| p.name.clone()).collect();
     (Table { parameters, numbers, rows }, warnings)
+}
+
+/// The array a column is an element of: `mill.quartiles_m_s` for `mill.quartiles_m_s[1]`.
+fn array_family(name: &str) -> Option<&str> {
+    let (family, index) = name.strip_suffix(']')?.rsplit_once('[')?;
+    index.bytes().all(|b| b.is_ascii_digit()).then_some(family)
+}
+
+/// The numeric arrays whose length differs between the rows that have them (histograms, whose bin count follows
+/// the number of samples): their elements are not the same quantity from row to row.
+fn uneven_arrays(numbers: &[String], rows: &[Row]) -> std::collections::HashSet<String> {
+    let mut lengths: HashMap<&str, std::collections::HashSet<usize>> = HashMap::new();
+    for row in rows {
+        let mut here: HashMap<&str, usize> = HashMap::new();
+        for name in numbers.iter().filter(|n| row.numbers.contains_key(*n)) {
+            if let Some(family) = array_family(name) {
+                *here.entry(family).or_default() += 1;
+            }
+        }
+        for (family, length) in here {
+            lengths.entry(family).or_default().insert(length);
+        }
+    }
+    lengths.into_iter().filter(|(_, l)| l.len() > 1).map(|(family, _)| family.to_owned()).collect()
 }
 
 /// The scene-type analyses of a run directory: `analysis/<kind>.json`, by kind, in name order.
@@ -227,6 +256,14 @@ mod tests {
         }
         assert_eq!(number(5882.0), "5882");
         assert_eq!(number(1.7e-6), "1.7e-6");
+    }
+
+    #[test]
+    fn array_elements_name_their_array() {
+        assert_eq!(array_family("mill.quartiles_m_s[1]"), Some("mill.quartiles_m_s"));
+        assert_eq!(array_family("mill.classes[ball–hub].n"), None);
+        assert_eq!(array_family("mill.classes[ball–hub]"), None);
+        assert_eq!(array_family("time_s"), None);
     }
 
     #[test]

@@ -39,19 +39,10 @@ pub struct Sweep {
     pub out: PathBuf,
     /// The parameters.
     pub parameters: Vec<ParameterSpec>,
-    /// The seeds; `None` keeps the base scene's seed (and its count is then 1).
-    pub seeds: Option<SeedSpec>,
+    /// The seeds; `None` keeps the base scene's seed.
+    pub seeds: Option<Seeds>,
     /// What the file says, for the run, analysis and plot options.
     pub file: SweepFile,
-}
-
-/// The seeds as given.
-#[derive(Debug, Clone)]
-pub enum SeedSpec {
-    /// The base scene's seed and the ones after it.
-    Count(u64),
-    /// These.
-    List(Vec<u64>),
 }
 
 /// One point of the sweep: a value of every parameter and a seed.
@@ -117,7 +108,7 @@ impl Sweep {
         let seeds = match &file.seeds {
             None => None,
             Some(Seeds::Count(0)) => return Err(error("seeds".into(), "at least one seed is needed".into())),
-            Some(Seeds::Count(n)) => Some(SeedSpec::Count(*n)),
+            Some(Seeds::Count(n)) => Some(Seeds::Count(*n)),
             Some(Seeds::List(list)) => {
                 if list.is_empty() {
                     return Err(error("seeds".into(), "the list of seeds is empty".into()));
@@ -125,13 +116,13 @@ impl Sweep {
                 if let Some(twice) = first_repeat(list) {
                     return Err(error("seeds".into(), format!("the seed {twice} is given twice")));
                 }
-                Some(SeedSpec::List(list.clone()))
+                Some(Seeds::List(list.clone()))
             }
         };
         let seed_count = match &seeds {
             None => 1,
-            Some(SeedSpec::Count(n)) => usize::try_from(*n).unwrap_or(usize::MAX),
-            Some(SeedSpec::List(list)) => list.len(),
+            Some(Seeds::Count(n)) => usize::try_from(*n).unwrap_or(usize::MAX),
+            Some(Seeds::List(list)) => list.len(),
         };
         let count = parameters.iter().map(|p| p.values.len()).chain([seed_count]).try_fold(1usize, usize::checked_mul);
         if count.is_none_or(|n| n > MAX_POINTS) {
@@ -153,8 +144,8 @@ impl Sweep {
     pub fn points(&self, base_seed: u64) -> Vec<Point> {
         let seeds: Vec<u64> = match &self.seeds {
             None => vec![base_seed],
-            Some(SeedSpec::Count(n)) => (0..*n).map(|k| base_seed.wrapping_add(k)).collect(),
-            Some(SeedSpec::List(list)) => list.clone(),
+            Some(Seeds::Count(n)) => (0..*n).map(|k| base_seed.wrapping_add(k)).collect(),
+            Some(Seeds::List(list)) => list.clone(),
         };
         let mut combinations: Vec<Vec<String>> = vec![Vec::new()];
         for parameter in &self.parameters {
