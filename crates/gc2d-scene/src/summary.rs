@@ -1,5 +1,6 @@
 //! What a built scene contains, for `gc2d-rs check` and for people reading a scene.
 
+use crate::checks::number;
 use gc2d_contact::{ImpactLaw, NormalSpring, PenetrationDamping, TangentialStiffness};
 use gc2d_engine::{ContactModel, InteractionTable, MassModel, MaterialId};
 use std::fmt;
@@ -25,10 +26,10 @@ fn describe(model: &ContactModel) -> String {
                 text += ", conservative";
             }
             if let Some(damping) = law.damping {
-                text += &format!(", γ = {}", damping.gamma);
+                text += &format!(", γ = {}", number(damping.gamma));
             }
             if let Some(friction) = law.friction {
-                text += &format!(", μ = {}", friction.mu);
+                text += &format!(", μ = {}", number(friction.mu));
             }
             if let Some(cohesion) = law.cohesion {
                 text += &format!(", k_coh = {:e} N/m", cohesion.k_coh);
@@ -42,13 +43,13 @@ fn describe(model: &ContactModel) -> String {
             };
             text += &match law.damping {
                 None => ", undamped".to_owned(),
-                Some(PenetrationDamping::DampingRatio(ratio)) => format!(", damping ratio D = {ratio}"),
-                Some(PenetrationDamping::Restitution(e)) => format!(", restitution e = {e}"),
+                Some(PenetrationDamping::DampingRatio(ratio)) => format!(", damping ratio D = {}", number(ratio)),
+                Some(PenetrationDamping::Restitution(e)) => format!(", restitution e = {}", number(e)),
                 Some(PenetrationDamping::VelocityDependent(ImpactLaw::SteelReichardt)) => {
                     ", restitution e(v) of steel (Reichardt)".to_owned()
                 }
                 Some(PenetrationDamping::VelocityDependent(ImpactLaw::PowerLaw { a, b, c })) => {
-                    format!(", restitution e(v) = {a}/(v + {b})^{c}")
+                    format!(", restitution e(v) = {}/(v + {})^{}", number(a), number(b), number(c))
                 }
                 Some(PenetrationDamping::VelocityDependent(ImpactLaw::Table(table))) => {
                     format!(", restitution e(v) from {} points", table.points().len())
@@ -57,13 +58,13 @@ fn describe(model: &ContactModel) -> String {
             if let Some(friction) = law.tangential {
                 text += &match friction.stiffness {
                     TangentialStiffness::CundallStrack { stiffness_ratio } => {
-                        format!(", μ = {}, k_t/k_n = {stiffness_ratio:.4}", friction.mu)
+                        format!(", μ = {}, k_t/k_n = {stiffness_ratio:.4}", number(friction.mu))
                     }
-                    TangentialStiffness::Mindlin { .. } => format!(", μ = {}, Mindlin", friction.mu),
+                    TangentialStiffness::Mindlin { .. } => format!(", μ = {}, Mindlin", number(friction.mu)),
                 };
             }
             if let Some(rolling) = law.rolling {
-                text += &format!(", rolling μ_r = {}", rolling.mu_r);
+                text += &format!(", rolling μ_r = {}", number(rolling.mu_r));
             }
             if law.tensile_clamp {
                 text += ", no pull (clamped)";
@@ -149,6 +150,6 @@ impl fmt::Display for Summary {
             "  impacts expected up to {:.3} m/s (where a Hertz contact's bound is taken)",
             self.max_impact_speed_m_s
         )?;
-        write!(f, "  end time: {} s ({} steps)", self.end_time_s, self.steps())
+        write!(f, "  end time: {} s ({} steps)", number(self.end_time_s), self.steps())
     }
 }

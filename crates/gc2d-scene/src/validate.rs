@@ -292,6 +292,27 @@ fn gravity_in_range(path: &str, g: f64) -> Result<(), SceneError> {
     })
 }
 
+/// Young's moduli (2D, per unit thickness) of the overlap-area law, N/m: E·(1 m) from soft gels (1 kPa·m) to ten
+/// times diamond. Outside, the automatic Δt leaves the numbers the integrator can use (1e-320 N/m gave an infinite
+/// step, 1e300 N/m one of 1e-151 s, both refused by the engine at `Scene(` with hundreds of digits).
+const YOUNGS_MODULUS_N_M_RANGE: [f64; 2] = [1.0, 1e13];
+
+/// Young's moduli (3D) of the Hertz and Mindlin laws, Pa: soft gels (1 kPa) to ten times diamond.
+const YOUNGS_MODULUS_PA_RANGE: [f64; 2] = [1e3, 1e13];
+
+const YOUNGS_MODULUS_PA_HELP: &str =
+    "solids lie between soft gels (about 1e3 Pa) and diamond (1.2e12 Pa); steel is 2.1e11";
+
+/// Checks an overlap-area law's E against [`YOUNGS_MODULUS_N_M_RANGE`].
+fn youngs_modulus_in_range(path: &str, modulus: f64) -> Result<(), SceneError> {
+    in_range(path, modulus, YOUNGS_MODULUS_N_M_RANGE, "N/m", "Young's modulus E").map(drop).map_err(|e| {
+        e.with_help(
+            "per unit thickness, E in N/m is E·(1 m): 1e6 for rubber to 1.2e12 for diamond, 1e7 in gc2d; the range \
+             spans soft gels to ten times diamond",
+        )
+    })
+}
+
 /// Ranges of each material and unique names.
 fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
     if scene.materials.is_empty() && scene.mass_model == MassModel::SphereEquivalent {
@@ -350,6 +371,16 @@ fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
                     number(material.youngs_modulus_n_m)
                 ),
             ));
+        } else {
+            collect(errors, youngs_modulus_in_range(&at("youngs_modulus_n_m"), material.youngs_modulus_n_m));
+        }
+        if let Some(modulus) = material.youngs_modulus_pa {
+            collect(
+                errors,
+                in_range(&at("youngs_modulus_pa"), modulus, YOUNGS_MODULUS_PA_RANGE, "Pa", "Young's modulus")
+                    .map(drop)
+                    .map_err(|e| e.with_help(YOUNGS_MODULUS_PA_HELP)),
+            );
         }
         collect(errors, non_negative(&at("gamma"), material.gamma).map(drop));
         if !(material.mu >= 0.0 && material.mu.is_finite()) {
@@ -391,7 +422,7 @@ fn check_interactions(scene: &Scene, materials: &Materials, errors: &mut Vec<Sce
         let at = |field: &str| field_path(&field_path(&path, "law"), field);
         if let InteractionLaw::OverlapArea { youngs_modulus_n_m, gamma, mu, cohesion_n_m, .. } = &interaction.law {
             if let Some(e) = youngs_modulus_n_m {
-                collect(errors, positive(&at("youngs_modulus_n_m"), *e).map(drop));
+                collect(errors, youngs_modulus_in_range(&at("youngs_modulus_n_m"), *e));
             }
             for (field, value) in [("gamma", gamma), ("mu", mu), ("cohesion_n_m", cohesion_n_m)] {
                 if let Some(value) = value {

@@ -294,3 +294,43 @@ fn invalid_utf8_is_located_at_its_first_byte() {
     assert_eq!(error.message(), "invalid UTF-8 at byte 20 (0xff): scene files are UTF-8 text");
     insta::assert_snapshot!("invalid_utf8", error.render_plain().replace(&path.display().to_string(), "bad.ron"));
 }
+
+#[test]
+fn youngs_moduli_must_be_physically_sensible() {
+    // 1e-320 N/m gave an infinite automatic Δt and 1e300 N/m one of 5.6e-152 s: both were refused by the engine at
+    // `Scene(`, the second printed with 150 digits.
+    let text = "Scene(\n    materials: [(name: \"sand\", youngs_modulus_n_m: 1e-320)],\n)";
+    let error = check("tiny_youngs_modulus", text, ErrorKind::Value, "materials[0].youngs_modulus_n_m", (2, 52));
+    assert!(error.message().starts_with("1e-320 N/m: Young's modulus E must lie between 1 and 1e13 N/m"));
+    let text = "Scene(\n    materials: [(name: \"sand\", youngs_modulus_n_m: 1e300)],\n)";
+    assert_eq!(error_of(text).path(), "materials[0].youngs_modulus_n_m");
+    let text = "Scene(\n    materials: [(name: \"steel\", youngs_modulus_pa: 1e300)],\n)";
+    let error = error_of(text);
+    assert_eq!(
+        (error.path(), error.message()),
+        ("materials[0].youngs_modulus_pa", "1e300 Pa: Young's modulus must lie between 1000 and 1e13 Pa")
+    );
+    let text = "Scene(\n    materials: [(name: \"a\")],\n    interactions: [(materials: (\"a\", \"a\"), law: OverlapArea(youngs_modulus_n_m: 1e-300))],\n)";
+    assert_eq!(error_of(text).path(), "interactions[0].law.youngs_modulus_n_m");
+    let edges =
+        "Scene(\n    materials: [(name: \"a\", youngs_modulus_n_m: 1), (name: \"b\", youngs_modulus_n_m: 1e13)],\n)";
+    assert!(Scene::from_str(edges, "ok.ron").is_ok());
+}
+
+#[test]
+fn a_time_step_the_integrator_cannot_use_is_located_at_the_field() {
+    // Δt = 1e100 s passes validation and, with `allow_unsafe_time_step`, the bound; the engine refuses it (Δt⁵
+    // overflows). The error was located at `Scene(` and printed the step with 101 digits.
+    let text = "Scene(\n    run: (time_step_s: 1e100, allow_unsafe_time_step: true),\n    particles: [(shape: Square(side_m: 0.01))],\n)";
+    let error = check("unusable_time_step", text, ErrorKind::TimeStep, "run.time_step_s", (2, 24));
+    assert!(error.message().starts_with("the time step 1e100 s is not usable"), "{}", error.message());
+}
+
+#[test]
+fn check_prints_extreme_numbers_short() {
+    let text = "Scene(\n    run: (end_time_s: 1e300),\n    materials: [(name: \"a\", gamma: 1e300, mu: 1e-320)],\n)";
+    let summary = Scene::from_str(text, "big.ron").unwrap().summary().unwrap().to_string();
+    assert!(summary.contains("γ = 1e300, μ = 1e-320"), "{summary}");
+    assert!(summary.contains("end time: 1e300 s ("), "{summary}");
+    assert!(summary.len() < 1_000, "{summary}");
+}

@@ -12,12 +12,14 @@ pub(crate) mod safety;
 pub(crate) mod shapes;
 pub(crate) mod walls;
 
+use crate::checks::number;
 use crate::error::{ErrorKind, SceneError};
 use crate::schema::{Corrector, DropHeight, Gravity, GravityProfile, Scene, Source};
 use crate::spans::field_path;
 use crate::summary::Summary;
 use crate::validate::Materials;
 use blocks::Lattice;
+use gc2d_engine::integrator::IntegratorError;
 use gc2d_engine::schedules::{
     DragSpring as EngineDragSpring, GravityProfile as EngineProfile, GravitySchedule, HeatingSchedule,
 };
@@ -180,7 +182,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
         }),
         seed: scene.run.seed,
     };
-    let mut world = World::new(config).map_err(|e| engine_error(&e, ""))?;
+    let mut world = World::new(config).map_err(|e| world_error(&e, scene, bound.as_ref()))?;
     let moving_walls = walls.iter().filter(|w| !w.motion.is_static()).count();
     for wall in &walls {
         let id = world.add_wall(wall.shape.clone(), wall.pose, wall.surface_velocity, wall.motion);
@@ -249,6 +251,28 @@ fn limiting_note(bound: &TimeStepBound) -> SceneError {
 }
 
 /// An engine error while adding what `path` describes (validation catches these first; this is a backstop).
+/// `World::new`'s refusal, located: a Δt the integrator cannot use is reported at `run.time_step_s` when the scene
+/// gives one, else at the entry whose particle sets the automatic step (not at `Scene(`), its number in short form.
+fn world_error(error: &WorldError, scene: &Scene, bound: Option<&TimeStepBound>) -> SceneError {
+    let WorldError::TimeStep(IntegratorError::InvalidTimeStep(time_step)) = error else {
+        return engine_error(error, "");
+    };
+    let path = match (scene.run.time_step_s, bound) {
+        (Some(_), _) => "run.time_step_s".to_owned(),
+        (None, Some(bound)) => bound.path.clone(),
+        (None, None) => String::new(),
+    };
+    SceneError::new(
+        ErrorKind::TimeStep,
+        path,
+        format!(
+            "the time step {} s is not usable: the integrator needs a positive finite step with Δt⁵/120 a normal f64",
+            number(*time_step)
+        ),
+    )
+    .with_help("check the units of the materials' densities and Young's moduli, and of `run.time_step_s`")
+}
+
 fn engine_error(error: &WorldError, path: &str) -> SceneError {
     let kind = if matches!(error, WorldError::Safety(_)) { ErrorKind::TimeStep } else { ErrorKind::Value };
     SceneError::new(kind, path, error.to_string())
