@@ -13,7 +13,7 @@ use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_
 use gc2d_cli::resume::{ResumePoint, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
 use gc2d_cli::segments::SegmentLog;
-use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording};
+use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording, save_checkpoint};
 use gc2d_engine::World;
 use gc2d_record::{ColourBy, PngOptions, RecordOptions, Recorder, RunInfo, SceneFile, render_png};
 use gc2d_scene::{ErrorKind, Scene, SceneError};
@@ -318,6 +318,7 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     };
     std::fs::create_dir_all(&out)
         .map_err(|e| Failure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
+    gc2d_cli::resume::remove_temporary_files(&out);
     let copy = out.join(SCENE_COPY);
     // The copy records what a fresh run started from; a resumed run keeps it, and the user's own scene file is
     // never overwritten by it (a scene named scene.ron run into its own directory).
@@ -404,26 +405,38 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         (status, _) => status,
     };
     let wall_time = started.elapsed().as_secs_f64();
+    // The end-of-run files that could not be written (a full disk): the outcome names them instead of calling the
+    // outputs complete.
+    let mut unwritten = Vec::new();
     let final_checkpoint = out.join("final.ckpt");
-    let status = match (status, world.save_checkpoint_file(&final_checkpoint)) {
+    let status = match (status, save_checkpoint(&world, &final_checkpoint)) {
         (RunStatus::Completed, Err(e)) => RunStatus::Failed(format!("could not write the final checkpoint: {e}")),
-        (status, _) => status,
+        (status, Err(e)) => {
+            unwritten.push(format!("{} ({e})", final_checkpoint.display()));
+            status
+        }
+        (status, Ok(())) => status,
     };
     let segment_written = segments.write(&world, status.name());
     let status = match (status, segment_written) {
         (RunStatus::Completed, Err(e)) => {
             RunStatus::Failed(format!("could not write {}: {e}", segments_path.display()))
         }
-        (status, _) => status,
+        (status, Err(e)) => {
+            unwritten.push(format!("{} ({e})", segments_path.display()));
+            status
+        }
+        (status, Ok(())) => status,
     };
     let summary = Summary {
         wall_time_all_segments_s: segments.total_wall_s(),
         ..Summary::of(&world, &args.scene, status.clone(), chatter, wall_time)
     };
-    summary
-        .write(&out.join("summary.json"))
-        .map_err(|e| Failure { code: 1, report: format!("could not write the summary: {e}") })?;
-    let code = report_outcome(&status, &world, &out, wall_time)?;
+    let summary_path = out.join("summary.json");
+    if let Err(e) = summary.write(&summary_path) {
+        unwritten.push(format!("{} ({e})", summary_path.display()));
+    }
+    let code = report_outcome(&status, &world, &out, wall_time, &unwritten)?;
     if mill && status == RunStatus::Completed {
         print_mill_summary(&out, world.time());
     }
@@ -578,9 +591,35 @@ fn convergence(out: PathBuf, quick: bool) -> Result<u8, Failure> {
     Ok(0)
 }
 
-/// Prints the one-paragraph outcome and maps it to the exit code.
-fn report_outcome(status: &RunStatus, world: &World, out: &Path, wall_time: f64) -> Result<u8, Failure> {
+/// Prints the one-paragraph outcome and maps it to the exit code. `unwritten` lists the end-of-run files that could
+/// not be written (each with its error): the outputs are then not complete, and the run fails whatever its status.
+fn report_outcome(
+    status: &RunStatus,
+    world: &World,
+    out: &Path,
+    wall_time: f64,
+    unwritten: &[String],
+) -> Result<u8, Failure> {
     let particles = world.bodies().particles().count();
+    if !unwritten.is_empty() {
+        let (time, steps) = (world.time(), world.steps());
+        let ended = match status {
+            RunStatus::Completed => format!("reached t = {time:.6} s (step {steps})"),
+            RunStatus::Interrupted => format!("was interrupted at t = {time:.6} s (step {steps})"),
+            RunStatus::Failed(message) => format!("stopped at t = {time:.6} s (step {steps}): {message}"),
+        };
+        return Err(Failure {
+            code: 1,
+            report: format!(
+                "The run {ended}, but these files could not be written: {}. The other outputs in {} end where they \
+                 could be written; once there is room, run again or continue from its newest checkpoint with \
+                 --resume {}.",
+                unwritten.join("; "),
+                out.display(),
+                out.display()
+            ),
+        });
+    }
     match status {
         RunStatus::Completed => {
             console::err(&format!(

@@ -29,8 +29,10 @@ pub fn write_scene_copy(path: &Path, scene: &Scene) -> io::Result<()> {
 /// sphere-equivalent masses; `force_alternation` is the engine's chatter diagnostic on the row's step
 /// (`World::force_alternation`); the `rotor_` columns are the drive of the walls turning about pivots on the row's
 /// step (`World::rotor_power`: torque, and power from torque and from the work on the particles), zero without;
-/// `median_speed_m_s` is the median |v| of the particles (the mill thesis's stationarity measure).
-pub const TIME_SERIES_COLUMNS: [&str; 20] = [
+/// `median_speed_m_s` is the median |v| of the particles (the mill thesis's stationarity measure); the
+/// `rotor_work_` columns are those powers summed over every step since t = 0 (`World::rotor_work`), whose differences
+/// give a window's exact mean powers.
+pub const TIME_SERIES_COLUMNS: [&str; 22] = [
     "time_s",
     "particles",
     "contacts",
@@ -51,6 +53,8 @@ pub const TIME_SERIES_COLUMNS: [&str; 20] = [
     "rotor_power_torque_w",
     "rotor_power_work_w",
     "median_speed_m_s",
+    "rotor_work_torque_j",
+    "rotor_work_j",
 ];
 
 /// Appends one row per call to `timeseries.csv`.
@@ -118,7 +122,7 @@ impl TimeSeriesWriter {
         let rotor = world.rotor_power();
         writeln!(
             self.file,
-            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             world.time(),
             particles,
             s.contacts,
@@ -139,6 +143,8 @@ impl TimeSeriesWriter {
             rotor.power_from_torque,
             rotor.power_from_work,
             gc2d_record::stats::median_speed(world),
+            world.rotor_work().from_torque,
+            world.rotor_work().from_work,
         )?;
         self.file.flush()
     }
@@ -255,9 +261,24 @@ impl Summary {
         }
     }
 
-    /// Writes the summary as pretty JSON to `path`.
+    /// Writes the summary as pretty JSON to `path`, atomically: into `<path>.tmp`, flushed and synced, then renamed
+    /// over `path`. A write that fails (a full disk) is reported and leaves no partial or empty `summary.json`: the
+    /// temporary file is removed, and so is an older summary at `path` (a resumed run's), which no longer describes
+    /// the run.
     pub fn write(&self, path: &Path) -> io::Result<()> {
-        let file = BufWriter::new(File::create(path)?);
-        serde_json::to_writer_pretty(file, self).map_err(io::Error::other)
+        let temporary = crate::resume::temporary_path(path);
+        let written = (|| {
+            let json = serde_json::to_vec_pretty(self).map_err(io::Error::other)?;
+            let mut file = File::create(&temporary)?;
+            file.write_all(&json)?;
+            file.write_all(b"\n")?;
+            file.sync_all()?;
+            std::fs::rename(&temporary, path)
+        })();
+        if written.is_err() {
+            let _ = std::fs::remove_file(&temporary);
+            let _ = std::fs::remove_file(path);
+        }
+        written
     }
 }

@@ -64,6 +64,31 @@ fn highest_numbered_checkpoint(folder: &Path) -> Result<Option<(u64, PathBuf)>, 
     Ok(newest)
 }
 
+/// `<path>.tmp`: where a checkpoint, `segments.csv` or `summary.json` is written before it is renamed over `path`.
+pub fn temporary_path(path: &Path) -> PathBuf {
+    let mut name = path.as_os_str().to_owned();
+    name.push(".tmp");
+    PathBuf::from(name)
+}
+
+/// Removes the temporary files a process killed while writing (SIGKILL between writing a file and renaming it) left in
+/// the run directory `out`: `final.ckpt.tmp`, `segments.csv.tmp`, `summary.json.tmp` and
+/// `checkpoints/checkpoint-<step>.ckpt.tmp`. They are never read (a resume takes only renamed checkpoints), so they
+/// would only sit there, possibly half written. Called when a run (fresh or resumed) starts in `out`; files that
+/// cannot be removed are left.
+pub fn remove_temporary_files(out: &Path) {
+    for name in ["final.ckpt", "segments.csv", "summary.json"] {
+        let _ = std::fs::remove_file(temporary_path(&out.join(name)));
+    }
+    let Ok(entries) = std::fs::read_dir(out.join("checkpoints")) else { return };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        if name.to_str().and_then(|n| n.strip_suffix(".tmp")).and_then(checkpoint_step).is_some() {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+}
+
 /// The step of a periodic checkpoint's file name, `checkpoint-<step>.ckpt`.
 fn checkpoint_step(file_name: &str) -> Option<u64> {
     file_name.strip_prefix("checkpoint-")?.strip_suffix(".ckpt")?.parse().ok()

@@ -124,10 +124,12 @@ pub fn run_to(
         }
         progress.update(world);
     };
-    let status = if status != RunStatus::Completed && series.append(world).is_err() {
-        RunStatus::Failed("could not write the last row of the time series".into())
-    } else {
-        status
+    // The last row of a stopped run; a failure before it (a full disk) stays the reported cause.
+    let status = match status {
+        RunStatus::Completed => status,
+        _ if series.append(world).is_ok() => status,
+        RunStatus::Interrupted => RunStatus::Failed("could not write the last row of the time series".into()),
+        failed => failed,
     };
     progress.finish(&status);
     RunOutcome { status, chatter: chatter.summary() }

@@ -3,7 +3,9 @@
 //!
 //! A process writes its row when it starts and rewrites it on a cadence of simulated time and at its end, so a
 //! process killed without warning (SIGKILL) still leaves its row with the wall time up to its last update and the
-//! status `running`. The file is replaced atomically (written beside it, then renamed), never left half-written.
+//! status `running`. A resumed process cuts such a row back to the time it resumes from (status `killed`, steps to
+//! match, wall time kept), so that no row claims progress past the checkpoint the run continues from. The file is
+//! replaced atomically (written beside it, then renamed), never left half-written.
 
 use crate::runner::FrameSink;
 use gc2d_engine::World;
@@ -43,7 +45,9 @@ impl SegmentLog {
         interval: f64,
     ) -> io::Result<Self> {
         let earlier_rows = match resumed_from {
-            Some(_) => earlier_rows(path),
+            Some(_) => {
+                earlier_rows(path).iter().map(|row| cut_back(row, world.time(), 0.5 * world.time_step())).collect()
+            }
             None => Vec::new(),
         };
         let earlier_wall_s = earlier_rows.iter().filter_map(|row| wall_of(row)).sum();
@@ -82,8 +86,7 @@ impl SegmentLog {
             text.push_str(line);
         }
         text.push('\n');
-        let mut temporary = self.path.clone().into_os_string();
-        temporary.push(".tmp");
+        let temporary = crate::resume::temporary_path(&self.path);
         std::fs::write(&temporary, text)?;
         std::fs::rename(&temporary, &self.path)
     }
@@ -114,6 +117,33 @@ fn earlier_rows(path: &Path) -> Vec<String> {
     lines.filter(|line| !line.is_empty()).map(str::to_owned).collect()
 }
 
+/// An earlier row as the run resumed at `time` keeps it. A row that claims progress past `time` (a process killed
+/// after its last checkpoint had run on, or one whose later checkpoint the user passed over) is cut back: `to_time_s`
+/// to `time` (not before its `from_time_s`), `steps` in proportion (Δt is fixed for a run), and a `running` status,
+/// which only a killed process leaves, becomes `killed`. `wall_s` stays: that time was spent. Rows ending within
+/// `slack` (half a step) of `time`, and rows that do not parse, are kept as they are.
+fn cut_back(row: &str, time: f64, slack: f64) -> String {
+    let fields: Vec<&str> = row.splitn(SEGMENT_COLUMNS.split(',').count(), ',').collect();
+    let (Some(from), Some(to), Some(steps)) = (
+        fields.get(2).and_then(|f| f.parse::<f64>().ok()),
+        fields.get(3).and_then(|f| f.parse::<f64>().ok()),
+        fields.get(4).and_then(|f| f.parse::<u64>().ok()),
+    ) else {
+        return row.to_owned();
+    };
+    if to <= time + slack || fields.len() < 7 {
+        return row.to_owned();
+    }
+    let kept_to = time.max(from);
+    let kept_steps = if to > from { (steps as f64 * (kept_to - from) / (to - from)).round() as u64 } else { 0 };
+    let status = if fields[6] == "running" { "killed" } else { fields[6] };
+    let mut cut: Vec<String> = fields.iter().map(|f| (*f).to_owned()).collect();
+    cut[3] = kept_to.to_string();
+    cut[4] = kept_steps.to_string();
+    cut[6] = status.to_owned();
+    cut.join(",")
+}
+
 /// The `wall_s` of a row.
 fn wall_of(row: &str) -> Option<f64> {
     row.splitn(SEGMENT_COLUMNS.split(',').count(), ',').nth(WALL_COLUMN)?.parse().ok()
@@ -122,6 +152,26 @@ fn wall_of(row: &str) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rows_past_the_resume_time_are_cut_back_to_it() {
+        // Killed at t = 0.5 after 500 steps from 0.1; the resume continues from the checkpoint at t = 0.3.
+        let row = "1763766000,2,0.1,0.5,500,12.500,running,runs/a,b/checkpoint-0000000100.ckpt";
+        assert_eq!(
+            cut_back(row, 0.3, 5e-4),
+            "1763766000,2,0.1,0.3,250,12.500,killed,runs/a,b/checkpoint-0000000100.ckpt"
+        );
+        // A row that ended at the resume time is kept; so is one ending within half a step of it.
+        let finished = "1763766000,2,0,0.1,100,1.000,interrupted,";
+        assert_eq!(cut_back(finished, 0.1, 5e-4), finished);
+        assert_eq!(cut_back(finished, 0.0999, 5e-4), finished);
+        // Resumed from a checkpoint before the row began: nothing of it is kept.
+        assert_eq!(
+            cut_back(row, 0.05, 5e-4),
+            "1763766000,2,0.1,0.1,0,12.500,killed,runs/a,b/checkpoint-0000000100.ckpt"
+        );
+        assert_eq!(cut_back("not a row", 0.0, 0.0), "not a row");
+    }
 
     #[test]
     fn the_wall_time_is_read_even_when_the_path_holds_commas() {

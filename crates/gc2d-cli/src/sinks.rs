@@ -1,9 +1,9 @@
 //! The run loop's frame sinks: an MCAP recording for Foxglove, PNG pictures and restartable checkpoints.
 
 use crate::runner::FrameSink;
-use gc2d_engine::World;
+use gc2d_engine::{CheckpointError, World};
 use gc2d_record::{PngOptions, Recorder, render_png};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Feeds an MCAP [`Recorder`] one frame per tick.
 pub struct Recording {
@@ -68,6 +68,16 @@ impl FrameSink for Checkpoints {
     fn take(&mut self, world: &World) -> Result<(), String> {
         std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
         let path = self.dir.join(format!("checkpoint-{:010}.ckpt", world.steps()));
-        world.save_checkpoint_file(&path).map_err(|e| format!("cannot write {}: {e}", path.display()))
+        save_checkpoint(world, &path).map_err(|e| format!("cannot write {}: {e}", path.display()))
     }
+}
+
+/// Writes `world` to the checkpoint `path` ([`World::save_checkpoint_file`]: into `<path>.tmp`, then renamed); a write
+/// that fails (a full disk) removes its temporary file instead of leaving it beside the run's outputs.
+pub fn save_checkpoint(world: &World, path: &Path) -> Result<(), CheckpointError> {
+    let saved = world.save_checkpoint_file(path);
+    if saved.is_err() {
+        let _ = std::fs::remove_file(crate::resume::temporary_path(path));
+    }
+    saved
 }

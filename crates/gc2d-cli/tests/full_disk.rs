@@ -23,3 +23,41 @@ fn recording_to_a_full_device_fails_cleanly() {
         .failure()
         .stderr(contains("cannot record to /dev/full").and(contains("panicked").not()));
 }
+
+/// A disk that fills in the middle of a run, stood for by a file-size limit of 2 KiB (`ulimit -f 2`, with SIGXFSZ
+/// ignored so that writes past it fail with EFBIG instead of killing the process): the time series stops growing,
+/// the final checkpoint cannot be written, and the scene path is long enough (1,400 characters of `./`) that
+/// summary.json is larger than the limit as well. The run must say which files are missing instead of calling the
+/// outputs complete, and leave no truncated summary.json.
+#[cfg(unix)]
+#[test]
+fn a_disk_that_fills_mid_run_leaves_no_broken_summary_and_names_what_is_missing() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/tiny_pile.ron");
+    std::fs::copy(&scene, dir.path().join("tiny_pile.ron")).unwrap();
+    let long_path = format!("{}tiny_pile.ron", "./".repeat(700));
+    let output = std::process::Command::new("bash")
+        .current_dir(dir.path())
+        .env("NO_COLOR", "1")
+        .args(["-c", "trap '' XFSZ; ulimit -f 2; exec \"$@\"", "bash"])
+        .arg(assert_cmd::cargo::cargo_bin("gc2d-rs"))
+        .args(["run", &long_path, "--quiet", "--out", "out"])
+        .output();
+    let Ok(output) = output else {
+        eprintln!("skipped: no bash to set a file-size limit with");
+        return;
+    };
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("complete up to this point"), "{stderr}");
+    assert!(stderr.contains("could not write the time series: File too large"), "the first failure: {stderr}");
+    assert!(stderr.contains("these files could not be written: out/final.ckpt"), "{stderr}");
+    assert!(stderr.contains("out/summary.json (File too large"), "{stderr}");
+    let out = dir.path().join("out");
+    assert!(!out.join("summary.json").exists(), "no truncated summary.json");
+    let left: Vec<_> = std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert!(left.iter().all(|name| !name.to_string_lossy().ends_with(".tmp")), "{left:?}");
+    // The time series holds whole rows up to where the disk filled, and the row counter said so.
+    let series = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
+    assert!(series.len() <= 2048 && series.lines().count() >= 3, "{series}");
+}

@@ -1,0 +1,64 @@
+//! A run killed without warning (SIGKILL between writing a checkpoint and renaming it) and resumed from its directory:
+//! the temporary file it left is removed, and `segments.csv` does not claim progress past the checkpoint the resume
+//! continues from (issue 16).
+
+use assert_cmd::Command;
+use std::path::Path;
+
+fn gc2d(dir: &Path, args: &[&str]) -> std::process::Output {
+    Command::cargo_bin("gc2d-rs").unwrap().current_dir(dir).env("NO_COLOR", "1").args(args).output().unwrap()
+}
+
+#[test]
+fn a_resume_after_a_kill_mid_checkpoint_removes_the_temporary_and_cuts_back_the_killed_row() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/tiny_pile.ron");
+    std::fs::copy(&scene, dir.path().join("tiny_pile.ron")).unwrap();
+    let first = gc2d(
+        dir.path(),
+        &["run", "tiny_pile.ron", "--quiet", "--out", "out", "--until", "0.06", "--checkpoint-every", "0.02"],
+    );
+    assert_eq!(first.status.code(), Some(0), "{}", String::from_utf8_lossy(&first.stderr));
+    // What a SIGKILL while the checkpoint at t = 0.06 was being written leaves: that checkpoint still under its
+    // temporary name, no final.ckpt, and the process's row as its last update wrote it (at t = 0.06, `running`).
+    let out = dir.path().join("out");
+    let checkpoints = out.join("checkpoints");
+    let mut names: Vec<String> =
+        std::fs::read_dir(&checkpoints).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    names.sort();
+    assert_eq!(names.len(), 4, "t = 0, 0.02, 0.04, 0.06: {names:?}");
+    let last = checkpoints.join(&names[3]);
+    std::fs::rename(&last, checkpoints.join(format!("{}.tmp", names[3]))).unwrap();
+    std::fs::remove_file(out.join("final.ckpt")).unwrap();
+    std::fs::write(out.join("final.ckpt.tmp"), b"half a checkpoint").unwrap();
+    let segments = std::fs::read_to_string(out.join("segments.csv")).unwrap();
+    std::fs::write(out.join("segments.csv"), segments.replace(",completed,", ",running,")).unwrap();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let step = summary["time_step_s"].as_f64().unwrap();
+
+    let resumed = gc2d(dir.path(), &["run", "tiny_pile.ron", "--quiet", "--resume", "out", "--until", "0.07"]);
+    let stderr = String::from_utf8_lossy(&resumed.stderr);
+    assert_eq!(resumed.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains(&format!("Resuming from out/checkpoints/{}", names[2])), "{stderr}");
+    let mut left: Vec<String> = std::fs::read_dir(&checkpoints)
+        .unwrap()
+        .chain(std::fs::read_dir(&out).unwrap())
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|name| name.ends_with(".tmp"))
+        .collect();
+    left.sort();
+    assert!(left.is_empty(), "temporary files left after the resume: {left:?}");
+
+    // The killed row ends where the resumed one starts (the checkpoint at t = 0.04), with its steps cut to match.
+    let segments = std::fs::read_to_string(out.join("segments.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = segments.lines().skip(1).map(|l| l.splitn(8, ',').collect()).collect();
+    assert_eq!(rows.len(), 2, "{segments}");
+    let number = |row: usize, column: usize| rows[row][column].parse::<f64>().unwrap();
+    assert_eq!(rows[0][3], rows[1][2], "the killed row ends where the resume starts:\n{segments}");
+    assert!((number(1, 2) - 0.04).abs() < 1e-5, "{segments}");
+    assert_eq!(rows[0][6], "killed", "{segments}");
+    assert!((number(0, 4) * step - 0.04).abs() < 2.0 * step, "steps of the killed row: {segments}");
+    assert_eq!(rows[1][6], "completed", "{segments}");
+    assert!((number(1, 3) - 0.07).abs() < step, "{segments}");
+}
