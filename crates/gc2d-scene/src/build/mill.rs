@@ -504,6 +504,8 @@ fn bed(mill: &Mill, occupied: &mut Vec<Occupied>, path: &str) -> Result<Vec<(DVe
     let spacing = 2.0 * r * (1.0 + BED_GAP);
     let rise = spacing * 0.75f64.sqrt();
     let outer = outer_radius(mill);
+    // The lattice keeps the balls apart; only the walls need testing.
+    let walls = occupied.len();
     // Places per row in half spacings k from the middle: even k on even rows, odd k on odd rows.
     let half_width = (outer / (0.5 * spacing)).ceil() as i64 + 1;
     let mut placed = Vec::with_capacity(balls.count);
@@ -525,7 +527,7 @@ fn bed(mill: &Mill, occupied: &mut Vec<Occupied>, path: &str) -> Result<Vec<(DVe
             }
             let position = DVec2::new(centre.x + k as f64 * 0.5 * spacing, y);
             let candidate = Occupied::new(&BodyShape::Disk { radius: r }, Pose::new(position, 0.0));
-            if candidate.fits(mill, occupied) {
+            if candidate.fits(mill, &occupied[..walls]) {
                 occupied.push(candidate);
                 placed.push((position, DVec2::ZERO));
             }
