@@ -315,3 +315,38 @@ fn bad_sweep_files_are_located() {
     );
     assert!(error.contains("`m` is not a parameter of this sweep, did you mean `mu`?"), "{error}");
 }
+
+#[test]
+fn a_mill_sweep_is_analysed_before_it_is_collected() {
+    // scenes/mill.ron cut to 20 balls and 2 ms at two rotor speeds, a time-series row every 0.1 ms.
+    let dir = tempfile::tempdir().unwrap();
+    let mill = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/mill.ron");
+    std::fs::copy(mill, dir.path().join("mill.ron")).unwrap();
+    let text = r#"Sweep(
+    scene: "mill.ron",
+    out: "out",
+    parameters: [
+        (path: "mill.rotor.rpm", values: Grid(start: 1500, stop: 1700, step: 200)),
+        (path: "mill.balls.count", values: List([20])),
+        (path: "run.end_time_s", name: "end", values: List([0.002])),
+        (path: "run.frames_per_second", name: "fps", values: List([10000])),
+    ],
+    analysis: (warm_up_s: 0.0005),
+)
+"#;
+    std::fs::write(dir.path().join("sweep.ron"), text).unwrap();
+    sweep(dir.path()).assert().success();
+    let out = dir.path().join("out");
+    let (header, rows) = csv(&out.join("sweep.csv"));
+    assert_eq!(header[..7], ["point", "rpm", "count", "end", "fps", "seed", "outcome"]);
+    assert_eq!(rows[0][0], "rpm=1500_count=20_end=0.002_fps=10000_seed=1");
+    // The mill analysis ran in each run directory, and its numbers are columns.
+    let balls = header.iter().position(|h| h == "mill.balls").expect("a mill.balls column");
+    for row in &rows {
+        let analysis = out.join(&row[0]).join("analysis/mill.json");
+        let report: serde_json::Value = serde_json::from_slice(&read(&analysis)).unwrap();
+        assert_eq!(report["balls"], 20);
+        assert_eq!(row[balls], "20");
+    }
+    assert!(header.iter().any(|h| h.starts_with("mill.power.")), "{header:?}");
+}
