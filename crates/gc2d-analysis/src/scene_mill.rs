@@ -92,9 +92,10 @@ pub struct StressEnergySpectrum {
 /// The rotor's power and the ledger's balance over the window.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MillPower {
-    /// ⟨P_torque⟩: mean of ω·τ over the window's rows, W.
+    /// ⟨P_torque⟩: ω·τ summed over every step of the window (`rotor_work_torque_j`) divided by its length, W. A mean
+    /// of the rows' instantaneous ω·τ would sample the short blade hits at the frame rate and miss most of them.
     pub mean_power_torque_w: f64,
-    /// ⟨P_work⟩: mean of Σ F·v over the window's rows, W.
+    /// ⟨P_work⟩: Σ F·v summed over every step of the window (`rotor_work_j`) divided by its length, W.
     pub mean_power_work_w: f64,
     /// Work the walls put in over the window divided by its length, W (the ledger's).
     pub power_in_w: f64,
@@ -485,7 +486,6 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
         (Some(first), Some(last)) if window.len() >= 2 => (first, last),
         _ => return Err(AnalysisError::NotEnoughData("timeseries.csv has fewer than two rows in the window".into())),
     };
-    let mean = |column: usize| window.iter().map(|r| number(&r[column])).sum::<f64>() / window.len() as f64;
     let change = |columns: &[usize]| {
         columns.iter().map(|&c| number(&last[c]) - number(&first[c])).sum::<f64>()
             / (number(&last[time]) - number(&first[time]))
@@ -498,7 +498,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let power_in = change(&[series.column("work_in_j", what)?]);
     let dissipation_w = change(&dissipation);
     let (torque, work) =
-        (mean(series.column("rotor_power_torque_w", what)?), mean(series.column("rotor_power_work_w", what)?));
+        (change(&[series.column("rotor_work_torque_j", what)?]), change(&[series.column("rotor_work_j", what)?]));
     let power = MillPower {
         mean_power_torque_w: torque,
         mean_power_work_w: work,

@@ -105,14 +105,22 @@ fn run_dir() -> (PathBuf, World) {
         std::fs::write(dir.join("dumps").join(dump_file_name(k)), bytes).unwrap();
     }
 
-    // Time series: ω·τ = Σ F·v = 2 W, the walls put in 2 W and 1.9 W is dissipated.
+    // Time series: ω·τ and Σ F·v sum to 2 W over the steps (their instantaneous rows alternate 7 and −3 W, which the
+    // means must not use), the walls put in 2 W and 1.9 W is dissipated.
     let mut series = String::from(
         "time_s,median_speed_m_s,rotor_power_torque_w,rotor_power_work_w,work_in_j,dissipated_normal_damping_j,\
-         dissipated_tangential_damping_j,dissipated_sliding_j\n",
+         dissipated_tangential_damping_j,dissipated_sliding_j,rotor_work_torque_j,rotor_work_j\n",
     );
     for k in 0..=100 {
         let t = k as f64 * 0.01;
-        let _ = writeln!(series, "{t},0,2,2,{},{},{},{}", 2.0 * t, 1.0 * t, 0.5 * t, 0.4 * t);
+        let (work, noise) = (2.0 * t, if k % 2 == 0 { 7.0 } else { -3.0 });
+        let _ = writeln!(
+            series,
+            "{t},0,{noise},{noise},{work},{},{},{},{work},{work}",
+            1.0 * t,
+            0.5 * t,
+            0.4 * t
+        );
     }
     std::fs::write(dir.join("timeseries.csv"), series).unwrap();
 

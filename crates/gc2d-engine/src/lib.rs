@@ -39,4 +39,4 @@ pub use safety::{SafetyError, SafetyLimits};
 pub use shape::{BodyShape, BodyShapeError, DiskRecipe, MassModel, ParticleRecipe, ShapeKind, shape_view};
 pub use sources::{DropHeight, DropSource};
 pub use time_window::TimeWindow;
-pub use world::{ForceAlternation, RotorPower, StepStats, WallLoad, World, WorldConfig, WorldError};
+pub use world::{ForceAlternation, RotorPower, RotorWork, StepStats, WallLoad, World, WorldConfig, WorldError};

@@ -122,6 +122,17 @@ pub struct RotorPower {
     pub power_from_work: f64,
 }
 
+/// The work of the walls turning about pivots (a mill's rotor) since t = 0, summed step by step from
+/// [`RotorPower`]: the window means of the rotor's two powers are differences of these over the window's length, exact
+/// where means of the instantaneous powers sampled at frames would miss most of the short blade hits.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct RotorWork {
+    /// Σ ω·τ·Δt, J.
+    pub from_torque: f64,
+    /// Σ (Σ F·v)·Δt, J; the same to round-off, and the part of the ledger's wall work the turning walls did.
+    pub from_work: f64,
+}
+
 /// The chatter diagnostic of one step, summed over the pairs of touching boxes with F the force on the pair:
 /// `change` = Σ|F(n) − 2F(n−1) + F(n−2)| and `scale` = 2Σ(|F(n)| + |F(n−1)|), in N.
 ///
@@ -159,6 +170,8 @@ impl ForceAlternation {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 struct Stages {
     moving_walls: bool,
+    /// A wall turns about a pivot: the step sums its [`RotorWork`].
+    rotors: bool,
     heating: bool,
     variable_gravity: bool,
     sources: bool,
@@ -182,6 +195,7 @@ pub struct World {
     sources: Vec<SourceState>,
     rng: ChaCha8Rng,
     ledger: EnergyLedger,
+    rotor_work: RotorWork,
     stats: StepStats,
     stages: Stages,
     /// Contact episodes and events, while an observer records them ([`Self::record_contact_events`]).
@@ -219,6 +233,7 @@ impl World {
             body_forces: vec![BodyForce::Gravity],
             sources: Vec::new(),
             ledger: EnergyLedger::default(),
+            rotor_work: RotorWork::default(),
             stats: StepStats::default(),
             stages,
             events: None,
@@ -301,6 +316,7 @@ impl World {
         let id = self.bodies.push(BodyKind::Wall, &shape, pose, f64::INFINITY, f64::INFINITY);
         self.bodies.surface_velocity[id.index()] = surface_velocity;
         if !motion.is_static() {
+            self.stages.rotors |= matches!(motion, WallMotion::Rotating(_));
             self.moving_walls.push(MovingWall { body: id, rest: pose, motion });
             self.stages.moving_walls = true;
         }
@@ -431,6 +447,11 @@ impl World {
         load
     }
 
+    /// The work of the walls turning about pivots since t = 0 (see [`RotorWork`]); zero when no wall does.
+    pub fn rotor_work(&self) -> RotorWork {
+        self.rotor_work
+    }
+
     /// The drive of every wall that turns about a pivot (see [`RotorPower`]); zero when no wall does.
     pub fn rotor_power(&self) -> RotorPower {
         let mut drive = RotorPower::default();
@@ -525,6 +546,11 @@ impl World {
         self.close_ended_pairs(t_next);
         self.evaluate_pairs();
         self.accumulate_contact_forces();
+        if self.stages.rotors {
+            let drive = self.rotor_power();
+            self.rotor_work.from_torque += drive.power_from_torque * dt;
+            self.rotor_work.from_work += drive.power_from_work * dt;
+        }
         if self.events.is_some() {
             self.log_contact_events(t_next);
         }

@@ -1,6 +1,6 @@
 //! A rotor blade striking a resting steel ball: the ball leaves at (1 + e(V))·V, the blade's angular impulse equals
 //! the ball's angular momentum change about the axis, and the rotor's power from its torque, ω·τ, equals the power
-//! its blade delivers through the contact, Σ F·v, at every step.
+//! its blade delivers through the contact, Σ F·v, at every step; summed over the steps, both are the ledger's wall work.
 
 mod common;
 
@@ -75,4 +75,11 @@ fn a_blade_striking_a_resting_ball_throws_it_at_one_plus_e_times_its_speed() {
     let gained = angular_momentum(&world) - before;
     let given = -end.wall_angular_impulse.expect("the blade turns about a pivot");
     assert!((given - gained).abs() < 1e-3 * gained.abs(), "angular impulse {given} against the ball's gain {gained}");
+    // The rotor's work summed over the steps is the ledger's wall work (the blade is the only moving wall), by its
+    // torque as by its force, and it is the ball's kinetic energy less what the contact dissipated.
+    let work = world.rotor_work();
+    let walls = world.ledger().work_walls;
+    assert!(walls > 0.0);
+    assert!((work.from_work - walls).abs() <= 1e-9 * walls, "Σ F·v Δt = {} J, ledger {walls} J", work.from_work);
+    assert!((work.from_torque - walls).abs() <= 1e-9 * walls, "Σ ω τ Δt = {} J, ledger {walls} J", work.from_torque);
 }
