@@ -1,5 +1,6 @@
 //! `gc2d-rs run --dump-every`: per-particle state in `dumps/particles_<k>.csv`, on by default for a mill (with
-//! events), the same bytes for any thread count and across a resume, and the mill summary at the end of the run.
+//! events), the same bytes for any thread count and across a resume (and so the mill statistics made from them), and
+//! the mill summary at the end of the run.
 
 use assert_cmd::Command;
 use gc2d_analysis::particle_state::csv::{PARTICLE_STATE_COLUMNS, read_csv};
@@ -92,6 +93,23 @@ fn a_mill_run_dumps_its_balls_at_the_frame_rate_and_the_last_dump_is_the_final_s
         gc2d().arg("run").arg(&scene).args(["--quiet", "--until", "0.01", "--resume"]).arg(&split).output().unwrap();
     assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
     assert!(dumps(&split) == files, "dumps differ across a resume");
+
+    // So the mill statistics are the same too: every table, figure and mill.json, byte for byte.
+    let analysis = |run_dir: &Path| {
+        let done = gc2d().arg("analyze").arg(run_dir).args(["--kind", "mill", "--warm-up", "0.002"]).output().unwrap();
+        assert!(done.status.success(), "{}", String::from_utf8_lossy(&done.stderr));
+        let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(run_dir.join("analysis"))
+            .unwrap()
+            .map(|e| e.unwrap())
+            .map(|e| (e.file_name().into_string().unwrap(), std::fs::read(e.path()).unwrap()))
+            .collect();
+        files.sort();
+        files
+    };
+    let statistics = analysis(&out);
+    assert!(statistics.iter().any(|(name, _)| name == "mill.json"));
+    assert!(analysis(&two) == statistics, "the mill statistics differ between one and two threads");
+    assert!(analysis(&split) == statistics, "the mill statistics differ across a resume");
 }
 
 #[test]
