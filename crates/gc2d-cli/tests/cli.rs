@@ -40,7 +40,9 @@ fn check_prints_what_the_scene_contains() {
         .assert()
         .success()
         .stdout(contains("sources: 1"))
-        .stdout(contains("stable bound"));
+        .stdout(contains("stable bound"))
+        .stdout(contains("memory (rough estimate): ").and(contains(" kB for up to 36 particles")))
+        .stdout(contains("run time (rough estimate for one core): ").and(contains("particle-steps at 1.3 M/s")));
 }
 
 #[test]

@@ -111,6 +111,102 @@ pub struct Summary {
     pub max_impact_speed_m_s: f64,
     /// End time, s.
     pub end_time_s: f64,
+    /// `World::heap_bytes` of the World as built, before its first step: the body columns and the broadphase's
+    /// per-body records of every body present at the start, bytes.
+    pub heap_bytes_at_start: usize,
+}
+
+/// Box pairs per particle in a dense packing (a settled pile of 7-gons: 2.3, docs/performance.md, "Pile
+/// throughput"); each holds a contact record whether or not the pair touches.
+pub const BOX_PAIRS_PER_PARTICLE: f64 = 2.3;
+
+/// Bytes per body that the World allocates only at its first step: the broadphase's four sorted endpoints (16 B
+/// each) and its sweep scratch (8 B) (docs/performance.md, "Memory per particle").
+pub const FIRST_STEP_BYTES_PER_BODY: usize = 4 * 16 + 8;
+
+/// Heap bytes of one 7-gon particle's body columns and broadphase records with exact capacities (554 + 139 B,
+/// docs/performance.md, "Memory per particle"), for particles that only sources insert.
+pub const BODY_BYTES_OF_A_7_GON: usize = 554 + 139;
+
+/// Bytes of one box pair: the pair list's entry (the engine's `PairEntry<PairContact>`: two body ids and the
+/// contact record) and its slots in the open-addressing index (8 to 16 B; 16 taken).
+pub fn bytes_per_box_pair() -> usize {
+    std::mem::size_of::<gc2d_engine::broadphase::PairEntry<gc2d_engine::PairContact>>() + 16
+}
+
+/// Particle-steps per second of one core that run-time estimates use: 1.3 million, the dense 10,000-grain pile of
+/// 7-gons on one thread (docs/performance.md, "Pile throughput": 1.27-1.38 M; looser or smaller scenes run faster,
+/// 100,000 grains slower).
+pub const PARTICLE_STEPS_PER_SECOND: f64 = 1.3e6;
+
+impl Summary {
+    /// The most particles the scene can hold: those at the start and every insertion its sources plan.
+    pub fn most_particles(&self) -> u64 {
+        self.particles as u64 + self.planned_insertions
+    }
+
+    /// A rough estimate of the World's heap memory at its fullest, bytes: the memory of the bodies as built
+    /// ([`Self::heap_bytes_at_start`]), what the first step adds per body, the bodies sources insert (at the built
+    /// ones' average, or a 7-gon's when none is built), and [`BOX_PAIRS_PER_PARTICLE`] box pairs per particle of
+    /// [`bytes_per_box_pair`] each (a dense packing; a loose scene holds fewer).
+    pub fn memory_estimate_bytes(&self) -> f64 {
+        let bodies = self.particles + self.wall_bodies;
+        let per_body = if self.particles > 0 {
+            self.heap_bytes_at_start as f64 / bodies as f64
+        } else {
+            BODY_BYTES_OF_A_7_GON as f64
+        };
+        let most = self.most_particles() as f64;
+        self.heap_bytes_at_start as f64
+            + (bodies as f64 + self.planned_insertions as f64) * FIRST_STEP_BYTES_PER_BODY as f64
+            + self.planned_insertions as f64 * per_body
+            + most * BOX_PAIRS_PER_PARTICLE * bytes_per_box_pair() as f64
+    }
+
+    /// The particle-steps of the run: the steps times the mean particle count (sources filling the scene evenly
+    /// from the start's count to [`Self::most_particles`]).
+    pub fn particle_steps(&self) -> f64 {
+        self.steps() as f64 * 0.5 * (self.particles as f64 + self.most_particles() as f64)
+    }
+
+    /// A rough estimate of the run time on one core, s: [`Self::particle_steps`] at [`PARTICLE_STEPS_PER_SECOND`].
+    pub fn run_time_estimate_s(&self) -> f64 {
+        self.particle_steps() / PARTICLE_STEPS_PER_SECOND
+    }
+}
+
+/// `value` with three significant digits (for values from 1 to 999.5).
+fn three_digits(value: f64) -> String {
+    let decimals = if value < 9.995 {
+        2
+    } else if value < 99.95 {
+        1
+    } else {
+        0
+    };
+    format!("{value:.decimals$}")
+}
+
+/// Bytes in a unit a person reads (kB, MB, GB: powers of 1000), three significant digits.
+fn human_bytes(bytes: f64) -> String {
+    let (value, unit) = match bytes {
+        b if b >= 1e9 => (b / 1e9, "GB"),
+        b if b >= 1e6 => (b / 1e6, "MB"),
+        b if b >= 1e3 => (b / 1e3, "kB"),
+        b => (b, "B"),
+    };
+    format!("{} {unit}", three_digits(value))
+}
+
+/// A duration in the largest unit that keeps it above 1 (s, min, h, days), three significant digits.
+fn human_duration(seconds: f64) -> String {
+    let (value, unit) = match seconds {
+        s if s >= 86_400.0 => (s / 86_400.0, "days"),
+        s if s >= 3_600.0 => (s / 3_600.0, "h"),
+        s if s >= 60.0 => (s / 60.0, "min"),
+        s => (s, "s"),
+    };
+    format!("{} {unit}", three_digits(value))
 }
 
 impl Summary {
@@ -150,6 +246,21 @@ impl fmt::Display for Summary {
             "  impacts expected up to {:.3} m/s (where a Hertz contact's bound is taken)",
             self.max_impact_speed_m_s
         )?;
-        write!(f, "  end time: {} s ({} steps)", number(self.end_time_s), self.steps())
+        writeln!(f, "  end time: {} s ({} steps)", number(self.end_time_s), self.steps())?;
+        writeln!(
+            f,
+            "  memory (rough estimate): {} for up to {} particles ({} B per box pair, {BOX_PAIRS_PER_PARTICLE} pairs \
+             per particle as in a dense packing)",
+            human_bytes(self.memory_estimate_bytes()),
+            self.most_particles(),
+            bytes_per_box_pair()
+        )?;
+        write!(
+            f,
+            "  run time (rough estimate for one core): {} ({} particle-steps at {} M/s, docs/performance.md)",
+            human_duration(self.run_time_estimate_s()),
+            number(self.particle_steps()),
+            PARTICLE_STEPS_PER_SECOND / 1e6
+        )
     }
 }

@@ -233,6 +233,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
         limiting_entry: bound.map(|b| b.path),
         max_impact_speed_m_s: max_impact_speed,
         end_time_s: scene.run.end_time_s,
+        heap_bytes_at_start: world.heap_bytes(),
     };
     Ok(Built { world, summary })
 }
