@@ -2,7 +2,7 @@
 //! starts it): a two-point sweep submitted with sbatch, one task stopped by its time limit (Slurm's SIGTERM ahead of
 //! it), requeued and resumed to the same final state as an uninterrupted run, then `--collect`.
 //!
-//! Opt-in: it needs root and takes about five minutes (Slurm holds a requeued job for two minutes before it starts it
+//! Opt-in: it needs root and takes five to ten minutes (Slurm holds a requeued job for two minutes before it starts it
 //! again). Run it with `cargo test --release -p gc2d-cli --test slurm -- --ignored`. Where Slurm cannot be started it
 //! prints why and passes without checking anything.
 
@@ -51,7 +51,7 @@ fn simulated_time_for(program: &Path, folder: &Path, wall_s: f64) -> f64 {
 }
 
 #[test]
-#[ignore = "needs root and about five minutes: cargo test --release -p gc2d-cli --test slurm -- --ignored"]
+#[ignore = "needs root and five to ten minutes: cargo test --release -p gc2d-cli --test slurm -- --ignored"]
 fn a_sweep_runs_through_slurm_and_a_task_stopped_by_its_time_limit_resumes() {
     if let Err(reason) = start_slurm() {
         println!("skipped: Slurm cannot be started here: {reason}");
