@@ -17,10 +17,15 @@ impl Scene {
         let bytes = std::fs::read(path).map_err(|e| {
             SceneError::new(ErrorKind::Io, "", format!("cannot read scene file {}: {e}", path.display()))
         })?;
-        let name = path.display().to_string();
+        Scene::from_bytes(bytes, &path.display().to_string())
+    }
+
+    /// Parses and validates the scene file's contents `bytes` as [`Scene::from_str`] does; bytes that are not UTF-8
+    /// are an error located at the first invalid one (byte offset, line, column and field).
+    pub fn from_bytes(bytes: Vec<u8>, name: &str) -> Result<Scene, SceneError> {
         match String::from_utf8(bytes) {
-            Ok(text) => Scene::from_str(&text, &name),
-            Err(error) => Err(invalid_utf8(&error, &name)),
+            Ok(text) => Scene::from_str(&text, name),
+            Err(error) => Err(invalid_utf8(&error, name)),
         }
     }
 
