@@ -269,6 +269,19 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     if args.threads == Some(0) {
         return Err(Failure::input("--threads must be at least 1"));
     }
+    // A recording cannot be continued (an MCAP file ends with its index): writing a resumed run into the file of the
+    // run before would overwrite the frames recorded before the stop.
+    if let (Some(_), Some(record)) = (&args.resume, &args.record)
+        && std::fs::metadata(record).is_ok_and(|file| file.len() > 0)
+    {
+        return Err(Failure::input(format!(
+            "--record {}: the file exists and holds the frames recorded before; a resumed run would overwrite them. \
+             Record the resumed part into a new file (say {}); the Foxglove app opens several recordings of one \
+             run together",
+            record.display(),
+            record.with_extension("resumed.mcap").display()
+        )));
+    }
     if let Some(interval) = args.dump_every
         && !(interval.is_finite() && interval >= 0.0)
     {

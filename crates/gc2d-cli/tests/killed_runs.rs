@@ -62,3 +62,30 @@ fn a_resume_after_a_kill_mid_checkpoint_removes_the_temporary_and_cuts_back_the_
     assert_eq!(rows[1][6], "completed", "{segments}");
     assert!((number(1, 3) - 0.07).abs() < step, "{segments}");
 }
+
+#[test]
+fn resuming_into_the_recording_of_the_run_before_is_refused_and_its_frames_kept() {
+    // It used to overwrite the frames recorded before the stop without a word (an MCAP file cannot be continued).
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/tiny_pile.ron");
+    std::fs::copy(&scene, dir.path().join("tiny_pile.ron")).unwrap();
+    let first = gc2d(
+        dir.path(),
+        &["run", "tiny_pile.ron", "--quiet", "--out", "out", "--until", "0.04", "--record", "run.mcap"],
+    );
+    assert_eq!(first.status.code(), Some(0), "{}", String::from_utf8_lossy(&first.stderr));
+    let recorded = std::fs::read(dir.path().join("run.mcap")).unwrap();
+    let series = std::fs::read_to_string(dir.path().join("out/timeseries.csv")).unwrap();
+    let resumed = gc2d(dir.path(), &["run", "tiny_pile.ron", "--quiet", "--resume", "out", "--record", "run.mcap"]);
+    let stderr = String::from_utf8_lossy(&resumed.stderr);
+    assert_eq!(resumed.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--record run.mcap: the file exists and holds the frames recorded before"), "{stderr}");
+    assert!(stderr.contains("(say run.resumed.mcap)"), "{stderr}");
+    assert_eq!(std::fs::read(dir.path().join("run.mcap")).unwrap(), recorded, "the recording is untouched");
+    assert_eq!(std::fs::read_to_string(dir.path().join("out/timeseries.csv")).unwrap(), series, "so are the outputs");
+    // Into a new file the resumed run records.
+    let resumed =
+        gc2d(dir.path(), &["run", "tiny_pile.ron", "--quiet", "--resume", "out", "--record", "run.resumed.mcap"]);
+    assert_eq!(resumed.status.code(), Some(0), "{}", String::from_utf8_lossy(&resumed.stderr));
+    assert!(std::fs::metadata(dir.path().join("run.resumed.mcap")).unwrap().len() > 0);
+}
