@@ -35,8 +35,15 @@ pub(super) fn parse(bytes: &[u8], file: &str) -> Result<VtkFile, VtkError> {
     let error = |line: usize, message: String| VtkError::Syntax { file: file.to_string(), line, message };
     let mut header = Vec::with_capacity(3);
     let mut rest = bytes;
-    for _ in 0..3 {
+    // The line the words after the header start on: 4, or earlier where the file ends within its header.
+    let mut first_line = 1;
+    for k in 1..=3 {
+        if rest.is_empty() && first_line < k {
+            let message = "expected the three header lines (version, title, ASCII), found the end of the file";
+            return Err(error(first_line, message.to_string()));
+        }
         let end = rest.iter().position(|&b| b == b'\n');
+        first_line += usize::from(end.is_some());
         let line = &rest[..end.unwrap_or(rest.len())];
         header.push(String::from_utf8_lossy(line).trim().to_string());
         rest = end.map_or(&[][..], |e| &rest[e + 1..]);
@@ -52,10 +59,10 @@ pub(super) fn parse(bytes: &[u8], file: &str) -> Result<VtkFile, VtkError> {
         other => return Err(error(3, format!("expected ASCII, found `{}`", clip(other)))),
     }
     let text = std::str::from_utf8(rest).map_err(|e| {
-        let line = 4 + rest[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count();
+        let line = first_line + rest[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count();
         error(line, format!("expected text, found the byte 0x{:02x}", rest[e.valid_up_to()]))
     })?;
-    let mut parser = Parser { file, tokens: Tokens::new(text, 4) };
+    let mut parser = Parser { file, tokens: Tokens::new(text, first_line) };
     parser.file_body(header[1].clone())
 }
 
@@ -67,6 +74,11 @@ fn clip(text: &str) -> String {
     } else {
         format!("{}...", text.chars().take(MAX).collect::<String>())
     }
+}
+
+/// A hint for a number found where a keyword belongs: the count before it was too small.
+fn hint(text: &str) -> &'static str {
+    if text.parse::<f64>().is_ok() { " (a number where a keyword belongs: is a count above too small?)" } else { "" }
 }
 
 /// A POINT_DATA or CELL_DATA section being read.
@@ -287,7 +299,8 @@ impl<'a> Parser<'a> {
             "VERTICES" | "LINES" | "POLYGONS" | "TRIANGLE_STRIPS" => dataset == DatasetKind::PolyData,
             "METADATA" => return Err(self.error(line, "METADATA blocks are not read".to_string())),
             _ => {
-                return Err(self.error(line, format!("expected {SECTION_KEYWORDS}, found `{}`", clip(token.text))));
+                let message = format!("expected {SECTION_KEYWORDS}, found `{}`{}", clip(token.text), hint(token.text));
+                return Err(self.error(line, message));
             }
         };
         if !allowed {
@@ -362,7 +375,8 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
-    /// A cell list: `n size` then n groups `k i1 .. ik` (classic), or VTK 5.1's `OFFSETS` and `CONNECTIVITY` arrays.
+    /// A cell list: `n size` then n groups `k i1 .. ik` (classic), or VTK 5.1's `n_offsets size` followed by the
+    /// `OFFSETS` (one more than the cells) and `CONNECTIVITY` arrays.
     fn cell_list(&mut self, keyword: &str, line: usize) -> Result<Cells, VtkError> {
         let (n, _) = self.count(&format!("the number of cells after {keyword}"))?;
         let (size, _) = self.count(&format!("the number of entries after {keyword}"))?;
@@ -378,16 +392,18 @@ impl<'a> Parser<'a> {
             self.data_type("CONNECTIVITY")?;
             let count = self.product(&[size], line, "CONNECTIVITY")?;
             let indices = self.indices(count, "CONNECTIVITY")?;
-            let ordered = offsets.first().is_none_or(|&o| o == 0)
-                && offsets.windows(2).all(|w| w[0] < w[1])
-                && offsets.last().is_none_or(|&o| o == size);
+            if n == 0 && size == 0 {
+                return Ok(Cells { offsets: vec![0], indices });
+            }
+            let ordered =
+                offsets.first() == Some(&0) && offsets.windows(2).all(|w| w[0] < w[1]) && offsets.last() == Some(&size);
             if !ordered {
                 return Err(self.error(
                     line,
                     format!("{keyword}: OFFSETS must start at 0, grow and end at the CONNECTIVITY size {size}"),
                 ));
             }
-            return Ok(Cells { offsets: if n == 0 { vec![0] } else { offsets }, indices });
+            return Ok(Cells { offsets, indices });
         }
         let count = self.product(&[size], line, keyword)?;
         let entries = self.indices(count, keyword)?;
@@ -496,7 +512,11 @@ impl<'a> Parser<'a> {
             _ => {
                 return Err(self.error(
                     line,
-                    format!("expected {ARRAY_KEYWORDS} (or POINT_DATA, CELL_DATA), found `{}`", clip(token.text)),
+                    format!(
+                        "expected {ARRAY_KEYWORDS} (or POINT_DATA, CELL_DATA), found `{}`{}",
+                        clip(token.text),
+                        hint(token.text)
+                    ),
                 ));
             }
         };
