@@ -3,9 +3,9 @@
 //!
 //! Two tests: a proptest that also steps the mutated scenes that build, and a bounded deterministic campaign of
 //! 12,000 inputs (fixed seeds; 10,000 scenes from five bases, a tenth of them mutated at the byte level, and 2,000
-//! gsi files) that parses and validates each one and builds the small ones, in about ten seconds in release. The
-//! same inputs can be explored without bounds with the cargo-fuzz targets in `fuzz/` (docs/scene-format.md,
-//! "Fuzzing").
+//! gsi files; a fifth of that in a debug build) that parses and validates each one and builds the small ones, in
+//! about ten seconds in release. The same inputs can be explored without bounds with the cargo-fuzz targets in
+//! `fuzz/` (docs/scene-format.md, "Fuzzing").
 
 mod common;
 
@@ -174,9 +174,10 @@ const REPOSITORY_SCENES: [(&str, &str); 4] = [
 /// The thesis's gsi example.
 const PISTON_GSI: &str = include_str!("../src/gsi/testdata/piston.gsi");
 
-/// Scene inputs of the campaign, and gsi inputs.
-const SCENE_INPUTS: usize = 10_000;
-const GSI_INPUTS: usize = 2_000;
+/// Scene inputs of the campaign (a fifth of them in a debug build, which runs about ten times slower).
+const SCENE_INPUTS: usize = if cfg!(debug_assertions) { 2_000 } else { 10_000 };
+/// Gsi inputs of the campaign (likewise).
+const GSI_INPUTS: usize = if cfg!(debug_assertions) { 400 } else { 2_000 };
 
 /// Bytes the byte-level mutations insert: invalid UTF-8 (a lone continuation byte, a truncated two-byte sequence, a
 /// byte never used), NUL and a byte-order mark.
