@@ -97,6 +97,7 @@ fn time_step(model: &ContactModel) -> f64 {
         inertia: 0.4 * mass * radius * radius,
         contact_radius: radius,
         reach: radius,
+        flat_contact_ratio: 0.0,
     };
     let bound = particle_time_step([model], &inertia, SafetyLimits::default().max_impact_speed);
     TIME_STEP_FRACTION * bound.expect("the linear spring bounds the time step")

@@ -4,8 +4,9 @@
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::integrator::max_stable_time_step_elongated;
 use crate::interactions::{ContactModel, InteractionTable};
+use crate::shape::{ShapeKind, flat_contact_ratio};
 use gc2d_contact::{AreaFormulation, PairProperties};
-use gc2d_geometry::area_contact;
+use gc2d_geometry::{DVec2, area_contact};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -176,10 +177,14 @@ pub enum SafetyError {
 /// The particle whose time-step bound is the lowest, and that bound.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TimeStepBound {
-    /// The largest stable Δt, s.
+    /// The largest stable Δt, s: the one to offer ([`ParticleTimeStep::stable`]).
     pub dt: f64,
     /// The particle that sets it.
     pub particle: BodyId,
+    /// The Δt above which a run is refused, s: the smallest [`ParticleTimeStep::reference`] (for the overlap-area
+    /// law the §3.6 bound, where the integrator itself fails; between `dt` and it a run goes on, and flat contacts
+    /// may chatter or change their energy by percents).
+    pub refusal: f64,
 }
 
 /// What the time-step bound of one particle depends on, at its current size.
@@ -197,31 +202,87 @@ pub struct ParticleInertia {
     pub contact_radius: f64,
     /// Distance of its farthest point from the centroid, m (bounds the contact chords it can have).
     pub reach: f64,
+    /// κ, the c/l of two copies meeting face on ([`crate::shape::flat_contact_ratio`]); 0 for disks.
+    pub flat_contact_ratio: f64,
 }
 
-/// The largest stable Δt of one particle against every contact model in `models`, s; `None` when none bounds it.
-///
-/// The overlap-area law: (π/10)·sqrt(m/E) with the inscribed-circle mass m = π·r_in²·ρ (reference §3.6; for round
-/// particles within a few percent of the mass itself, for elongated ones the bound the thesis asks for); under the
-/// conservative formulation, whose stiffness is the thesis's times c/l ≤ 4R/r_in (chord c ≤ 2R, l ≥ r_in/2), that
-/// bound times sqrt(r_in/(4R)) with R the reach. A
-/// penetration law: [`gc2d_contact::PenetrationLaw::max_time_step`] at `max_impact_speed` for the two partners that
-/// bound it, a flat wall (m* = m, R* = R) and an equal particle (m* = m/2, R* = R/2).
+/// The time-step bounds of one particle against the contact models it meets.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParticleTimeStep {
+    /// The largest stable Δt, s: what a scene may use at most ([`particle_time_step`]).
+    pub stable: f64,
+    /// The Δt the automatic choice is a fraction of, s: for the overlap-area law the §3.6 bound (π/10)·sqrt(m/E)
+    /// before the flat-contact and damping limits (so that scenes those limits do not bind keep their Δt), for a
+    /// penetration law its stable bound.
+    pub reference: f64,
+}
+
+impl ParticleTimeStep {
+    /// The automatic Δt: `fraction` of the reference, never above the stable bound, s.
+    pub fn automatic(&self, fraction: f64) -> f64 {
+        (fraction * self.reference).min(self.stable)
+    }
+}
+
+/// ω·Δt allowed for the stiffest flat contact of the overlap-area law, ω = sqrt(k/m⊥): two equal squares meeting
+/// face on (γ = 0) change their energy by up to ±1.1 % at 0.2 (the force jumps in at the first step of a flat
+/// contact, an error ∝ ω·Δt), ±2.3 % at 0.3 and up to +34 % at the §3.6 bound, where ω·Δt = 0.79 (docs/model.md,
+/// "Automatic Δt").
+pub const FLAT_CONTACT_OMEGA_DT: f64 = 0.2;
+
+/// C·Δt/m⊥ allowed for the normal damping C = γ·sqrt(E·m⊥)·c/l of the overlap-area law: a body resting on a flat
+/// face chatters at the Nyquist frequency from about 0.26 on (docs/validation.md, "Damping limit of flat
+/// contacts"); at 0.2 a face-on collision at γ = 0.5 still rings for its few steps (force alternating by about 15 %
+/// of its peak), at 0.1 it barely does. 0.2 keeps the automatic Δt of the bundled scenes (their smallest random
+/// shapes sit at 0.15–0.2 of the §3.6 bound), docs/model.md, "Automatic Δt".
+pub const DAMPING_RATE_DT: f64 = 0.2;
+
+/// The largest stable Δt of one particle against every contact model in `models`, s; `None` when none bounds it:
+/// the [`ParticleTimeStep::stable`] part of [`particle_time_steps`].
 pub fn particle_time_step<'m>(
     models: impl IntoIterator<Item = &'m ContactModel>,
     particle: &ParticleInertia,
     max_impact_speed: f64,
 ) -> Option<f64> {
+    particle_time_steps(models, particle, max_impact_speed).map(|bounds| bounds.stable)
+}
+
+/// The time-step bounds of one particle against every contact model in `models`; `None` when none bounds it.
+///
+/// The overlap-area law: the reference is (π/10)·sqrt(m/E) with the inscribed-circle mass m = π·r_in²·ρ (reference
+/// §3.6; for round particles within a few percent of the mass itself, for elongated ones the bound the thesis asks
+/// for); under the conservative formulation, whose stiffness is the thesis's times c/l ≤ 4R/r_in (chord c ≤ 2R,
+/// l ≥ r_in/2), that bound times sqrt(r_in/(4R)) with R the reach. The stable bound is the smallest of the
+/// reference, the flat-contact limit [`FLAT_CONTACT_OMEGA_DT`]/ω with ω = sqrt(2E·κ/m) (conservative: κ² for κ)
+/// and the damping limit [`DAMPING_RATE_DT`]/(γ·κ·sqrt(2E/m)), κ the particle's
+/// [`crate::shape::flat_contact_ratio`] and m its mass: two copies of the particle meeting face on (m⊥ = m/2,
+/// stiffness E·c/l, damping γ·sqrt(E·m⊥)·c/l), its stiffest and most damped contact. A penetration law:
+/// [`gc2d_contact::PenetrationLaw::max_time_step`] at `max_impact_speed` for the two partners that bound it, a flat
+/// wall (m* = m, R* = R) and an equal particle (m* = m/2, R* = R/2), both parts the same.
+pub fn particle_time_steps<'m>(
+    models: impl IntoIterator<Item = &'m ContactModel>,
+    particle: &ParticleInertia,
+    max_impact_speed: f64,
+) -> Option<ParticleTimeStep> {
     let p = particle;
     models
         .into_iter()
         .filter_map(|model| match model {
             ContactModel::OverlapArea(law) => {
-                let bound = max_stable_time_step_elongated(p.inscribed_radius, p.area_density, law.elastic.e_modulus);
-                match law.elastic.formulation {
-                    AreaFormulation::Thesis => bound,
-                    AreaFormulation::Conservative => bound.map(|dt| dt * conservative_time_step_factor(p)),
-                }
+                let e = law.elastic.e_modulus;
+                let bound = max_stable_time_step_elongated(p.inscribed_radius, p.area_density, e);
+                let kappa = p.flat_contact_ratio;
+                let (reference, stiffness_ratio) = match law.elastic.formulation {
+                    AreaFormulation::Thesis => (bound?, kappa),
+                    AreaFormulation::Conservative => (bound? * conservative_time_step_factor(p), kappa * kappa),
+                };
+                let flat = FLAT_CONTACT_OMEGA_DT / (2.0 * e * stiffness_ratio / p.mass).sqrt();
+                let damping = law
+                    .damping
+                    .map_or(f64::INFINITY, |d| DAMPING_RATE_DT / (d.gamma * kappa * (2.0 * e / p.mass).sqrt()));
+                // A limit that is not a positive number (κ = 0, γ = 0, a massless particle) does not bind.
+                let stable = [flat, damping].into_iter().filter(|dt| *dt > 0.0).fold(reference, f64::min);
+                Some(ParticleTimeStep { stable, reference })
             }
             ContactModel::Penetration(law) => {
                 let lever = p.contact_radius * p.contact_radius / p.inertia;
@@ -237,10 +298,21 @@ pub fn particle_time_step<'m>(
                     tangential_mass: 0.5 / (1.0 / p.mass + lever),
                     rolling_inertia: 0.5 * p.inertia,
                 };
-                [wall, twin].iter().filter_map(|pair| law.max_time_step(pair, max_impact_speed)).reduce(f64::min)
+                let dt = [wall, twin]
+                    .iter()
+                    .filter_map(|pair| law.max_time_step(pair, max_impact_speed))
+                    .reduce(f64::min)?;
+                Some(ParticleTimeStep { stable: dt, reference: dt })
             }
         })
-        .reduce(f64::min)
+        .reduce(|a, b| ParticleTimeStep { stable: a.stable.min(b.stable), reference: a.reference.min(b.reference) })
+}
+
+/// sqrt(r_in/(4R)): the conservative area law's stiffness E·c²/l² is at most 4R/r_in times the thesis law's E·c/l
+/// for a particle of inscribed radius r_in and reach R (1 when R is not a positive finite number).
+fn conservative_time_step_factor(p: &ParticleInertia) -> f64 {
+    let ratio = p.inscribed_radius / (4.0 * p.reach);
+    if ratio > 0.0 && ratio.is_finite() { ratio.min(1.0).sqrt() } else { 1.0 }
 }
 
 /// The stable time step of the particles in `bodies`, each against the contact models its material can meet in
@@ -263,32 +335,41 @@ pub fn stable_time_step(
                 inertia: 1.0 / bodies.inverse_inertia[i],
                 contact_radius: bodies.contact_radius(i),
                 reach: bodies.reach[i] * scale,
+                flat_contact_ratio: match bodies.shape[i] {
+                    ShapeKind::Polygon => {
+                        flat_contact_ratio(&bodies.body_vertices[bodies.vertices[i].range()], DVec2::ZERO)
+                    }
+                    _ => 0.0,
+                },
             };
             let models = models[bodies.material[i].index()].iter().copied();
-            particle_time_step(models, &inertia, max_impact_speed).map(|dt| TimeStepBound { dt, particle: id })
+            particle_time_steps(models, &inertia, max_impact_speed).map(|bounds| TimeStepBound {
+                dt: bounds.stable,
+                particle: id,
+                refusal: bounds.reference,
+            })
         })
-        .min_by(|x, y| x.dt.total_cmp(&y.dt).then(x.particle.cmp(&y.particle)))
+        .reduce(|x, y| {
+            let refusal = x.refusal.min(y.refusal);
+            let limiting = if y.dt.total_cmp(&x.dt).then(y.particle.cmp(&x.particle)).is_lt() { y } else { x };
+            TimeStepBound { refusal, ..limiting }
+        })
 }
 
-/// sqrt(r_in/(4R)): the conservative area law's stiffness E·c²/l² is at most 4R/r_in times the thesis law's E·c/l
-/// for a particle of inscribed radius r_in and reach R (1 when R is not a positive finite number).
-fn conservative_time_step_factor(p: &ParticleInertia) -> f64 {
-    let ratio = p.inscribed_radius / (4.0 * p.reach);
-    if ratio > 0.0 && ratio.is_finite() { ratio.min(1.0).sqrt() } else { 1.0 }
-}
-
-/// Refuses `dt` above the stable bound unless `limits` allow it.
+/// Refuses `dt` above the refusal bound (the §3.6 bound, [`TimeStepBound::refusal`]) unless `limits` allow it;
+/// the error offers the stable bound.
 pub fn check_time_step(
     bodies: &Bodies,
     interactions: &InteractionTable,
     dt: f64,
     limits: &SafetyLimits,
 ) -> Result<(), SafetyError> {
-    let Some(TimeStepBound { dt: safe_dt, particle }) = stable_time_step(bodies, interactions, limits.max_impact_speed)
+    let Some(TimeStepBound { dt: safe_dt, particle, refusal }) =
+        stable_time_step(bodies, interactions, limits.max_impact_speed)
     else {
         return Ok(());
     };
-    if dt <= safe_dt || limits.allow_unsafe_time_step {
+    if dt <= refusal || limits.allow_unsafe_time_step {
         return Ok(());
     }
     let i = particle.index();

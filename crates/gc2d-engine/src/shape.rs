@@ -154,6 +154,15 @@ impl BodyShape {
         }
     }
 
+    /// κ = c/l of two copies of the shape pressed together face on along their flattest face
+    /// ([`flat_contact_ratio`]); 0 for shapes without a face (disks and the wall shapes).
+    pub fn flat_contact_ratio(&self) -> f64 {
+        match *self {
+            BodyShape::Polygon(ref polygon) => flat_contact_ratio(polygon.vertices(), DVec2::ZERO),
+            _ => 0.0,
+        }
+    }
+
     /// Largest distance of a point of the shape from its origin, m: how far a point can travel per radian turned.
     pub fn reach(&self) -> f64 {
         match *self {
@@ -230,6 +239,27 @@ impl ParticleRecipe {
             }
         }
     }
+}
+
+/// κ = 2·max over the edges of (edge length / distance of the edge's line from `centre`): the ratio c/l of the
+/// overlap-area law when two copies of a convex polygon with centroid `centre` press on each other face on along
+/// that edge (chord c = the edge, l = half the distance), its stiffest contact with the largest damping rate. 0 for
+/// fewer than three points or an edge through the centre.
+pub fn flat_contact_ratio(points: &[DVec2], centre: DVec2) -> f64 {
+    if points.len() < 3 {
+        return 0.0;
+    }
+    let mut largest: f64 = 0.0;
+    for (k, &p) in points.iter().enumerate() {
+        let edge = points[(k + 1) % points.len()] - p;
+        let distance = edge.perp_dot(centre - p).abs() / edge.length();
+        let ratio = edge.length() / distance;
+        if !ratio.is_finite() {
+            return 0.0;
+        }
+        largest = largest.max(ratio);
+    }
+    2.0 * largest
 }
 
 /// The world-frame outline of a body of kind `kind` whose world points are `points` (see the module docs) and whose

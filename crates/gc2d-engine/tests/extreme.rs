@@ -117,7 +117,10 @@ fn stiff_particles_are_refused_at_the_time_step_of_soft_ones() {
         let mut world = world(config(soft_dt, law(e, 0.5, 0.5), G));
         world.add_particle(&shape, Pose::new(DVec2::ZERO, 0.0), RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
         let error = world.step().expect_err("the soft Δt must be refused for a stiff material");
-        let safe = bound(r, e);
+        // Refused above the §3.6 bound; the Δt offered is the stable bound, which includes flat contacts.
+        assert!(soft_dt > bound(r, e));
+        let safe = world.stable_time_step().unwrap();
+        assert!(safe < bound(r, e));
         match &error {
             WorldError::Safety(SafetyError::UnsafeTimeStep { dt, safe_dt, particle, inscribed_radius }) => {
                 assert_eq!((*dt, *particle, *inscribed_radius), (soft_dt, 0, r));
@@ -151,7 +154,8 @@ fn heavy_square_hits_a_light_one_conserving_momentum() {
         let h = world.add_particle(&heavy, start, RHO_THESIS, DVec2::new(speed, 0.0), 0.0).unwrap();
         let l = world.add_particle(&light, Pose::new(DVec2::new(0.5 * GRAIN, 0.0), 0.0), RHO_THESIS, DVec2::ZERO, 0.0);
         let l = l.unwrap();
-        assert_eq!(world.stable_time_step(), Some(light_bound), "the light particle sets the bound");
+        let bounds = gc2d_engine::safety::stable_time_step(world.bodies(), &world.config().interactions, 1.0).unwrap();
+        assert_eq!((bounds.particle, bounds.refusal), (l, light_bound), "the light particle sets the bound");
         let (mh, ml) = (world.bodies().mass[h.index()], world.bodies().mass[l.index()]);
         assert!((mh / ml - 1000.0).abs() < 1e-9);
         let p0 = momentum(&world);
@@ -249,7 +253,9 @@ fn elongated_particles_take_the_bound_from_the_inscribed_radius() {
         let mut world = world(config(1e-7, law(E_THESIS, 0.5, 0.5), G));
         world.add_particle(&shape, Pose::new(DVec2::ZERO, 0.7), RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
         let expected = PI / 10.0 * (PI * r_in * r_in * RHO_THESIS / E_THESIS).sqrt();
-        let got = world.stable_time_step().unwrap();
+        // The §3.6 bound, above which a run is refused (the stable bound offered is lower: flat faces).
+        let got =
+            gc2d_engine::safety::stable_time_step(world.bodies(), &world.config().interactions, 1.0).unwrap().refusal;
         assert!((got / expected - 1.0).abs() < 1e-12, "bound {got:e}, expected {expected:e} (r_in = {r_in:e})");
         // The mass of the particle itself would give a bound sqrt(m/(π r² ρ)) times larger: 3.6 for the plate.
         let by_mass = PI / 10.0 * (shape.area() * RHO_THESIS / E_THESIS).sqrt();
@@ -532,8 +538,8 @@ fn particle_jumping_right_across_a_wall_is_stopped_by_the_travel_limit() {
 
     // With the default limit (one inscribed radius per step) the first step stops it.
     let (mut guarded, p) = fired_at_a_wall(30.0, 1e-3, 1e-3, |_| {});
+    let safe = guarded.stable_time_step().unwrap();
     let error = guarded.step().expect_err("a jump of 6 inscribed radii must stop the run");
-    let safe = bound(0.005, E_THESIS);
     match &error {
         WorldError::Safety(SafetyError::ExcessiveTravel {
             time,

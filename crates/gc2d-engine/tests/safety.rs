@@ -15,6 +15,12 @@ fn safe_time_step() -> f64 {
     max_stable_time_step_elongated(0.5 * SIDE, RHO_THESIS, E_THESIS).unwrap()
 }
 
+/// The stable bound offered for that square at γ = 0.5: two squares face on, flat-contact stiffness 4E and damping
+/// γ·sqrt(E·m/2)·4 both give 0.2·sqrt(m/(8E)) = 15.8 µs (docs/model.md, "Automatic Δt").
+fn offered_time_step() -> f64 {
+    0.2 * (SIDE * SIDE * RHO_THESIS / (8.0 * E_THESIS)).sqrt()
+}
+
 fn falling_square(dt: f64, allow_unsafe: bool) -> World {
     let mut config = config(dt, law(E_THESIS, 0.5, 0.5), G);
     config.safety.allow_unsafe_time_step = allow_unsafe;
@@ -27,17 +33,21 @@ fn falling_square(dt: f64, allow_unsafe: bool) -> World {
 fn time_step_above_the_bound_is_refused_with_the_safe_value() {
     let safe = safe_time_step();
     assert!((safe - 6.2e-5).abs() < 1e-6, "bound {safe:e}");
-    assert_eq!(falling_square(safe, false).stable_time_step(), Some(safe));
+    let offered = offered_time_step();
+    let stable = falling_square(safe, false).stable_time_step().unwrap();
+    assert!((stable / offered - 1.0).abs() < 1e-12, "stable bound {stable:e}");
+    // A run at the §3.6 bound is still allowed.
+    falling_square(safe, false).step().expect("Δt at the §3.6 bound is allowed");
     let mut world = falling_square(1.5 * safe, false);
     let error = world.step().expect_err("Δt above the bound must be refused");
     match &error {
         WorldError::Safety(SafetyError::UnsafeTimeStep { dt, safe_dt, particle, .. }) => {
-            assert_eq!((*dt, *safe_dt, *particle), (1.5 * safe, safe, 0));
+            assert_eq!((*dt, *safe_dt, *particle), (1.5 * safe, stable, 0));
         }
         other => panic!("expected UnsafeTimeStep, got {other:?}"),
     }
     let message = error.to_string();
-    assert!(message.contains(&format!("{safe:.3e}")), "the message must name the safe Δt: {message}");
+    assert!(message.contains(&format!("{stable:.3e}")), "the message must name the safe Δt: {message}");
     assert_eq!(world.steps(), 0, "a refused World does not advance");
 
     let mut allowed = falling_square(1.5 * safe, true);
@@ -61,7 +71,7 @@ fn tunnelling_into_a_thin_wall_stops_with_the_time_bodies_and_a_time_step() {
     let start = Pose::new(DVec2::new(-0.008, 0.0), 0.0);
     let particle = world.add_particle(square(SIDE).unwrap(), start, RHO_THESIS, DVec2::new(10.0, 0.0), 0.0).unwrap();
     let error = world.run_until(1.0).expect_err("the tunnelling must stop the run");
-    let suggested = 0.5 * safe_time_step();
+    let suggested = 0.5 * offered_time_step();
     match &error {
         WorldError::Safety(SafetyError::ExcessiveOverlap { time, step, a, b, percent, suggested_dt, .. }) => {
             assert_eq!((*step, *a, *b), (1, wall.0, particle.0));
@@ -173,7 +183,7 @@ fn a_source_inserting_a_particle_too_small_for_the_time_step_stops_the_run() {
         .unwrap();
     match world.step() {
         Err(WorldError::Safety(SafetyError::UnsafeTimeStep { safe_dt, .. })) => {
-            assert!((safe_dt - safe_time_step()).abs() < 1e-12 * safe_dt, "bound {safe_dt:e}");
+            assert!((safe_dt - offered_time_step()).abs() < 1e-12 * safe_dt, "bound {safe_dt:e}");
         }
         other => panic!("expected UnsafeTimeStep after the insertion, got {other:?}"),
     }

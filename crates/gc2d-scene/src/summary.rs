@@ -105,6 +105,9 @@ pub struct Summary {
     pub time_step_is_automatic: bool,
     /// The stable bound of the particles present or to be inserted, each against its stiffest contact law, s.
     pub stable_time_step_s: Option<f64>,
+    /// The Δt above which the scene is refused (the §3.6 bound; between the stable bound and it a run goes on, and
+    /// flat contacts may chatter), s.
+    pub refusal_time_step_s: Option<f64>,
     /// The scene entry that sets the bound.
     pub limiting_entry: Option<String>,
     /// The impact speed a Hertz contact's bound is taken at, m/s (`Scene::max_impact_speed`).

@@ -115,8 +115,11 @@ fn time_steps_above_the_bound_name_the_limiting_particle() {
     let text =
         "Scene(\n    run: (time_step_s: 1e-4),\n    particles: [(shape: Regular(corners: 6, radius_m: 0.002))],\n)";
     let error = check("unsafe_time_step", text, ErrorKind::TimeStep, "run.time_step_s", (2, 24));
-    // A regular hexagon of circumradius 2 mm has inscribed radius √3 mm: (π/10)·sqrt(π·3e-6·5000/1e7) = 2.157e-5 s.
-    assert!(error.message().contains("stable bound 2.157e-5 s"), "{}", error.message());
+    // A regular hexagon of circumradius 2 mm has inscribed radius √3 mm: (π/10)·sqrt(π·3e-6·5000/1e7) = 2.157e-5 s,
+    // where a run is refused; the stable bound offered is that of two hexagons face on (docs/model.md,
+    // "Automatic Δt").
+    assert!(error.message().contains("above 2.157e-5 s"), "{}", error.message());
+    assert!(error.message().contains("stable bound is 6.708e-6 s"), "{}", error.message());
     assert_eq!(error.related_errors().len(), 1);
     assert_eq!(error.related_errors()[0].path(), "particles[0]");
     // Allowed explicitly, the same scene builds.

@@ -27,7 +27,9 @@ fn the_full_scene_builds_with_the_expected_counts() {
     assert_eq!(summary.planned_insertions, 11);
     assert_eq!(summary.time_step_s, 2e-6);
     assert!(!summary.time_step_is_automatic);
-    assert!(summary.stable_time_step_s.unwrap() > 2e-6);
+    // Its sources' flattest random shapes set a stable bound below the Δt it asks for, which is kept because it is
+    // below the §3.6 bound where a run is refused (docs/model.md, "Automatic Δt").
+    assert!(summary.stable_time_step_s.unwrap() < 2e-6);
     assert_eq!(summary.steps(), 5000);
 
     let world = scene.build().unwrap();
@@ -95,7 +97,9 @@ fn defaults_apply() {
     assert_eq!(world.bodies().mass[0], 0.5);
     assert_eq!(world.bodies().pose[0].position, DVec2::ZERO);
     let bound = std::f64::consts::PI / 10.0 * (std::f64::consts::PI * 0.005f64.powi(2) * 5000.0 / 1e7).sqrt();
-    assert_relative_eq!(world.stable_time_step().unwrap(), bound, max_relative = 1e-12);
+    // The stable bound is that of two such squares meeting face on: flat-contact stiffness E·c/l = 4E and damping
+    // γ·sqrt(E·m/2)·4 at γ = 0.5 give the same limit, 0.2·sqrt(m/(8E)) (docs/model.md, "Automatic Δt").
+    assert_relative_eq!(world.stable_time_step().unwrap(), 0.2 * (0.5f64 / 8e7).sqrt(), max_relative = 1e-12);
     assert_relative_eq!(world.time_step(), 9.3e-6, max_relative = 1e-12);
     assert!(world.time_step() <= 0.15 * bound);
     let material = Material::named("x");

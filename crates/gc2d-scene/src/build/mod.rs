@@ -123,7 +123,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
             let models = &models[p.material.index()];
             TimeStepBound::of(&p.shape, p.density, scene.mass_model, models, max_impact_speed, &p.path)
         })
-        .reduce(|a, b| if b.time_step < a.time_step { b } else { a });
+        .reduce(TimeStepBound::smaller);
     let mut sample_rng = ChaCha8Rng::seed_from_u64(scene.run.seed);
     sample_rng.set_stream(SOURCE_SAMPLE_STREAM);
     for (i, source) in sources.iter().enumerate() {
@@ -230,6 +230,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
         time_step_s: time_step,
         time_step_is_automatic: scene.run.time_step_s.is_none(),
         stable_time_step_s: bound.as_ref().map(|b| b.time_step),
+        refusal_time_step_s: bound.as_ref().map(|b| b.refusal_time_step),
         limiting_entry: bound.map(|b| b.path),
         max_impact_speed_m_s: max_impact_speed,
         end_time_s: scene.run.end_time_s,

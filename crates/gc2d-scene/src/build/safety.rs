@@ -2,7 +2,7 @@
 //! the overlap of the initial bodies (reference §3.6, §10.4).
 
 use crate::error::{ErrorKind, SceneError};
-use gc2d_engine::safety::{ParticleInertia, particle_time_step};
+use gc2d_engine::safety::{ParticleInertia, particle_time_steps};
 use gc2d_engine::{BodyShape, ContactModel, MassModel, ParticleRecipe, shape_view};
 use gc2d_geometry::{Aabb, DVec2, Pose, area_contact};
 use rand_chacha::ChaCha8Rng;
@@ -21,8 +21,15 @@ pub const FALLBACK_TIME_STEP: f64 = 1e-4;
 /// The particle that limits the time step.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TimeStepBound {
-    /// (π/10)·sqrt(m/E) with m = π·r²·ρ, s.
+    /// The largest stable Δt, s (the engine's [`gc2d_engine::safety::ParticleTimeStep::stable`]).
     pub time_step: f64,
+    /// The Δt chosen when the scene leaves it out: [`AUTOMATIC_TIME_STEP_FRACTION`] of the reference bound, never
+    /// above the stable one ([`gc2d_engine::safety::ParticleTimeStep::automatic`]), s; the smallest over the
+    /// particles, which need not be the one that sets `time_step`.
+    pub automatic_time_step: f64,
+    /// The Δt above which the scene is refused, s: the smallest reference bound (for the overlap-area law the §3.6
+    /// bound, [`gc2d_engine::safety::ParticleTimeStep::reference`]).
+    pub refusal_time_step: f64,
     /// The inscribed radius r of the limiting particle, m.
     pub inscribed_radius: f64,
     /// Field path of the scene entry it comes from.
@@ -48,9 +55,12 @@ impl TimeStepBound {
             inertia: mass.inertia,
             contact_radius: shape.equivalent_radius(),
             reach: shape.reach(),
+            flat_contact_ratio: shape.flat_contact_ratio(),
         };
-        particle_time_step(models.iter().copied(), &inertia, max_impact_speed).map(|time_step| Self {
-            time_step,
+        particle_time_steps(models.iter().copied(), &inertia, max_impact_speed).map(|bounds| Self {
+            time_step: bounds.stable,
+            automatic_time_step: bounds.automatic(AUTOMATIC_TIME_STEP_FRACTION),
+            refusal_time_step: bounds.reference,
             inscribed_radius: inertia.inscribed_radius,
             path: path.to_owned(),
         })
@@ -59,9 +69,18 @@ impl TimeStepBound {
     /// The smaller of two bounds (the first on ties).
     pub fn min(a: Option<Self>, b: Option<Self>) -> Option<Self> {
         match (a, b) {
-            (Some(a), Some(b)) => Some(if b.time_step < a.time_step { b } else { a }),
+            (Some(a), Some(b)) => Some(Self::smaller(a, b)),
             (a, b) => a.or(b),
         }
+    }
+
+    /// The bound (and its particle) with the smaller `time_step`, the first on ties, with the smaller of the two
+    /// automatic and refusal time steps.
+    pub fn smaller(a: Self, b: Self) -> Self {
+        let automatic_time_step = a.automatic_time_step.min(b.automatic_time_step);
+        let refusal_time_step = a.refusal_time_step.min(b.refusal_time_step);
+        let limiting = if b.time_step < a.time_step { b } else { a };
+        Self { automatic_time_step, refusal_time_step, ..limiting }
     }
 
     /// The bound of the smallest of [`SOURCE_SAMPLES`] shapes drawn from a source's recipe.
@@ -77,7 +96,7 @@ impl TimeStepBound {
         (0..SOURCE_SAMPLES)
             .filter_map(|_| recipe.draw(rng).ok())
             .filter_map(|(shape, _)| Self::of(&shape, density, mass_model, models, max_impact_speed, path))
-            .reduce(|a, b| if b.time_step < a.time_step { b } else { a })
+            .reduce(Self::smaller)
     }
 }
 
@@ -90,28 +109,28 @@ fn area_density(mass_model: MassModel, shape: &BodyShape, density: f64) -> f64 {
     }
 }
 
-/// The time step to run with: the scene's, checked against the bound, or an automatic one.
+/// The time step to run with: the scene's, refused above the refusal bound and otherwise kept (between the stable
+/// and the refusal bound flat contacts may chatter), or an automatic one.
 pub fn choose_time_step(
     requested: Option<f64>,
     bound: Option<&TimeStepBound>,
     allow_unsafe: bool,
 ) -> Result<f64, SceneError> {
     let Some(dt) = requested else {
-        return Ok(
-            bound.map_or(FALLBACK_TIME_STEP, |b| round_down_to_two_digits(AUTOMATIC_TIME_STEP_FRACTION * b.time_step))
-        );
+        return Ok(bound.map_or(FALLBACK_TIME_STEP, |b| round_down_to_two_digits(b.automatic_time_step)));
     };
     if !(dt > 0.0 && dt.is_finite()) {
         return Err(SceneError::value("run.time_step_s", format!("{dt}: must be a positive finite number of seconds")));
     }
     match bound {
-        Some(bound) if dt > bound.time_step && !allow_unsafe => Err(SceneError::new(
+        Some(bound) if dt > bound.refusal_time_step && !allow_unsafe => Err(SceneError::new(
             ErrorKind::TimeStep,
             "run.time_step_s",
             format!(
-                "time step {dt:.3e} s is above the stable bound {:.3e} s of the particle that limits it (inscribed \
-                 radius {:.3e} m, from `{}`) against the stiffest contact law its material meets",
-                bound.time_step, bound.inscribed_radius, bound.path
+                "time step {dt:.3e} s is above {:.3e} s, where the integrator fails; the stable bound is {:.3e} s, \
+                 set by the particle that limits it (inscribed radius {:.3e} m, from `{}`) against the stiffest \
+                 contact law its material meets",
+                bound.refusal_time_step, bound.time_step, bound.inscribed_radius, bound.path
             ),
         )
         .with_help(format!(
@@ -214,7 +233,13 @@ mod tests {
         assert_eq!(round_down_to_two_digits(8.15e-6), 8.1e-6);
         assert!((round_down_to_two_digits(1.0e-5) - 1.0e-5).abs() < 1e-20);
         assert!(round_down_to_two_digits(9.99e-7) <= 9.99e-7);
-        let bound = TimeStepBound { time_step: 1.63e-5, inscribed_radius: 1e-3, path: "p".into() };
+        let bound = TimeStepBound {
+            time_step: 1.63e-5,
+            automatic_time_step: AUTOMATIC_TIME_STEP_FRACTION * 1.63e-5,
+            refusal_time_step: 1.63e-5,
+            inscribed_radius: 1e-3,
+            path: "p".into(),
+        };
         assert_eq!(choose_time_step(None, Some(&bound), false).unwrap(), 2.4e-6);
         assert_eq!(choose_time_step(None, None, false).unwrap(), FALLBACK_TIME_STEP);
         assert_eq!(choose_time_step(Some(2e-6), Some(&bound), false).unwrap(), 2e-6);

@@ -145,7 +145,7 @@ impl Converter {
         let run = Run { time_step_s: None, max_overlap_fraction: f64::MAX, ..scene.run.clone() };
         let automatic = Scene { run, ..scene.clone() };
         let Ok(summary) = automatic.summary() else { return };
-        let Some(bound) = summary.stable_time_step_s else { return };
+        let Some(bound) = summary.refusal_time_step_s else { return };
         if time_step.value > bound {
             let consequence = format!(
                 "DELTA_T = {:e} s is above the stable bound {bound:.3e} s = (pi/10)*sqrt(m/E) of the lightest \

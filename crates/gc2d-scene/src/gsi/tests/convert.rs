@@ -111,7 +111,7 @@ fn the_piston_delta_t_above_the_stable_bound_leaves_the_time_step_automatic_with
     assert_eq!(conversion.scene.run.time_step_s, None);
     assert_eq!(not_converted_lines(&conversion, "DELTA_T"), [4]);
     let summary = conversion.scene.summary().unwrap();
-    let bound = summary.stable_time_step_s.unwrap();
+    let bound = summary.refusal_time_step_s.unwrap();
     assert!(bound < 1.5e-5 && bound > 1.2e-5, "{bound}");
     assert!(summary.time_step_is_automatic && summary.time_step_s <= crate::AUTOMATIC_TIME_STEP_FRACTION * bound);
     // A Δt below the bound is kept as written.
