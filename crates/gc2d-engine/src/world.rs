@@ -2,18 +2,21 @@
 //!
 //! One step, as data flows (ARCHITECTURE.md): predict → vertices and boxes → sort-and-sweep → narrowphase and contact
 //! law per pair (parallel, each pair writes only its own record) → accumulation in pair order → body forces →
-//! correct → walls, sources, g(t), s(t) → ledger and safety checks. Stages a scene does not use are skipped by a
-//! flag test, so a plain pile pays nothing for drag springs, moving walls, heating or sources.
+//! correct → walls, g(t), domain and outlet removals, sources and inlets, s(t) → ledger and safety checks. Stages a
+//! scene does not use are skipped by a flag test, so a plain pile pays nothing for drag springs, moving walls,
+//! heating, sources, inlets or outlets.
 
 use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns};
 use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
+use crate::inlets::{Inlet, InletState};
 use crate::integrator::{BodyIntegrator, GearState, Integrator, IntegratorError, TimeStep};
 use crate::interactions::{InteractionError, InteractionTable, MaterialId};
 use crate::ledger::EnergyLedger;
 use crate::motion::WallMotion;
 use crate::narrowphase::{PairContact, PairContext};
+use crate::outlets::{Outlet, OutletState};
 use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
 use crate::shape::{BodyShape, MassModel, shape_view};
@@ -92,6 +95,12 @@ pub struct StepStats {
     pub insertions_skipped: u64,
     /// Particles removed for leaving the domain since the start.
     pub removed: u64,
+    /// Particles fed by inlets since the start (per inlet: [`World::inlets`]).
+    pub injected: u64,
+    /// Due inlet particles that found no free spot and waited a step, since the start (per inlet: [`World::inlets`]).
+    pub postponed: u64,
+    /// Particles removed by outlets since the start (per outlet: [`World::outlets`]).
+    pub removed_at_outlets: u64,
 }
 
 /// What the contacts did to one wall in the last step (a mill's rotor: its torque and the power it delivers).
@@ -176,6 +185,8 @@ struct Stages {
     variable_gravity: bool,
     sources: bool,
     domain: bool,
+    inlets: bool,
+    outlets: bool,
 }
 
 /// A simulation: bodies, the contacts between them, the drivers that move walls and pull particles, and time.
@@ -194,6 +205,11 @@ pub struct World {
     body_forces: Vec<BodyForce>,
     sources: Vec<SourceState>,
     rng: ChaCha8Rng,
+    inlets: Vec<InletState>,
+    outlets: Vec<OutletState>,
+    /// Particle centres at the start of the step, for the outlets' crossing test; refilled every step, so not saved.
+    #[serde(skip)]
+    positions_before_step: Vec<DVec2>,
     ledger: EnergyLedger,
     rotor_work: RotorWork,
     stats: StepStats,
@@ -232,6 +248,9 @@ impl World {
             moving_walls: Vec::new(),
             body_forces: vec![BodyForce::Gravity],
             sources: Vec::new(),
+            inlets: Vec::new(),
+            outlets: Vec::new(),
+            positions_before_step: Vec::new(),
             ledger: EnergyLedger::default(),
             rotor_work: RotorWork::default(),
             stats: StepStats::default(),
@@ -374,6 +393,58 @@ impl World {
         Ok(())
     }
 
+    /// Adds a particle inlet (see [`crate::inlets`]); it draws from its own random stream, numbered by the order of
+    /// the inlets. Refuses a zero-length or non-finite segment, a rate that is not positive and finite, a start
+    /// velocity that does not point into the domain, an invalid recipe, a non-positive density and an unknown
+    /// material.
+    pub fn add_inlet(&mut self, inlet: Inlet) -> Result<(), WorldError> {
+        let invalid = |what: String| Err(WorldError::InvalidBody(format!("inlet: {what}")));
+        inlet.recipe.validate().map_err(|e| WorldError::InvalidBody(format!("inlet shape: {e}")))?;
+        if !(inlet.from.is_finite() && inlet.to.is_finite() && inlet.from != inlet.to) {
+            return invalid("the segment needs two distinct finite end points".into());
+        }
+        if !(inlet.rate > 0.0 && inlet.rate.is_finite()) {
+            return invalid(format!("the rate must be a positive number of particles per second, got {}", inlet.rate));
+        }
+        if !(inlet.velocity.is_finite() && inlet.angular_velocity.is_finite() && inlet.normal_speed() > 0.0) {
+            return invalid(format!(
+                "the start velocity ({}, {}) m/s does not point into the domain (to the left of the segment)",
+                inlet.velocity.x, inlet.velocity.y
+            ));
+        }
+        let density_ok = inlet.density > 0.0 && inlet.density.is_finite();
+        if !density_ok || inlet.start.is_nan() || inlet.stop.is_nan() {
+            return invalid("the density must be positive and the times numbers".into());
+        }
+        if inlet.material.index() >= self.config.interactions.material_count() {
+            return invalid(format!("material {} is not in the table", inlet.material.0));
+        }
+        let index = self.inlets.len();
+        self.inlets.push(InletState::new(inlet, self.config.seed, index));
+        self.stages.inlets = true;
+        Ok(())
+    }
+
+    /// Adds a particle outlet (see [`crate::outlets`]). Refuses a zero-length or non-finite segment.
+    pub fn add_outlet(&mut self, outlet: Outlet) -> Result<(), WorldError> {
+        if !(outlet.from.is_finite() && outlet.to.is_finite() && outlet.from != outlet.to) {
+            return Err(WorldError::InvalidBody("outlet: the segment needs two distinct finite end points".into()));
+        }
+        self.outlets.push(OutletState::new(outlet));
+        self.stages.outlets = true;
+        Ok(())
+    }
+
+    /// The inlets in the order they were added, with their counters.
+    pub fn inlets(&self) -> &[InletState] {
+        &self.inlets
+    }
+
+    /// The outlets in the order they were added, with their counters.
+    pub fn outlets(&self) -> &[OutletState] {
+        &self.outlets
+    }
+
     fn insert_into_broadphase(&mut self, id: BodyId, kind: broadphase::BodyKind) {
         // Ids are dense slots far below the broadphase limit of 2^31, and each slot is inserted once.
         let inserted = self.broadphase.insert(id.0, self.bodies.aabb[id.index()], kind);
@@ -499,6 +570,9 @@ impl World {
             + crate::bodies::vec_bytes(&self.body_forces)
             + self.body_forces.iter().map(BodyForce::heap_bytes).sum::<usize>()
             + crate::bodies::vec_bytes(&self.sources)
+            + crate::bodies::vec_bytes(&self.inlets)
+            + crate::bodies::vec_bytes(&self.outlets)
+            + crate::bodies::vec_bytes(&self.positions_before_step)
     }
 
     /// Every pair of bodies whose boxes touch, with its contact record (`a < b`).
@@ -540,6 +614,10 @@ impl World {
         }
         let dt = self.config.time_step;
         let t_next = self.time + dt;
+        if self.stages.outlets {
+            self.positions_before_step.clear();
+            self.positions_before_step.extend(self.bodies.pose.iter().map(|pose| pose.position));
+        }
         self.predict(t_next);
         self.bodies.update_world_vertices();
         self.broadphase.update(&self.bodies.aabb);
@@ -565,11 +643,17 @@ impl World {
         if self.stages.variable_gravity {
             self.account_gravity_change(g_before);
         }
+        if self.stages.outlets {
+            self.remove_at_outlets();
+        }
         if self.stages.domain {
             self.remove_escaped_particles();
         }
         if self.stages.sources {
             self.run_sources()?;
+        }
+        if self.stages.inlets {
+            self.run_inlets()?;
         }
         let finite = self.refresh_stored_energies();
         self.check_blow_up(finite)
@@ -799,15 +883,83 @@ impl World {
             })
             .collect();
         for id in escaped {
-            let i = id.index();
-            let b = &self.bodies;
-            self.ledger.energy_removed += 0.5 * b.mass[i] * b.velocity[i].length_squared()
-                + 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i]
-                + b.mass[i] * g * b.pose[i].position.y;
-            self.bodies.alive[i] = false;
-            self.broadphase.remove(id.0);
+            self.remove_particle(id, g);
             self.stats.removed += 1;
         }
+    }
+
+    /// Removes particles whose centre crossed an outlet outward during the step (tested in outlet order: a particle
+    /// is counted by the first outlet it crossed), booking their energy as removed.
+    fn remove_at_outlets(&mut self) {
+        let g = self.config.gravity.magnitude(self.time);
+        for i in 0..self.positions_before_step.len() {
+            if !(self.bodies.alive[i] && self.bodies.kind[i] == BodyKind::Particle) {
+                continue;
+            }
+            let (before, after) = (self.positions_before_step[i], self.bodies.pose[i].position);
+            if let Some(outlet) = self.outlets.iter_mut().find(|o| o.outlet().crossed_outward(before, after)) {
+                outlet.removed();
+                self.remove_particle(BodyId(i as u32), g);
+                self.stats.removed_at_outlets += 1;
+            }
+        }
+    }
+
+    /// Takes particle `id` out of the World, booking its kinetic and potential energy (at gravity `g`) as removed.
+    fn remove_particle(&mut self, id: BodyId, g: f64) {
+        let i = id.index();
+        let b = &self.bodies;
+        self.ledger.energy_removed += 0.5 * b.mass[i] * b.velocity[i].length_squared()
+            + 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i]
+            + b.mass[i] * g * b.pose[i].position.y;
+        self.bodies.alive[i] = false;
+        self.broadphase.remove(id.0);
+    }
+
+    /// Inserts the particles the inlets owe at the end of this step, each inlet in order and its particles in due
+    /// order; a due particle without a free spot waits for the next step, and so do those behind it.
+    fn run_inlets(&mut self) -> Result<(), WorldError> {
+        let (step, dt) = (self.steps, self.config.time_step);
+        for i in 0..self.inlets.len() {
+            while self.inlets[i].next_is_due(step, dt) {
+                if self.insert_from_inlet(i).is_none() {
+                    self.inlets[i].postponed();
+                    self.stats.postponed += 1;
+                    break;
+                }
+                self.inlets[i].inserted();
+                self.stats.injected += 1;
+                self.check_time_step()?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Draws the next particle of inlet `index` and up to [`PLACEMENT_ATTEMPTS`] points along its segment, and
+    /// inserts the particle at the first free one; `None` when every point was taken.
+    fn insert_from_inlet(&mut self, index: usize) -> Option<BodyId> {
+        let (inlet, rng) = self.inlets[index].parts();
+        let drawn = inlet.recipe.draw(rng);
+        let fractions: [f64; PLACEMENT_ATTEMPTS] = std::array::from_fn(|_| rng.random::<f64>());
+        let (shape, angle) = drawn.ok()?;
+        let (from, to, velocity, angular_velocity) = (inlet.from, inlet.to, inlet.velocity, inlet.angular_velocity);
+        let (density, material) = (inlet.density, inlet.material);
+        let pose = fractions.iter().find_map(|&u| self.free_pose(&shape, angle, from + (to - from) * u))?;
+        let id = self.add_particle(shape, pose, density, velocity, angular_velocity).ok()?;
+        self.bodies.material[id.index()] = material;
+        Some(id)
+    }
+
+    /// The pose of `shape` turned by `angle` with its centroid at `position` (at the current heating scale), if the
+    /// particle would overlap no living body there.
+    fn free_pose(&self, shape: &BodyShape, angle: f64, position: DVec2) -> Option<Pose> {
+        let scale = self.config.heating.map_or(1.0, |h| h.scale(self.time));
+        let points = shape.body_points();
+        let mut world = [DVec2::ZERO; gc2d_geometry::MAX_VERTICES];
+        let world = &mut world[..points.len()];
+        let pose = Pose { position, angle, scale };
+        pose.transform_into(&points, world);
+        (!self.overlaps_any(shape_view(shape.kind(), world, shape.radius() * scale))).then_some(pose)
     }
 
     /// Inserts the particles the sources owe at the current time. A new particle smaller than any before may lower
@@ -846,15 +998,9 @@ impl World {
                 source.position.y + if highest.is_finite() { highest } else { 0.0 }
             }
         };
-        let scale = self.config.heating.map_or(1.0, |h| h.scale(self.time));
-        let points = shape.body_points();
-        let mut world = [DVec2::ZERO; gc2d_geometry::MAX_VERTICES];
-        let world = &mut world[..points.len()];
         for _ in 0..PLACEMENT_ATTEMPTS {
             let x = source.position.x + if half > 0.0 { self.rng.random_range(-half..=half) } else { 0.0 };
-            let pose = Pose { position: DVec2::new(x, y), angle, scale };
-            pose.transform_into(&points, world);
-            if !self.overlaps_any(shape_view(shape.kind(), world, shape.radius() * scale)) {
+            if let Some(pose) = self.free_pose(&shape, angle, DVec2::new(x, y)) {
                 let id = self.add_particle(shape.clone(), pose, source.density, DVec2::ZERO, 0.0).ok()?;
                 self.bodies.material[id.index()] = source.material;
                 return Some(id);
