@@ -45,7 +45,7 @@ pub enum FluidField {
         ramp: TimeRamp,
     },
     /// A loaded snapshot, the same at every time.
-    Sampled(SampledField),
+    Sampled(Box<SampledField>),
     /// Loaded snapshots at their times.
     Series(SnapshotSeries),
 }

@@ -19,7 +19,7 @@ pub(crate) struct Domain {
 impl Domain {
     /// The domain of cells given as lists of points; `fallback` (the nodes) gives the hull used when no cell has an
     /// area. `scale` is the mesh's size, for the tolerance.
-    pub fn new<'a>(cells: impl Iterator<Item = Vec<DVec2>>, fallback: &'a [DVec2], scale: f64) -> Domain {
+    pub fn new(cells: impl Iterator<Item = Vec<DVec2>>, fallback: &[DVec2], scale: f64) -> Domain {
         let mut vertices = Vec::new();
         let mut offsets = vec![0];
         let mut boxes = Vec::new();

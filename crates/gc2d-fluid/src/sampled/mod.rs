@@ -114,7 +114,7 @@ pub enum SampledError {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 enum Interpolator {
     Bilinear(Lattice),
-    Shepard(ShepardCloud),
+    Shepard(Box<ShepardCloud>),
 }
 
 /// A velocity field interpolated from samples at a mesh's nodes.
@@ -160,7 +160,7 @@ impl SampledField {
                 }
             },
             Interpolation::Shepard { power, neighbours } => {
-                if !(power > 0.0 && power.is_finite()) || !(1..=MAX_NEIGHBOURS).contains(&neighbours) {
+                if !(power > 0.0 && power.is_finite() && (1..=MAX_NEIGHBOURS).contains(&neighbours)) {
                     return Err(SampledError::Shepard { file, power, neighbours });
                 }
                 let points = &samples.mesh_points;
@@ -174,7 +174,7 @@ impl SampledField {
                         .collect()
                 });
                 let domain = Domain::new(cells, &nodes, scale);
-                Interpolator::Shepard(ShepardCloud::new(nodes, velocities, domain, power, neighbours))
+                Interpolator::Shepard(Box::new(ShepardCloud::new(nodes, velocities, domain, power, neighbours)))
             }
         };
         Ok(SampledField { source: file, outside, nodes: node_count, interpolator })
