@@ -26,6 +26,8 @@ const DUE_STEP_SLACK: f64 = 1e-9;
 /// A particle inlet: a segment that feeds `rate` particles per second with start velocity `velocity`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Inlet {
+    /// The name its counters go by (in time series and summaries).
+    pub name: String,
     /// First end of the segment, m.
     pub from: DVec2,
     /// Second end of the segment, m; the domain is on the left walking from `from` to `to`.
@@ -148,6 +150,7 @@ mod tests {
 
     fn inlet(rate: f64) -> Inlet {
         Inlet {
+            name: "feed".into(),
             from: DVec2::ZERO,
             to: DVec2::new(1.0, 0.0),
             rate,

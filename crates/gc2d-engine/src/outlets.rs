@@ -10,8 +10,10 @@ use gc2d_geometry::{DVec2, cross};
 use serde::{Deserialize, Serialize};
 
 /// A particle outlet: the segment from `from` to `to`, the domain on its left.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outlet {
+    /// The name its counter goes by (in time series and summaries).
+    pub name: String,
     /// First end of the segment, m.
     pub from: DVec2,
     /// Second end of the segment, m.
@@ -45,7 +47,7 @@ pub struct OutletCounters {
 }
 
 /// An outlet and its counters.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct OutletState {
     outlet: Outlet,
     counters: OutletCounters,
@@ -77,18 +79,17 @@ impl OutletState {
 mod tests {
     use super::*;
 
-    /// A floor outlet from (1, 0) to (0, 0): the domain is below it (left walking in −x), outside is above.
-    const OUTLET: Outlet = Outlet { from: DVec2::new(1.0, 0.0), to: DVec2::new(0.0, 0.0) };
-
     #[test]
     fn only_an_outward_crossing_within_the_segment_counts() {
+        // A floor outlet from (1, 0) to (0, 0): the domain is below it (left walking in −x), outside is above.
+        let outlet = Outlet { name: "top".into(), from: DVec2::new(1.0, 0.0), to: DVec2::new(0.0, 0.0) };
         let below = DVec2::new(0.5, -0.01);
         let above = DVec2::new(0.5, 0.01);
-        assert!(OUTLET.crossed_outward(below, above));
-        assert!(!OUTLET.crossed_outward(above, below), "inward");
-        assert!(!OUTLET.crossed_outward(DVec2::new(1.5, -0.01), DVec2::new(1.5, 0.01)), "beside");
-        assert!(!OUTLET.crossed_outward(below, DVec2::new(0.5, -0.001)), "stays inside");
-        assert!(OUTLET.crossed_outward(DVec2::new(1.0, -0.01), DVec2::new(1.0, 0.01)), "at an end");
-        assert!(OUTLET.crossed_outward(DVec2::new(0.5, 0.0), above), "from the line");
+        assert!(outlet.crossed_outward(below, above));
+        assert!(!outlet.crossed_outward(above, below), "inward");
+        assert!(!outlet.crossed_outward(DVec2::new(1.5, -0.01), DVec2::new(1.5, 0.01)), "beside");
+        assert!(!outlet.crossed_outward(below, DVec2::new(0.5, -0.001)), "stays inside");
+        assert!(outlet.crossed_outward(DVec2::new(1.0, -0.01), DVec2::new(1.0, 0.01)), "at an end");
+        assert!(outlet.crossed_outward(DVec2::new(0.5, 0.0), above), "from the line");
     }
 }

@@ -42,6 +42,7 @@ fn disk(radius: f64) -> ParticleRecipe {
 /// An inlet along `from` → `to` (domain on the left) feeding `rate` disks per second at `velocity`.
 fn inlet(from: DVec2, to: DVec2, rate: f64, velocity: DVec2) -> Inlet {
     Inlet {
+        name: "feed".into(),
         from,
         to,
         rate,
@@ -155,7 +156,7 @@ fn a_covered_inlet_postpones_every_step_and_a_blocked_one_catches_up_without_dri
 fn an_outlet_removes_an_outward_crossing_only_and_books_its_energy() {
     let mut world = world(0.0, None);
     // Domain below the outlet (walking from +x to −x, the left is −y).
-    world.add_outlet(Outlet { from: DVec2::new(0.1, 0.0), to: DVec2::new(-0.1, 0.0) }).unwrap();
+    world.add_outlet(Outlet { name: "top".into(), from: DVec2::new(0.1, 0.0), to: DVec2::new(-0.1, 0.0) }).unwrap();
     let shape = gc2d_engine::BodyShape::Disk { radius: RADIUS };
     let mut add = |x: f64, y: f64, vy: f64| {
         world.add_particle(shape.clone(), Pose::new(DVec2::new(x, y), 0.0), DENSITY, DVec2::new(0.0, vy), 0.0).unwrap()
@@ -193,7 +194,7 @@ fn feed_and_drain() -> World {
     let domain = Aabb { min: DVec2::new(-0.2, -0.1), max: DVec2::new(0.07, 0.25) };
     let mut world = world(0.0, Some(domain));
     world.add_inlet(inlet(DVec2::new(-0.05, 0.0), DVec2::new(0.05, 0.0), 30.0, DVec2::new(0.3, 1.0))).unwrap();
-    world.add_outlet(Outlet { from: DVec2::new(0.05, 0.2), to: DVec2::new(-0.05, 0.2) }).unwrap();
+    world.add_outlet(Outlet { name: "top".into(), from: DVec2::new(0.05, 0.2), to: DVec2::new(-0.05, 0.2) }).unwrap();
     world
 }
 
@@ -244,6 +245,6 @@ fn an_inlet_whose_velocity_points_out_of_the_domain_is_refused() {
     assert!(world.add_inlet(zero).is_err());
     let no_rate = inlet(DVec2::new(-0.05, 0.0), DVec2::new(0.05, 0.0), 0.0, DVec2::new(0.0, 1.0));
     assert!(world.add_inlet(no_rate).is_err());
-    assert!(world.add_outlet(Outlet { from: DVec2::ONE, to: DVec2::ONE }).is_err());
+    assert!(world.add_outlet(Outlet { name: "top".into(), from: DVec2::ONE, to: DVec2::ONE }).is_err());
     assert!(world.inlets().is_empty() && world.outlets().is_empty());
 }

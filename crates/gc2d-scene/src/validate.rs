@@ -158,6 +158,7 @@ impl Scene {
                 .with_help("use longer intervals or shorter windows"),
             );
         }
+        crate::build::inlets::check(self, &materials, &mut errors);
         if let Some(mill) = &self.mill {
             collect(&mut errors, crate::build::mill::check(mill, "mill"));
             for (field, name) in [

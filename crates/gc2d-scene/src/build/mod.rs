@@ -6,6 +6,7 @@
 //! World's own stream 0 drives the sources during the run; stream 2 samples source shapes for the time-step bound.
 
 pub(crate) mod blocks;
+pub(crate) mod inlets;
 pub(crate) mod interactions;
 pub(crate) mod mill;
 pub(crate) mod safety;
@@ -116,6 +117,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
         walls.extend(mill_walls);
     }
     let sources = plan_sources(scene, &materials)?;
+    let (inlets, outlets) = inlets::plan(scene, &materials)?;
 
     let mut bound = particles
         .iter()
@@ -138,6 +140,20 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
             &mut sample_rng,
         );
         bound = TimeStepBound::min(bound, source_bound);
+    }
+    for (i, inlet) in inlets.iter().enumerate() {
+        let path = format!("inlets[{i}]");
+        let models = &models[inlet.material.index()];
+        let inlet_bound = TimeStepBound::of_source(
+            &inlet.recipe,
+            inlet.density,
+            scene.mass_model,
+            models,
+            max_impact_speed,
+            &path,
+            &mut sample_rng,
+        );
+        bound = TimeStepBound::min(bound, inlet_bound);
     }
     let time_step = safety::choose_time_step(scene.run.time_step_s, bound.as_ref(), scene.run.allow_unsafe_time_step)
         .map_err(|error| match &bound {
@@ -208,6 +224,12 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
     }
     for (i, source) in sources.into_iter().enumerate() {
         world.add_source(source).map_err(|e| engine_error(&e, &format!("sources[{i}]")))?;
+    }
+    for (i, inlet) in inlets.into_iter().enumerate() {
+        world.add_inlet(inlet).map_err(|e| engine_error(&e, &format!("inlets[{i}]")))?;
+    }
+    for (i, outlet) in outlets.into_iter().enumerate() {
+        world.add_outlet(outlet).map_err(|e| engine_error(&e, &format!("outlets[{i}]")))?;
     }
     world.check_time_step().map_err(|e| engine_error(&WorldError::Safety(e), "run.time_step_s"))?;
 

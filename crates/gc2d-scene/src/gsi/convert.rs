@@ -60,6 +60,8 @@ pub fn to_scene(import: &GsiImport, name: &str) -> Result<GsiConversion, GsiErro
         particles: source.particles.iter().map(|particle| converter.particle(particle)).collect(),
         blocks: source.blocks.iter().map(block).collect(),
         sources: source.drop_sources.iter().map(drop_source).collect(),
+        inlets: Vec::new(),
+        outlets: Vec::new(),
         mill: None,
         view: source.display.as_ref().map(|display| converter.view(display)),
         source: None,

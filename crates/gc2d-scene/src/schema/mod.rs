@@ -6,12 +6,14 @@
 //! Positions and vectors are `(x, y)` pairs, `[f64; 2]` in Rust. Angles are radians, counter-clockwise from +x.
 
 mod bodies;
+mod inlets;
 mod interactions;
 mod mill;
 mod shapes;
 mod walls;
 
 pub use bodies::{Block, DragSpring, DropHeight, GridType, Particle, Source};
+pub use inlets::{Inlet, Outlet};
 pub use interactions::{AreaFormulation, Damping, Friction, FrictionStiffness, Interaction, InteractionLaw, Rolling};
 pub use mill::{BallPlacement, Balls, Chamber, Mill, Ore, Rotor};
 pub use shapes::{CornerPositions, CountSpread, Orientation, Recipe, Shape, SizeSpread};
@@ -68,6 +70,12 @@ pub struct Scene {
     /// Particle sources that insert particles during the run (gsi `DROPSOURCE`).
     #[serde(default)]
     pub sources: Vec<Source>,
+    /// Segments that feed particles at a rate (docs/scene-format.md "inlets and outlets"). Default: none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub inlets: Vec<Inlet>,
+    /// Segments that remove the particles crossing them outward. Default: none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub outlets: Vec<Outlet>,
     /// A ball mill: chamber, rotor and balls, expanded into walls and particles. Default: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mill: Option<Mill>,

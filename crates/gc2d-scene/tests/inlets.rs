@@ -1,0 +1,93 @@
+//! Inlets and outlets in scenes (issue 15 item 3): the exact feed of a built scene, located refusals of bad inlets
+//! and outlets, the start-phase warning, and a scene copy that reads back equal.
+
+use gc2d_scene::{ErrorKind, Scene, SceneError};
+
+/// A scene with one inlet along the floor feeding upward (`inlet` is the inlet entry's inner fields) and an outlet
+/// across the top, no gravity, Δt = 1 ms.
+fn scene_text(inlet: &str) -> String {
+    format!(
+        "Scene(\n    run: (time_step_s: 1e-3, end_time_s: 1.0, seed: 3),\n    gravity: Constant(0.0),\n    materials: [(name: \"glass\", density_kg_m2: 1e4, youngs_modulus_n_m: 1e5)],\n    inlets: [\n        ({inlet}),\n    ],\n    outlets: [(name: \"top\", from_m: (0.05, 0.3), to_m: (-0.05, 0.3))],\n)\n"
+    )
+}
+
+const GOOD: &str = "name: \"feed\", from_m: (-0.05, 0.0), to_m: (0.05, 0.0), rate_per_s: 10, velocity_m_s: (0.0, 1.0),\n         shape: (semi_axes_m: (0.01, 0.01), disk: true), material: \"glass\"";
+
+fn error_of(text: &str) -> SceneError {
+    match Scene::from_str(text, "bad.ron").and_then(|scene| scene.build().map(drop)) {
+        Ok(()) => panic!("expected an error for {text}"),
+        Err(error) => error,
+    }
+}
+
+#[test]
+fn ten_per_second_for_one_second_feed_ten_and_the_outlet_drains_them() {
+    let scene = Scene::from_str(&scene_text(GOOD), "feed.ron").unwrap();
+    assert!(scene.inlet_warnings().is_empty());
+    let mut world = scene.build().unwrap();
+    assert_eq!(world.inlets()[0].inlet().name, "feed");
+    assert_eq!(world.outlets()[0].outlet().name, "top");
+    let mut steps_of_injection = Vec::new();
+    for _ in 0..1000 {
+        let before = world.stats().injected;
+        world.step().unwrap();
+        let s = world.stats();
+        if s.injected > before {
+            steps_of_injection.push(world.steps());
+        }
+        assert_eq!(s.injected, world.bodies().particles().count() as u64 + s.removed_at_outlets);
+    }
+    assert_eq!(steps_of_injection, (0..10).map(|k| 1 + 100 * k).collect::<Vec<u64>>());
+    // At 1 m/s a particle crosses y = 0.3 m on its 301st step: those fed at steps 1 to 601 are gone.
+    assert_eq!(world.outlets()[0].counters().removed, 7);
+    assert_eq!(world.bodies().particles().count(), 3);
+}
+
+#[test]
+fn an_inlet_whose_velocity_points_out_of_the_domain_is_refused_at_that_field() {
+    let text = scene_text(&GOOD.replace("velocity_m_s: (0.0, 1.0)", "velocity_m_s: (0.5, -1.0)"));
+    let error = error_of(&text);
+    assert_eq!(error.kind(), ErrorKind::Value);
+    assert_eq!(error.path(), "inlets[0].velocity_m_s", "{}", error.render_plain());
+    let location = error.location().expect("located");
+    assert_eq!((location.line, location.column), (6, 95), "{}", error.render_plain());
+    assert!(error.message().contains("does not point into the domain"), "{}", error.message());
+}
+
+#[test]
+fn bad_segments_rates_materials_and_names_are_refused_where_they_are_written() {
+    let cases = [
+        (GOOD.replace("to_m: (0.05, 0.0)", "to_m: (-0.05, 0.0)"), "inlets[0].to_m", "zero length"),
+        (GOOD.replace("rate_per_s: 10", "rate_per_s: 0"), "inlets[0].rate_per_s", "positive number"),
+        (GOOD.replace("rate_per_s: 10", "rate_per_s: 1e9"), "inlets[0].rate_per_s", "more than the"),
+        (GOOD.replace("\"glass\"", "\"glas\""), "inlets[0].material", "glass"),
+        (GOOD.replace("\"feed\"", "\"feed,2\""), "inlets[0].name", "column name"),
+    ];
+    for (inlet, path, words) in cases {
+        let error = error_of(&scene_text(&inlet));
+        assert_eq!(error.path(), path, "{}", error.render_plain());
+        assert!(error.location().is_some());
+        assert!(error.render_plain().contains(words), "{}", error.render_plain());
+    }
+    let text = scene_text(GOOD).replace("to_m: (-0.05, 0.3)", "to_m: (0.05, 0.3)");
+    assert_eq!(error_of(&text).path(), "outlets[0].to_m");
+}
+
+#[test]
+fn a_slow_inlet_is_warned_about_and_still_runs() {
+    let slow = GOOD.replace("velocity_m_s: (0.0, 1.0)", "velocity_m_s: (3.0, 0.1)");
+    let scene = Scene::from_str(&scene_text(&slow), "slow.ron").unwrap();
+    let warnings = scene.inlet_warnings();
+    assert_eq!(warnings.len(), 1);
+    assert!(warnings[0].starts_with("inlets[0].velocity_m_s") && warnings[0].contains("0.2 m/s"), "{warnings:?}");
+    assert!(scene.build().is_ok());
+}
+
+#[test]
+fn the_written_scene_reads_back_equal() {
+    let scene = Scene::from_str(&scene_text(GOOD), "feed.ron").unwrap();
+    let copy = Scene::from_str(&scene.to_ron_string().unwrap(), "copy.ron").unwrap();
+    assert_eq!(copy.inlets, scene.inlets);
+    assert_eq!(copy.outlets, scene.outlets);
+    assert_eq!(copy.inlets[0].window_s, [0.0, f64::INFINITY]);
+}
