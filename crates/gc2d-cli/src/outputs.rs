@@ -57,21 +57,38 @@ pub const TIME_SERIES_COLUMNS: [&str; 22] = [
     "rotor_work_j",
 ];
 
+/// The columns `timeseries.csv` has after [`TIME_SERIES_COLUMNS`] for a World with inlets or outlets, in their
+/// order: `inlet_<name>_injected` and `inlet_<name>_postponed` per inlet, `outlet_<name>_removed` per outlet (counts
+/// since t = 0; the name is the scene's or the index), then `removed_by_domain`, so that on every row the fed
+/// particles balance: Σ injected (+ sources' and initial particles) = `particles` + Σ removed + `removed_by_domain`.
+/// None for a World without either.
+pub fn boundary_columns(world: &World) -> Vec<String> {
+    if world.inlets().is_empty() && world.outlets().is_empty() {
+        return Vec::new();
+    }
+    let inlets = world.inlets().iter().map(|i| &i.inlet().name);
+    let mut columns: Vec<String> =
+        inlets.flat_map(|name| [format!("inlet_{name}_injected"), format!("inlet_{name}_postponed")]).collect();
+    columns.extend(world.outlets().iter().map(|o| format!("outlet_{}_removed", o.outlet().name)));
+    columns.push("removed_by_domain".to_owned());
+    columns
+}
+
 /// Appends one row per call to `timeseries.csv`.
 pub struct TimeSeriesWriter {
     file: BufWriter<File>,
+    /// True until the header is written, with the first row (its [`boundary_columns`] depend on the World).
+    header_pending: bool,
     /// Time of the row a continued series already ends with: the resumed run does not write it again (its
     /// `force_alternation` would be NaN there, the history not being saved in checkpoints).
     kept_last_row: Option<f64>,
 }
 
 impl TimeSeriesWriter {
-    /// Creates `path` (truncating it) and writes the header line.
+    /// Creates `path` (truncating it); the header line is written with the first row.
     pub fn create(path: &Path) -> io::Result<Self> {
-        let mut file = BufWriter::new(File::create(path)?);
-        writeln!(file, "{}", TIME_SERIES_COLUMNS.join(","))?;
-        file.flush()?;
-        Ok(Self { file, kept_last_row: None })
+        let file = BufWriter::new(File::create(path)?);
+        Ok(Self { file, header_pending: true, kept_last_row: None })
     }
 
     /// Continues an existing `path` for a run resumed at simulated time `resumed_at`: rows after `resumed_at`
@@ -83,7 +100,8 @@ impl TimeSeriesWriter {
         let text = std::fs::read_to_string(path)?;
         let mut lines = text.lines();
         let header = lines.next().unwrap_or_default();
-        if header != TIME_SERIES_COLUMNS.join(",") {
+        let fixed = TIME_SERIES_COLUMNS.join(",");
+        if header != fixed && !header.starts_with(&format!("{fixed},")) {
             return Err(io::Error::new(
                 io::ErrorKind::InvalidData,
                 "its first line is not this version's time-series header (another gc2d-rs version wrote it?); resume \
@@ -93,7 +111,7 @@ impl TimeSeriesWriter {
         // The time of a whole row (every column a number), `None` for anything else.
         let row_time = |line: &str| {
             let values: Option<Vec<f64>> = line.split(',').map(|field| field.parse().ok()).collect();
-            values.filter(|v| v.len() == TIME_SERIES_COLUMNS.len()).map(|v| v[0])
+            values.filter(|v| v.len() == header.split(',').count()).map(|v| v[0])
         };
         let mut kept = String::with_capacity(text.len());
         let mut kept_last_row = None;
@@ -108,7 +126,7 @@ impl TimeSeriesWriter {
         }
         std::fs::write(path, format!("{header}\n{kept}"))?;
         let file = std::fs::OpenOptions::new().append(true).open(path)?;
-        Ok(Self { file: BufWriter::new(file), kept_last_row })
+        Ok(Self { file: BufWriter::new(file), header_pending: false, kept_last_row })
     }
 
     /// Writes the World's current row and flushes it to disk; a no-op for the row a continued series already has.
@@ -116,11 +134,17 @@ impl TimeSeriesWriter {
         if self.kept_last_row.take() == Some(world.time()) {
             return Ok(());
         }
+        if self.header_pending {
+            let mut header = TIME_SERIES_COLUMNS.join(",");
+            boundary_columns(world).iter().for_each(|column| header = format!("{header},{column}"));
+            writeln!(self.file, "{header}")?;
+            self.header_pending = false;
+        }
         let l = world.ledger();
         let s = world.stats();
         let particles = world.bodies().particles().count();
         let rotor = world.rotor_power();
-        writeln!(
+        write!(
             self.file,
             "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
             world.time(),
@@ -146,6 +170,16 @@ impl TimeSeriesWriter {
             world.rotor_work().from_torque,
             world.rotor_work().from_work,
         )?;
+        for inlet in world.inlets() {
+            write!(self.file, ",{},{}", inlet.counters().injected, inlet.counters().postponed)?;
+        }
+        for outlet in world.outlets() {
+            write!(self.file, ",{}", outlet.counters().removed)?;
+        }
+        if !(world.inlets().is_empty() && world.outlets().is_empty()) {
+            write!(self.file, ",{}", s.removed)?;
+        }
+        writeln!(self.file)?;
         self.file.flush()
     }
 }
@@ -203,12 +237,42 @@ pub struct Summary {
     pub insertions_skipped: u64,
     /// Particles removed for leaving the domain.
     pub particles_removed: u64,
+    /// Particles fed by inlets.
+    pub particles_injected: u64,
+    /// Due inlet particles that waited a step for a free spot (one per particle and step).
+    pub injections_postponed: u64,
+    /// Particles removed by outlets.
+    pub particles_removed_at_outlets: u64,
+    /// Each inlet's counters, in scene order; empty without inlets.
+    pub inlets: Vec<InletSummary>,
+    /// Each outlet's counter, in scene order; empty without outlets.
+    pub outlets: Vec<OutletSummary>,
     /// Touching pairs at the end.
     pub contacts: usize,
     /// Energy ledger at the end, J per unit thickness.
     pub energy: EnergySummary,
     /// The chatter watch of this process's run: the largest force alternation over a window of steps.
     pub chatter: ChatterSummary,
+}
+
+/// One inlet in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct InletSummary {
+    /// Its name (the scene's, or its index).
+    pub name: String,
+    /// Particles it fed.
+    pub injected: u64,
+    /// Due particles that waited a step for a free spot (one per particle and step).
+    pub postponed: u64,
+}
+
+/// One outlet in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct OutletSummary {
+    /// Its name (the scene's, or its index).
+    pub name: String,
+    /// Particles it removed.
+    pub removed: u64,
 }
 
 /// The ledger's columns in `summary.json`.
@@ -248,6 +312,23 @@ impl Summary {
             particles_inserted: s.inserted,
             insertions_skipped: s.insertions_skipped,
             particles_removed: s.removed,
+            particles_injected: s.injected,
+            injections_postponed: s.postponed,
+            particles_removed_at_outlets: s.removed_at_outlets,
+            inlets: world
+                .inlets()
+                .iter()
+                .map(|i| InletSummary {
+                    name: i.inlet().name.clone(),
+                    injected: i.counters().injected,
+                    postponed: i.counters().postponed,
+                })
+                .collect(),
+            outlets: world
+                .outlets()
+                .iter()
+                .map(|o| OutletSummary { name: o.outlet().name.clone(), removed: o.counters().removed })
+                .collect(),
             contacts: s.contacts,
             energy: EnergySummary {
                 kinetic_j: l.kinetic(),
