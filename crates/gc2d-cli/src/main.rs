@@ -249,8 +249,13 @@ fn render(error: gc2d_scene::SceneError) -> String {
     format!("{:?}", miette::Report::new(error))
 }
 
+/// Loads and validates a scene, printing its warnings (an inlet too slow for its rate) to stderr.
 fn load(path: &Path) -> Result<Scene, Failure> {
-    Scene::from_path(path).map_err(|e| Failure::input(render(e)))
+    let scene = Scene::from_path(path).map_err(|e| Failure::input(render(e)))?;
+    for warning in scene.inlet_warnings() {
+        console::err(&format!("warning: {}: {warning}", path.display()));
+    }
+    Ok(scene)
 }
 
 fn check(path: &Path) -> Result<u8, Failure> {

@@ -409,3 +409,21 @@ fn record_pictures_snapshot_and_analysis_of_a_run() {
 fn snapshot_of_a_missing_run_is_an_input_error() {
     gc2d().args(["snapshot", "no/such/run"]).assert().code(2).stderr(contains("no/such/run"));
 }
+
+#[test]
+fn check_and_run_warn_of_an_inlet_too_slow_for_its_rate() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("slow_inlet.ron");
+    std::fs::write(
+        &path,
+        "Scene(\n    run: (time_step_s: 1e-3, end_time_s: 0.01, seed: 3),\n    gravity: Constant(0.0),\n    \
+         materials: [(name: \"glass\", density_kg_m2: 1e4, youngs_modulus_n_m: 1e5)],\n    inlets: [(from_m: \
+         (-0.05, 0.0), to_m: (0.05, 0.0), rate_per_s: 10, velocity_m_s: (3.0, 0.1),\n        shape: (semi_axes_m: \
+         (0.01, 0.01), disk: true))],\n)\n",
+    )
+    .unwrap();
+    let warning = || contains("warning:").and(contains("inlets[0].velocity_m_s")).and(contains("pile up"));
+    gc2d().arg("check").arg(&path).assert().success().stderr(warning());
+    let out = dir.path().join("out");
+    gc2d().arg("run").arg(&path).arg("--quiet").arg("--out").arg(out).assert().success().stderr(warning());
+}
