@@ -5,12 +5,16 @@ use super::grid::BucketGrid;
 use gc2d_geometry::DVec2;
 use serde::{Deserialize, Serialize};
 
-/// Convex polygons (counter-clockwise) whose union is the field's domain, with a grid over their bounding boxes.
+/// Convex polygons whose union is the field's domain, each kept as its edges' lines, with a grid over their
+/// bounding boxes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub(crate) struct Domain {
-    vertices: Vec<DVec2>,
-    /// Polygon `i` is `vertices[offsets[i]..offsets[i + 1]]`.
+    /// Per edge, the unit inward normal n and the offset n·a of a point a on it: inside is n·p ≥ offset − tolerance.
+    edges: Vec<(DVec2, f64)>,
+    /// Polygon `i`'s edges are `edges[offsets[i]..offsets[i + 1]]`.
     offsets: Vec<usize>,
+    /// Each polygon's bounding box.
+    boxes: Vec<(DVec2, DVec2)>,
     grid: BucketGrid,
     /// How far outside an edge a point may lie and still count as on it, m (round-off of the mesh's coordinates).
     tolerance: f64,
@@ -20,41 +24,53 @@ impl Domain {
     /// The domain of cells given as lists of points; `fallback` (the nodes) gives the hull used when no cell has an
     /// area. `scale` is the mesh's size, for the tolerance.
     pub fn new(cells: impl Iterator<Item = Vec<DVec2>>, fallback: &[DVec2], scale: f64) -> Domain {
-        let mut vertices = Vec::new();
-        let mut offsets = vec![0];
-        let mut boxes = Vec::new();
-        let mut push = |hull: Vec<DVec2>, vertices: &mut Vec<DVec2>, offsets: &mut Vec<usize>| {
-            if hull.len() >= 3 {
-                let lo = hull.iter().fold(DVec2::splat(f64::INFINITY), |a, p| a.min(*p));
-                let hi = hull.iter().fold(DVec2::splat(f64::NEG_INFINITY), |a, p| a.max(*p));
-                boxes.push((lo, hi));
-                vertices.extend(hull);
-                offsets.push(vertices.len());
-            }
+        let mut domain = Domain {
+            edges: Vec::new(),
+            offsets: vec![0],
+            boxes: Vec::new(),
+            grid: BucketGrid::new(&[], 2.0),
+            tolerance: 1e-9 * scale,
         };
         for cell in cells {
-            push(convex_hull(cell), &mut vertices, &mut offsets);
+            domain.push(convex_hull(cell));
         }
-        if offsets.len() == 1 {
-            push(convex_hull(fallback.to_vec()), &mut vertices, &mut offsets);
+        if domain.boxes.is_empty() {
+            domain.push(convex_hull(fallback.to_vec()));
         }
-        let grid = BucketGrid::new(&boxes, 2.0);
-        Domain { vertices, offsets, grid, tolerance: 1e-9 * scale }
+        domain.grid = BucketGrid::new(&domain.boxes, 2.0);
+        domain
+    }
+
+    /// Adds a convex polygon (counter-clockwise, at least three corners; a degenerate one is left out).
+    fn push(&mut self, hull: Vec<DVec2>) {
+        if hull.len() < 3 {
+            return;
+        }
+        let lo = hull.iter().fold(DVec2::splat(f64::INFINITY), |a, p| a.min(*p));
+        let hi = hull.iter().fold(DVec2::splat(f64::NEG_INFINITY), |a, p| a.max(*p));
+        self.boxes.push((lo, hi));
+        for (k, &a) in hull.iter().enumerate() {
+            let normal = (hull[(k + 1) % hull.len()] - a).perp().normalize();
+            self.edges.push((normal, normal.dot(a)));
+        }
+        self.offsets.push(self.edges.len());
     }
 
     /// Whether `p` lies in a cell (its boundary included).
     pub fn contains(&self, p: DVec2) -> bool {
-        if self.offsets.len() == 1 {
+        if self.boxes.is_empty() {
             return false;
         }
         let (i, j) = self.grid.clamped_cell(p);
+        let t = self.tolerance;
         self.grid.bucket(i, j).iter().any(|&c| {
-            let poly = &self.vertices[self.offsets[c as usize]..self.offsets[c as usize + 1]];
-            (0..poly.len()).all(|k| {
-                let a = poly[k];
-                let edge = poly[(k + 1) % poly.len()] - a;
-                edge.perp_dot(p - a) >= -self.tolerance * edge.length()
-            })
+            let c = c as usize;
+            let (lo, hi) = self.boxes[c];
+            p.x >= lo.x - t
+                && p.y >= lo.y - t
+                && p.x <= hi.x + t
+                && p.y <= hi.y + t
+                && self.edges[self.offsets[c]..self.offsets[c + 1]].iter().all(|&(n, offset)| n.dot(p) >= offset - t)
         })
     }
 }

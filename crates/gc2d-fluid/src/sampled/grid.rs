@@ -86,6 +86,11 @@ impl BucketGrid {
         (clamp(c.x, self.nx), clamp(c.y, self.ny))
     }
 
+    /// The items bucket by bucket (for points, each once): an order that keeps neighbours close in memory.
+    pub fn items(&self) -> &[u32] {
+        &self.items
+    }
+
     /// The items of bucket (i, j).
     pub fn bucket(&self, i: usize, j: usize) -> &[u32] {
         let b = i + self.nx * j;

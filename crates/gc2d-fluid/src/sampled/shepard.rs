@@ -17,10 +17,15 @@ pub(crate) struct ShepardCloud {
 }
 
 impl ShepardCloud {
-    /// A cloud weighting the `neighbours` nearest nodes by h^−power.
+    /// A cloud weighting the `neighbours` nearest nodes by h^−power. The nodes are stored bucket by bucket, so a
+    /// query reads neighbouring memory (in the order given, a query's few nodes lay scattered over the whole
+    /// array, and the cache misses cost more than the arithmetic).
     pub fn new(nodes: Vec<DVec2>, velocities: Vec<DVec2>, domain: Domain, power: f64, neighbours: usize) -> Self {
-        let boxes: Vec<_> = nodes.iter().map(|&p| (p, p)).collect();
-        let grid = BucketGrid::new(&boxes, 2.0);
+        let boxes = |nodes: &[DVec2]| nodes.iter().map(|&p| (p, p)).collect::<Vec<_>>();
+        let order = BucketGrid::new(&boxes(&nodes), 2.0).items().to_vec();
+        let nodes: Vec<DVec2> = order.iter().map(|&i| nodes[i as usize]).collect();
+        let velocities = order.iter().map(|&i| velocities[i as usize]).collect();
+        let grid = BucketGrid::new(&boxes(&nodes), 2.0);
         ShepardCloud { nodes, velocities, grid, domain, power, neighbours }
     }
 
