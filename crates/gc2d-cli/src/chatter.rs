@@ -20,6 +20,7 @@ pub struct ChatterWatch {
     scale: f64,
     steps: u64,
     largest: Option<AlternationWindow>,
+    largest_is_new: bool,
     warned: bool,
 }
 
@@ -41,11 +42,24 @@ pub struct ChatterSummary {
     pub window_steps: u64,
     /// The warning threshold.
     pub warning_threshold: f64,
-    /// True when some window exceeded the threshold.
+    /// True when some window of the run (of this process or, for a resumed run, of the processes before it) exceeded
+    /// the threshold.
     pub warned: bool,
 }
 
 impl ChatterWatch {
+    /// A watch that continues a run whose earlier processes saw `earlier` as their largest window (up to the
+    /// checkpoint the run resumes from): the summary then describes the whole run. The warning on stderr is still
+    /// given by this process when one of its own windows exceeds the threshold.
+    pub fn continuing(earlier: Option<AlternationWindow>) -> Self {
+        Self { largest: earlier, ..Self::default() }
+    }
+
+    /// The run's largest window if it changed since the last call (a window closed with a larger alternation).
+    pub fn new_largest(&mut self) -> Option<AlternationWindow> {
+        std::mem::take(&mut self.largest_is_new).then_some(self.largest).flatten()
+    }
+
     /// Takes this step's parts; returns the warning the first time a window's alternation exceeds the threshold.
     pub fn observe(&mut self, world: &World) -> Option<String> {
         let step = world.force_alternation();
@@ -63,6 +77,7 @@ impl ChatterWatch {
         (self.change, self.scale, self.steps) = (0.0, 0.0, 0);
         if self.largest.is_none_or(|largest| window.alternation > largest.alternation) {
             self.largest = Some(window);
+            self.largest_is_new = true;
         }
         if self.warned || window.alternation <= WARNING_THRESHOLD {
             return None;
@@ -86,7 +101,7 @@ impl ChatterWatch {
             largest_window: self.largest,
             window_steps: WINDOW_STEPS,
             warning_threshold: WARNING_THRESHOLD,
-            warned: self.warned,
+            warned: self.largest.is_some_and(|largest| largest.alternation > WARNING_THRESHOLD),
         }
     }
 }

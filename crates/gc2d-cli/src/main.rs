@@ -369,6 +369,7 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         checkpoint_interval.unwrap_or(frame_interval),
     )
     .map_err(|e| Failure::input(format!("cannot write {}: {e}", segments_path.display())))?;
+    let earlier_chatter = segments.earlier_chatter();
     let live_options = RecordOptions { colour_by: args.colour_by.into(), ..RecordOptions::default() };
     let mut live = match &args.live {
         Some(address) => Some(LiveSink::start(address, live_options, frame_interval).map_err(Failure::input)?),
@@ -412,8 +413,9 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         sinks.push(p);
     }
     let started = Instant::now();
-    let RunOutcome { status, chatter } =
-        pool.install(|| run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet));
+    let RunOutcome { status, chatter } = pool.install(|| {
+        run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet, earlier_chatter)
+    });
     drop(sinks);
     if let Some(l) = live {
         l.stop();

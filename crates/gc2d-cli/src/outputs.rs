@@ -251,7 +251,8 @@ pub struct Summary {
     pub contacts: usize,
     /// Energy ledger at the end, J per unit thickness.
     pub energy: EnergySummary,
-    /// The chatter watch of this process's run: the largest force alternation over a window of steps.
+    /// The chatter watch of the whole run (a resumed run's included the earlier processes' windows up to the
+    /// checkpoint it resumed from): the largest force alternation over a window of steps.
     pub chatter: ChatterSummary,
 }
 

@@ -1,7 +1,7 @@
 //! The run loop: steps a World to its end time, writing time-series rows, recording frames and checkpoints on their
 //! cadences, showing progress, and stopping cleanly on Ctrl-C (or SIGTERM, SIGHUP) or on an error.
 
-use crate::chatter::{ChatterSummary, ChatterWatch};
+use crate::chatter::{AlternationWindow, ChatterSummary, ChatterWatch};
 use crate::outputs::{RunStatus, TimeSeriesWriter};
 use gc2d_engine::World;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -19,6 +19,9 @@ pub trait FrameSink: Send {
     fn after_step(&mut self, _world: &World) -> Result<(), String> {
         Ok(())
     }
+    /// Hears of the run's new largest force-alternation window (the chatter watch's, when a window of steps closes
+    /// above all before it); nothing by default.
+    fn largest_alternation(&mut self, _window: AlternationWindow) {}
 }
 
 /// Ticks at whole multiples of an interval of simulated time (not counted from the start), so that a resumed run
@@ -70,13 +73,15 @@ impl Cadence<'_> {
 pub struct RunOutcome {
     /// How the run ended.
     pub status: RunStatus,
-    /// The force-alternation windows of this run (warned once on stderr when they exceeded the threshold).
+    /// The force-alternation windows of the whole run: this process's (warned once on stderr when they exceeded the
+    /// threshold) and the earlier processes' largest.
     pub chatter: ChatterSummary,
 }
 
 /// Steps `world` until `end_time`, appending a row to `series` every `series_interval` of simulated time and
-/// feeding each sink on its cadence, and watches for chatter. Returns how the run ended; the outputs are flushed in
-/// every case.
+/// feeding each sink on its cadence, and watches for chatter (`earlier_chatter`: the largest window of the processes
+/// before this one, for a resumed run). Returns how the run ended; the outputs are flushed in every case.
+#[allow(clippy::too_many_arguments)]
 pub fn run_to(
     world: &mut World,
     end_time: f64,
@@ -85,9 +90,10 @@ pub fn run_to(
     sinks: &mut [&mut dyn FrameSink],
     stop: &AtomicBool,
     show_progress: bool,
+    earlier_chatter: Option<AlternationWindow>,
 ) -> RunOutcome {
     let progress = Progress::new(world, end_time, show_progress);
-    let mut chatter = ChatterWatch::default();
+    let mut chatter = ChatterWatch::continuing(earlier_chatter);
     let (start, slack) = (world.time(), 0.5 * world.time_step());
     let mut rows = Ticks::from(series_interval, start, slack);
     let mut cadences: Vec<Cadence> = sinks
@@ -121,6 +127,9 @@ pub fn run_to(
         }
         if let Some(warning) = chatter.observe(world) {
             progress.warn(&warning);
+        }
+        if let Some(window) = chatter.new_largest() {
+            cadences.iter_mut().for_each(|c| c.sink.largest_alternation(window));
         }
         progress.update(world);
     };

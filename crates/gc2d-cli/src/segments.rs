@@ -6,15 +6,27 @@
 //! status `running`. A resumed process cuts such a row back to the time it resumes from (status `killed`, steps to
 //! match, wall time kept), so that no row claims progress past the checkpoint the run continues from. The file is
 //! replaced atomically (written beside it, then renamed), never left half-written.
+//!
+//! Each row also carries the largest force-alternation window of the run up to that row's last update (the chatter
+//! watch's, `crate::chatter`), so that a resumed run's `summary.json` describes the chatter of the whole run: the
+//! resumed process starts from the largest window the earlier rows saw up to the time it resumes from.
 
+use crate::chatter::AlternationWindow;
 use crate::runner::FrameSink;
 use gc2d_engine::World;
 use std::io;
 use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
-/// The header of `segments.csv`. `resumed_from` is last because a path may contain commas.
-pub const SEGMENT_COLUMNS: &str = "started_unix_s,threads,from_time_s,to_time_s,steps,wall_s,status,resumed_from";
+/// The header of `segments.csv`. `resumed_from` is last because a path may contain commas. `largest_alternation` and
+/// `largest_alternation_time_s` are the run's largest force-alternation window so far (its alternation and the
+/// simulated time at its end, s), empty before a whole window was run.
+pub const SEGMENT_COLUMNS: &str = "started_unix_s,threads,from_time_s,to_time_s,steps,wall_s,status,\
+                                   largest_alternation,largest_alternation_time_s,resumed_from";
+
+/// The header written before the rows carried the chatter columns; such a file's rows are read with those columns
+/// empty.
+const COLUMNS_WITHOUT_CHATTER: &str = "started_unix_s,threads,from_time_s,to_time_s,steps,wall_s,status,resumed_from";
 
 /// Column of `wall_s` in [`SEGMENT_COLUMNS`].
 const WALL_COLUMN: usize = 5;
@@ -31,6 +43,7 @@ pub struct SegmentLog {
     from_steps: u64,
     resumed_from: String,
     interval: f64,
+    largest: Option<AlternationWindow>,
 }
 
 impl SegmentLog {
@@ -44,12 +57,10 @@ impl SegmentLog {
         world: &World,
         interval: f64,
     ) -> io::Result<Self> {
-        let earlier_rows = match resumed_from {
-            Some(_) => {
-                earlier_rows(path).iter().map(|row| cut_back(row, world.time(), 0.5 * world.time_step())).collect()
-            }
-            None => Vec::new(),
-        };
+        let slack = 0.5 * world.time_step();
+        let rows = if resumed_from.is_some() { earlier_rows(path) } else { Vec::new() };
+        let largest = largest_up_to(&rows, world.time() + slack);
+        let earlier_rows: Vec<String> = rows.iter().map(|row| cut_back(row, world.time(), slack)).collect();
         let earlier_wall_s = earlier_rows.iter().filter_map(|row| wall_of(row)).sum();
         let started_unix_s = SystemTime::now().duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs());
         let log = Self {
@@ -63,6 +74,7 @@ impl SegmentLog {
             from_steps: world.steps(),
             resumed_from: resumed_from.map(|p| p.display().to_string()).unwrap_or_default(),
             interval,
+            largest,
         };
         log.write(world, "running")?;
         Ok(log)
@@ -70,8 +82,12 @@ impl SegmentLog {
 
     /// Rewrites this process's row with the World's time and steps, the wall time so far and `status`.
     pub fn write(&self, world: &World, status: &str) -> io::Result<()> {
+        let (alternation, time) = match self.largest {
+            Some(window) => (window.alternation.to_string(), window.time_s.to_string()),
+            None => (String::new(), String::new()),
+        };
         let row = format!(
-            "{},{},{},{},{},{:.3},{status},{}",
+            "{},{},{},{},{},{:.3},{status},{alternation},{time},{}",
             self.started_unix_s,
             self.threads,
             self.from_time_s,
@@ -91,6 +107,12 @@ impl SegmentLog {
         std::fs::rename(&temporary, &self.path)
     }
 
+    /// The largest force-alternation window of the earlier processes up to the time this one resumes from (none for
+    /// a fresh run): where the chatter watch of a resumed run starts.
+    pub fn earlier_chatter(&self) -> Option<AlternationWindow> {
+        self.largest
+    }
+
     /// Wall-clock time of all processes of the run so far (the earlier rows' and this one's), s.
     pub fn total_wall_s(&self) -> f64 {
         self.earlier_wall_s + self.started.elapsed().as_secs_f64()
@@ -105,16 +127,46 @@ impl FrameSink for SegmentLog {
     fn take(&mut self, world: &World) -> Result<(), String> {
         self.write(world, "running").map_err(|e| format!("cannot write {}: {e}", self.path.display()))
     }
+
+    fn largest_alternation(&mut self, window: AlternationWindow) {
+        self.largest = Some(window);
+    }
 }
 
-/// The data rows of an existing `segments.csv`, or none if it is missing or has another header.
+/// The data rows of an existing `segments.csv` in today's columns (a file written before the chatter columns has
+/// them added empty), or none if it is missing or has another header.
 fn earlier_rows(path: &Path) -> Vec<String> {
     let Ok(text) = std::fs::read_to_string(path) else { return Vec::new() };
     let mut lines = text.lines();
-    if lines.next() != Some(SEGMENT_COLUMNS) {
-        return Vec::new();
+    let header = lines.next();
+    let rows = lines.filter(|line| !line.is_empty());
+    if header == Some(SEGMENT_COLUMNS) {
+        rows.map(str::to_owned).collect()
+    } else if header == Some(COLUMNS_WITHOUT_CHATTER) {
+        rows.map(|row| match row.splitn(COLUMNS_WITHOUT_CHATTER.split(',').count(), ',').collect::<Vec<_>>()[..] {
+            [ref before @ .., resumed_from] if before.len() == 7 => format!("{},,,{resumed_from}", before.join(",")),
+            _ => row.to_owned(),
+        })
+        .collect()
+    } else {
+        Vec::new()
     }
-    lines.filter(|line| !line.is_empty()).map(str::to_owned).collect()
+}
+
+/// The largest force-alternation window the rows carry that ended by `time`. Each row's window is the largest of the
+/// run up to that row's last update, so the largest of those ending by `time` is the run's up to `time`, except that
+/// a row updated after `time` (a process killed past the checkpoint the run resumes from) whose largest window came
+/// after `time` says nothing about its windows before: those are lost, and the earlier rows' largest stands.
+fn largest_up_to(rows: &[String], time: f64) -> Option<AlternationWindow> {
+    let column = SEGMENT_COLUMNS.split(',').position(|c| c == "largest_alternation")?;
+    rows.iter()
+        .filter_map(|row| {
+            let mut fields = row.splitn(SEGMENT_COLUMNS.split(',').count(), ',').skip(column);
+            let alternation = fields.next()?.parse::<f64>().ok()?;
+            let time_s = fields.next()?.parse::<f64>().ok()?;
+            (alternation.is_finite() && time_s <= time).then_some(AlternationWindow { alternation, time_s })
+        })
+        .reduce(|a, b| if b.alternation > a.alternation { b } else { a })
 }
 
 /// An earlier row as the run resumed at `time` keeps it. A row that claims progress past `time` (a process killed
@@ -156,26 +208,59 @@ mod tests {
     #[test]
     fn rows_past_the_resume_time_are_cut_back_to_it() {
         // Killed at t = 0.5 after 500 steps from 0.1; the resume continues from the checkpoint at t = 0.3.
-        let row = "1763766000,2,0.1,0.5,500,12.500,running,runs/a,b/checkpoint-0000000100.ckpt";
+        let row = "1763766000,2,0.1,0.5,500,12.500,running,0.02,0.45,runs/a,b/checkpoint-0000000100.ckpt";
         assert_eq!(
             cut_back(row, 0.3, 5e-4),
-            "1763766000,2,0.1,0.3,250,12.500,killed,runs/a,b/checkpoint-0000000100.ckpt"
+            "1763766000,2,0.1,0.3,250,12.500,killed,0.02,0.45,runs/a,b/checkpoint-0000000100.ckpt"
         );
         // A row that ended at the resume time is kept; so is one ending within half a step of it.
-        let finished = "1763766000,2,0,0.1,100,1.000,interrupted,";
+        let finished = "1763766000,2,0,0.1,100,1.000,interrupted,,,";
         assert_eq!(cut_back(finished, 0.1, 5e-4), finished);
         assert_eq!(cut_back(finished, 0.0999, 5e-4), finished);
         // Resumed from a checkpoint before the row began: nothing of it is kept.
         assert_eq!(
             cut_back(row, 0.05, 5e-4),
-            "1763766000,2,0.1,0.1,0,12.500,killed,runs/a,b/checkpoint-0000000100.ckpt"
+            "1763766000,2,0.1,0.1,0,12.500,killed,0.02,0.45,runs/a,b/checkpoint-0000000100.ckpt"
         );
         assert_eq!(cut_back("not a row", 0.0, 0.0), "not a row");
     }
 
     #[test]
+    fn the_earlier_chatter_is_the_largest_window_up_to_the_resume_time() {
+        let rows: Vec<String> = [
+            // The first process warned at 0.003 s; the second, killed at 0.05 s after the checkpoint at 0.04 s, saw a
+            // larger window at 0.045 s (past the checkpoint: it does not count).
+            "1763766000,2,0,0.02,6452,1.000,interrupted,1.0,0.0031,",
+            "1763766001,2,0.02,0.05,9677,1.500,running,1.2,0.045,out/checkpoints/checkpoint-0000006452.ckpt",
+            "1763766002,2,0.04,0.04,0,0.100,running,,,out/checkpoints/checkpoint-0000012903.ckpt",
+            "not a row",
+        ]
+        .map(str::to_owned)
+        .to_vec();
+        assert_eq!(largest_up_to(&rows, 0.04), Some(AlternationWindow { alternation: 1.0, time_s: 0.0031 }));
+        assert_eq!(largest_up_to(&rows, 0.05), Some(AlternationWindow { alternation: 1.2, time_s: 0.045 }));
+        assert_eq!(largest_up_to(&rows, 0.001), None);
+    }
+
+    #[test]
+    fn a_file_written_before_the_chatter_columns_is_continued() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("segments.csv");
+        std::fs::write(&path, format!("{COLUMNS_WITHOUT_CHATTER}\n1763766000,2,0,0.1,100,1.000,interrupted,\n1763766001,2,0.1,0.2,100,1.000,completed,runs/a,b/final.ckpt\n")).unwrap();
+        assert_eq!(
+            earlier_rows(&path),
+            [
+                "1763766000,2,0,0.1,100,1.000,interrupted,,,",
+                "1763766001,2,0.1,0.2,100,1.000,completed,,,runs/a,b/final.ckpt"
+            ]
+        );
+        std::fs::write(&path, "some,other,file\n1,2,3\n").unwrap();
+        assert!(earlier_rows(&path).is_empty());
+    }
+
+    #[test]
     fn the_wall_time_is_read_even_when_the_path_holds_commas() {
-        let row = "1763766000,1,2.1,2.8,636364,4180.250,running,runs/a,b/checkpoint-0001909091.ckpt";
+        let row = "1763766000,1,2.1,2.8,636364,4180.250,running,0.003,2.5,runs/a,b/checkpoint-0001909091.ckpt";
         assert_eq!(wall_of(row), Some(4180.25));
         assert_eq!(SEGMENT_COLUMNS.split(',').nth(WALL_COLUMN), Some("wall_s"));
     }

@@ -83,6 +83,36 @@ fn a_chattering_contact_is_warned_about_and_summarised() {
 }
 
 #[test]
+fn a_resumed_run_keeps_the_chatter_of_the_processes_before_it() {
+    // Issue 16: the summary of a resumed run described only its last process and lost an earlier warning. The plate
+    // chatters from the start; the first process warns and stops at 0.01 s after checkpoints every 0.005 s, the
+    // resumed one runs 0.002 s (645 steps, less than a window) and sees no window of its own.
+    let out = tempfile::tempdir().unwrap();
+    let path = scene("chattering_plate.ron");
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.01", "--checkpoint-every", "0.005", "--out"])
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("period-2 chatter"));
+    let read = || -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap()
+    };
+    let first = read()["chatter"]["largest_window"].clone();
+    assert!(first["time_s"].as_f64().unwrap() <= 0.01, "{first}");
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.012", "--resume"])
+        .arg(out.path())
+        .assert()
+        .success();
+    let summary = read();
+    assert!((summary["time_s"].as_f64().unwrap() - 0.012).abs() < 4e-6, "the resumed process ran");
+    let chatter = &summary["chatter"];
+    assert_eq!(chatter["warned"], true, "{chatter}");
+    assert_eq!(chatter["largest_window"], first, "the first process's largest window: {chatter}");
+}
+
+#[test]
 fn a_run_split_by_resume_ends_bitwise_identical() {
     let whole = unsplit_tiny_pile();
     let split = tempfile::tempdir().unwrap();
@@ -183,7 +213,7 @@ fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     assert_eq!(std::fs::read_to_string(split.path().join("timeseries.csv")).unwrap(), expected);
     // Three processes worked on the split run: segments.csv has a row for each, and the summary adds their times.
     let segments = std::fs::read_to_string(split.path().join("segments.csv")).unwrap();
-    let rows: Vec<Vec<&str>> = segments.lines().skip(1).map(|l| l.splitn(8, ',').collect()).collect();
+    let rows: Vec<Vec<&str>> = segments.lines().skip(1).map(|l| l.splitn(10, ',').collect()).collect();
     assert_eq!(rows.len(), 3, "{segments}");
     let from: Vec<f64> = rows.iter().map(|r| r[2].parse().unwrap()).collect();
     assert!(
@@ -191,7 +221,7 @@ fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
         "{from:?}"
     );
     assert!(rows.iter().all(|r| r[6] == "completed"), "{segments}");
-    assert!(rows[0][7].is_empty() && rows[2][7].contains("checkpoint-"), "{segments}");
+    assert!(rows[0][9].is_empty() && rows[2][9].contains("checkpoint-"), "{segments}");
     let summed: f64 = rows.iter().map(|r| r[5].parse::<f64>().unwrap()).sum();
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(split.path().join("summary.json")).unwrap()).unwrap();

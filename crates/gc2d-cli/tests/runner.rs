@@ -59,7 +59,7 @@ fn rows_and_frames_follow_their_cadence() {
     let mut world = small_world();
     let mut series = TimeSeriesWriter::create(&path).unwrap();
     let mut ticks = Ticks { interval: 0.01, times: Vec::new() };
-    let outcome = run_to(&mut world, 0.05, &mut series, 0.005, &mut [&mut ticks], &AtomicBool::new(false), false);
+    let outcome = run_to(&mut world, 0.05, &mut series, 0.005, &mut [&mut ticks], &AtomicBool::new(false), false, None);
     assert_eq!(outcome.status, RunStatus::Completed);
     assert!((world.time() - 0.05).abs() < 1e-9);
     let text = std::fs::read_to_string(&path).unwrap();
@@ -77,7 +77,7 @@ fn a_stop_request_ends_the_run_cleanly_with_a_last_row() {
     let path = dir.path().join("timeseries.csv");
     let mut world = small_world();
     let mut series = TimeSeriesWriter::create(&path).unwrap();
-    let outcome = run_to(&mut world, 1.0, &mut series, 0.1, &mut [], &AtomicBool::new(true), false);
+    let outcome = run_to(&mut world, 1.0, &mut series, 0.1, &mut [], &AtomicBool::new(true), false, None);
     assert_eq!(outcome.status, RunStatus::Interrupted);
     assert_eq!(world.steps(), 0);
     assert_eq!(outcome.chatter.largest_window, None, "no step, no window");
@@ -109,7 +109,8 @@ fn a_failing_sink_stops_the_run_with_its_message() {
     let dir = tempfile::tempdir().unwrap();
     let mut world = small_world();
     let mut series = TimeSeriesWriter::create(&dir.path().join("t.csv")).unwrap();
-    let outcome = run_to(&mut world, 1.0, &mut series, 0.1, &mut [&mut Failing(0)], &AtomicBool::new(false), false);
+    let outcome =
+        run_to(&mut world, 1.0, &mut series, 0.1, &mut [&mut Failing(0)], &AtomicBool::new(false), false, None);
     assert_eq!(outcome.status, RunStatus::Failed("disk full".into()));
     assert!(world.time() < 0.01);
 }
