@@ -114,13 +114,7 @@ fn run_dir() -> (PathBuf, World) {
     for k in 0..=100 {
         let t = k as f64 * 0.01;
         let (work, noise) = (2.0 * t, if k % 2 == 0 { 7.0 } else { -3.0 });
-        let _ = writeln!(
-            series,
-            "{t},0,{noise},{noise},{work},{},{},{},{work},{work}",
-            1.0 * t,
-            0.5 * t,
-            0.4 * t
-        );
+        let _ = writeln!(series, "{t},0,{noise},{noise},{work},{},{},{},{work},{work}", 1.0 * t, 0.5 * t, 0.4 * t);
     }
     std::fs::write(dir.join("timeseries.csv"), series).unwrap();
 
