@@ -31,6 +31,9 @@ pub struct EnergyLedger {
     pub work_walls: f64,
     /// Work done by the moving pulling points of drag springs since the start.
     pub work_drag: f64,
+    /// Work done on the particles by a fluid's drag and buoyancy since the start (negative where still fluid brakes
+    /// them, positive where a stream drives them).
+    pub work_fluid: f64,
     /// Work done by changes of g at fixed positions since the start (variable gravity).
     pub work_gravity_change: f64,
     /// Energy of inserted particles (sources) at their insertion, since the start.
@@ -57,9 +60,11 @@ impl EnergyLedger {
         self.dissipated_normal_damping + self.dissipated_tangential_damping + self.dissipated_sliding
     }
 
-    /// Net energy brought in from outside since the start (walls, drag springs, g changes, insertions − removals).
+    /// Net energy brought in from outside since the start (walls, drag springs, the fluid, g changes, insertions −
+    /// removals).
     pub fn work_in(&self) -> f64 {
-        self.work_walls + self.work_drag + self.work_gravity_change + self.work_insertions - self.energy_removed
+        self.work_walls + self.work_drag + self.work_fluid + self.work_gravity_change + self.work_insertions
+            - self.energy_removed
     }
 
     /// (E_now − E_0) − (W_in − D − residual): zero for exact bookkeeping; its drift is the integration error.

@@ -29,7 +29,7 @@ pub mod time_window;
 pub mod world;
 
 pub use bodies::{Bodies, BodyId, BodyKind};
-pub use body_forces::{AttachedSpring, BodyForce};
+pub use body_forces::{AttachedSpring, BodyForce, Fluid};
 pub use checkpoint::CheckpointError;
 pub use events::{ContactEvent, ContactEventKind, Episode};
 pub use inlets::{Inlet, InletCounters, InletState};

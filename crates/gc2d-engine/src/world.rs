@@ -7,7 +7,7 @@
 //! heating, sources, inlets or outlets.
 
 use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns};
-use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep};
+use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
 use crate::inlets::{Inlet, InletState};
@@ -68,6 +68,9 @@ pub enum WorldError {
     /// A body could not be added.
     #[error("{0}")]
     InvalidBody(String),
+    /// A loaded fluid field was sampled off its mesh where the scene asked for an error.
+    #[error(transparent)]
+    FluidOutside(#[from] gc2d_fluid::OutsideField),
 }
 
 /// A wall that moves, with the pose it moves from.
@@ -300,6 +303,7 @@ impl World {
             0.0,
             self.integrator.time_step(),
         );
+        self.start_in_fluid(i)?;
         self.insert_into_broadphase(id, broadphase::BodyKind::Dynamic);
         let g = self.config.gravity.magnitude(self.time);
         let translational = 0.5 * mass.mass * velocity.length_squared();
@@ -371,6 +375,47 @@ impl World {
             Some(springs) => springs.push(attached),
             None => self.body_forces.push(BodyForce::DragSprings(vec![attached])),
         }
+        Ok(())
+    }
+
+    /// Puts the particles in `fluid` (drag and buoyancy on every particle, applied after gravity and drag springs),
+    /// replacing any fluid set before. A World without one spends nothing on it.
+    pub fn set_fluid(&mut self, fluid: Fluid) -> Result<(), WorldError> {
+        fluid.validate().map_err(WorldError::InvalidBody)?;
+        self.body_forces.retain(|f| !matches!(f, BodyForce::Fluid(_)));
+        self.body_forces.push(BodyForce::Fluid(Box::new(fluid)));
+        for i in 0..self.bodies.len() {
+            if self.bodies.kind[i] == BodyKind::Particle && self.bodies.alive[i] {
+                self.start_in_fluid(i)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Gives particle `i` the start acceleration of free flight in the fluid, g + F_fluid/m (its Gear state otherwise
+    /// starts from g alone, which would leave a particle at rest in a levitating stream moving); nothing without a
+    /// fluid.
+    fn start_in_fluid(&mut self, i: usize) -> Result<(), WorldError> {
+        let Some(fluid) = self.body_forces.iter().find_map(|f| match f {
+            BodyForce::Fluid(fluid) => Some(fluid),
+            _ => None,
+        }) else {
+            return Ok(());
+        };
+        let b = &self.bodies;
+        let gravity = self.config.gravity.acceleration(self.time);
+        let force = fluid.force_on(b, i, gravity, self.time, self.config.mass_model)?;
+        let (pose, angular_velocity) = (b.pose[i], b.angular_velocity[i]);
+        let time_step = self.integrator.time_step();
+        self.bodies.gear[i] = GearState::from_physical(
+            pose.position,
+            b.velocity[i],
+            gravity + force * b.inverse_mass[i],
+            pose.angle,
+            angular_velocity,
+            0.0,
+            time_step,
+        );
         Ok(())
     }
 
@@ -632,7 +677,7 @@ impl World {
         if self.events.is_some() {
             self.log_contact_events(t_next);
         }
-        self.apply_body_forces(t_next);
+        self.apply_body_forces(t_next)?;
         self.correct();
         if self.stages.moving_walls {
             self.advance_pistons();
@@ -824,15 +869,18 @@ impl World {
     }
 
     /// The body forces, in list order, each booking its work in the ledger.
-    fn apply_body_forces(&mut self, t_next: f64) {
+    fn apply_body_forces(&mut self, t_next: f64) -> Result<(), WorldError> {
         let step = BodyForceStep {
             gravity: self.config.gravity.acceleration(t_next),
             time: t_next,
             dt: self.config.time_step,
+            mass_model: self.config.mass_model,
+            time_step: *self.integrator.time_step(),
         };
         for force in &self.body_forces {
-            force.apply(&mut self.bodies, &step, &mut self.ledger);
+            force.apply(&mut self.bodies, &step, &mut self.ledger)?;
         }
+        Ok(())
     }
 
     /// Integrator's correct (Gear corrector or Verlet's second kick) for particles with a = F/m, α = τ/I.
