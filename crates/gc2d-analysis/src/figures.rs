@@ -12,6 +12,19 @@ use std::path::Path;
 
 type DrawResult = Result<(), Box<dyn Error>>;
 
+/// Colours of a figure's series, in order (matplotlib's "tab10" without olive and cyan), shared by the analyses' and
+/// the sweeps' figures so that the same series looks the same in both.
+pub const SERIES_COLOURS: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+];
+
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mark {
@@ -49,8 +62,8 @@ fn figure_error(path: &Path, error: Box<dyn Error>) -> AnalysisError {
     AnalysisError::Figure { file: path.display().to_string(), message: error.to_string() }
 }
 
-/// A range covering `values` with 5 % padding; (0, 1) when there are none, ±0.5 around a single value.
-fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// A range covering the finite `values` with 5 % padding; (0, 1) when there are none, ±0.5 around a single value.
+pub fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) =
         values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
     if lo > hi {

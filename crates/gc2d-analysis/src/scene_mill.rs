@@ -13,7 +13,7 @@
 //! relative differences.
 
 use crate::error::AnalysisError;
-use crate::figures::{Labels, Mark, PolarCell, Series, bar_chart, line_chart, polar_cell_map};
+use crate::figures::{Labels, Mark, PolarCell, SERIES_COLOURS, Series, bar_chart, line_chart, polar_cell_map};
 use crate::mill_space::{Chamber, RadialProfile, SectorCell, radial_profile, sector_map};
 use crate::mill_speeds::{
     Autocorrelation, Histogram, SpeedDistribution, WarmUpCut, autocorrelation, quantile, warm_up_cut,
@@ -23,7 +23,6 @@ use crate::particle_state::csv::{DUMPS_DIR, dump_files, read_csv};
 use crate::particle_state::{ParticleShape, ParticleState};
 use gc2d_engine::{BodyKind, ShapeKind, World};
 use gc2d_geometry::DVec2;
-use plotters::style::RGBColor;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -573,18 +572,6 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     })
 }
 
-/// Colours of the figures' series, in order.
-const COLOURS: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-];
-
 /// A histogram as a step line: (edge, density) at both ends of every bin.
 fn steps(edges: &[f64], densities: &[f64]) -> Vec<(f64, f64)> {
     densities.iter().enumerate().flat_map(|(k, &d)| [(edges[k], d), (edges[k + 1], d)]).collect()
@@ -644,7 +631,12 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
     let series: Vec<Series> = class_series
         .iter()
         .enumerate()
-        .map(|(k, (label, points))| Series { label, points, color: COLOURS[k % COLOURS.len()], mark: Mark::Line })
+        .map(|(k, (label, points))| Series {
+            label,
+            points,
+            color: SERIES_COLOURS[k % SERIES_COLOURS.len()],
+            mark: Mark::Line,
+        })
         .collect();
     let labels = Labels { title: "Impact normal speed per class", x: "v_n (m/s)", y: "density (s/m)" };
     line_chart(&out.file("mill_impact_speeds.svg"), labels, &series)?;
@@ -661,8 +653,8 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
         &out.file("mill_median_speed.svg"),
         labels,
         &[
-            Series { label: "median |v|", points: &report.median_series, color: COLOURS[0], mark: Mark::Line },
-            Series { label: "start of the window", points: &cut_line, color: COLOURS[3], mark: Mark::Line },
+            Series { label: "median |v|", points: &report.median_series, color: SERIES_COLOURS[0], mark: Mark::Line },
+            Series { label: "start of the window", points: &cut_line, color: SERIES_COLOURS[3], mark: Mark::Line },
         ],
     )?;
     if let Some(a) = &report.autocorrelation {
@@ -673,7 +665,7 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
         line_chart(
             &out.file("mill_autocorrelation.svg"),
             labels,
-            &[Series { label: "ρ", points: &points, color: COLOURS[0], mark: Mark::Line }],
+            &[Series { label: "ρ", points: &points, color: SERIES_COLOURS[0], mark: Mark::Line }],
         )?;
     }
     if let Some(s) = &report.ball_speeds {
@@ -697,7 +689,7 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
         let series: Vec<Series> = lines
             .iter()
             .enumerate()
-            .map(|(k, (label, points))| Series { label, points, color: COLOURS[k], mark: Mark::Line })
+            .map(|(k, (label, points))| Series { label, points, color: SERIES_COLOURS[k], mark: Mark::Line })
             .collect();
         let labels = Labels { title: "Ball speeds", x: "|v| (m/s)", y: "density (s/m)" };
         line_chart(&out.file("mill_ball_speeds.svg"), labels, &series)?;

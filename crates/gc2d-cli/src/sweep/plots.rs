@@ -5,21 +5,10 @@
 use super::SweepError;
 use super::collect::Table;
 use super::file::Plot;
+use gc2d_analysis::figures::{SERIES_COLOURS, padded_range};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-
-/// Series colours, in order (as the analysis figures use them).
-const COLOURS: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-];
 
 /// One series: its legend and its (x, mean, standard deviation, seeds) points in x order.
 #[derive(Debug, Clone, PartialEq)]
@@ -146,24 +135,10 @@ fn file_part(name: &str) -> String {
     name.chars().map(|c| if c.is_ascii_alphanumeric() || matches!(c, '_' | '-') { c } else { '_' }).collect()
 }
 
-/// A range covering `values` with 5 % padding; ±0.5 around a single value, (0, 1) without values.
-fn padded(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
-    if lo > hi {
-        return (0.0, 1.0);
-    }
-    if hi - lo <= 1e-12 * (lo.abs() + hi.abs()).max(f64::MIN_POSITIVE) {
-        let half = 0.5 * lo.abs().max(1e-12);
-        return (lo - half, hi + half);
-    }
-    let pad = 0.05 * (hi - lo);
-    (lo - pad, hi + pad)
-}
-
 fn draw(path: &Path, x: &str, y: &str, series: &[SeriesStats]) -> Result<(), Box<dyn std::error::Error>> {
     let all = || series.iter().flat_map(|s| s.points.iter());
-    let (x0, x1) = padded(all().map(|p| p.0));
-    let (y0, y1) = padded(all().flat_map(|p| [p.1 - p.2, p.1 + p.2]));
+    let (x0, x1) = padded_range(all().map(|p| p.0));
+    let (y0, y1) = padded_range(all().flat_map(|p| [p.1 - p.2, p.1 + p.2]));
     let seeds = all().map(|p| p.3).max().unwrap_or(0);
     let root = SVGBackend::new(path, (800, 560)).into_drawing_area();
     root.fill(&WHITE)?;
@@ -176,7 +151,7 @@ fn draw(path: &Path, x: &str, y: &str, series: &[SeriesStats]) -> Result<(), Box
     chart.configure_mesh().x_desc(x).y_desc(y).draw()?;
     let cap = 0.01 * (x1 - x0);
     for (k, s) in series.iter().enumerate() {
-        let colour = COLOURS[k % COLOURS.len()];
+        let colour = SERIES_COLOURS[k % SERIES_COLOURS.len()];
         let style = colour.stroke_width(2);
         let label = match (s.label.is_empty(), seeds > 1) {
             (true, true) => format!("mean ± s.d. over {seeds} seeds"),
