@@ -9,6 +9,7 @@
 mod common;
 
 use common::scene_path;
+use gc2d_analysis::mill_speeds::autocorrelation;
 use gc2d_engine::World;
 use gc2d_scene::Scene;
 use std::f64::consts::TAU;
@@ -93,14 +94,6 @@ fn mean_and_deviation(values: &[f64]) -> (f64, f64) {
     (mean, variance.sqrt())
 }
 
-/// The normalised autocorrelation of `values` at `lag` samples.
-fn autocorrelation(values: &[f64], lag: usize) -> f64 {
-    let (mean, _) = mean_and_deviation(values);
-    let centred: Vec<f64> = values.iter().map(|v| v - mean).collect();
-    let variance: f64 = centred.iter().map(|v| v * v).sum();
-    centred.iter().zip(&centred[lag..]).map(|(a, b)| a * b).sum::<f64>() / variance
-}
-
 #[test]
 fn a_steady_mill_dissipates_what_its_rotor_puts_in() {
     let MillRun { world, window: w } = reference();
@@ -139,13 +132,17 @@ fn with_friction_the_median_speed_is_stationary_noise() {
     // of several per cent from sample to sample.
     assert!((0.15..0.35).contains(&(mean / TIP_SPEED_M_S)), "median {mean} m/s");
     assert!(deviation > 0.05 * mean, "spread {deviation} m/s of {mean} m/s");
-    // It forgets: the autocorrelation falls below 1/e within three passes of the rotor's arms …
-    let passes = (3.0 * ARM_PERIOD_S / SAMPLE_INTERVAL_S).round() as usize;
-    let forgotten = (1..=passes).find(|&lag| autocorrelation(speeds, lag) < (-1.0_f64).exp());
-    assert!(forgotten.is_some(), "autocorrelation above 1/e for {passes} samples");
+    // It forgets: the autocorrelation (the mill analysis's, over three rotor periods) falls below 1/e within three
+    // passes of the rotor's arms …
+    let rho = autocorrelation(speeds, SAMPLE_INTERVAL_S, 2.0 * ARM_PERIOD_S).expect("a noisy series");
+    assert!(
+        rho.decorrelation_lag_s <= 3.0 * ARM_PERIOD_S,
+        "autocorrelation above 1/e for {} s",
+        rho.decorrelation_lag_s
+    );
     // … and the two halves of the window have the same mean within four standard errors (the error of a mean of
     // correlated samples: n / (1 + 2 Σ ρ_k) effective samples, the sum over lags up to 0.1 s).
-    let correlation_time = 1.0 + 2.0 * (1..100).map(|lag| autocorrelation(speeds, lag)).sum::<f64>();
+    let correlation_time = 1.0 + 2.0 * rho.values[1..100].iter().sum::<f64>();
     let half = speeds.len() / 2;
     let (first, _) = mean_and_deviation(&speeds[..half]);
     let (second, _) = mean_and_deviation(&speeds[half..]);
