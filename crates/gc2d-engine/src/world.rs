@@ -392,6 +392,14 @@ impl World {
         Ok(())
     }
 
+    /// The fluid the particles move in, if the World has one (for recordings and analyses that sample its field).
+    pub fn fluid(&self) -> Option<&Fluid> {
+        self.body_forces.iter().find_map(|force| match force {
+            BodyForce::Fluid(fluid) => Some(fluid.as_ref()),
+            _ => None,
+        })
+    }
+
     /// Gives particle `i` the start acceleration of free flight in the fluid, g + F_fluid/m (its Gear state otherwise
     /// starts from g alone, which would leave a particle at rest in a levitating stream moving); nothing without a
     /// fluid.

@@ -29,6 +29,7 @@ pub mod summary;
 mod validate;
 
 pub use build::blocks::MAX_INITIAL_PARTICLES;
+pub use build::fluid::{DRAG_STEPS_PER_RELAXATION_TIME, DragScale, FluidSummary};
 pub use build::safety::{AUTOMATIC_TIME_STEP_FRACTION, FALLBACK_TIME_STEP, SOURCE_SAMPLES};
 pub use build::walls::MAX_DRUM_SEGMENTS;
 pub use error::{ErrorKind, Location, SceneError};

@@ -97,8 +97,13 @@ pub struct Summary {
     pub drag_springs: usize,
     /// Particle sources.
     pub sources: usize,
-    /// Insertions the sources attempt before the end time (an insertion is skipped when no free spot is found).
+    /// Inlets.
+    pub inlets: usize,
+    /// Insertions the sources and inlets attempt before the end time (a source skips an insertion when no free spot
+    /// is found; an inlet postpones it).
     pub planned_insertions: u64,
+    /// The scene's fluid: its description, and each particle kind's terminal speed and drag time; `None` without.
+    pub fluid: Option<crate::build::fluid::FluidSummary>,
     /// The Δt the World runs with, s.
     pub time_step_s: f64,
     /// True when Δt was chosen automatically (the scene left `time_step_s` out).
@@ -237,7 +242,31 @@ impl fmt::Display for Summary {
             "  particles: {} at the start ({:.4} {unit}, masses {model}), {} with a drag spring",
             self.particles, self.particle_mass_kg_m, self.drag_springs
         )?;
-        writeln!(f, "  sources: {} (up to {} insertions)", self.sources, self.planned_insertions)?;
+        writeln!(
+            f,
+            "  sources: {}, inlets: {} (up to {} insertions)",
+            self.sources, self.inlets, self.planned_insertions
+        )?;
+        if let Some(fluid) = &self.fluid {
+            writeln!(f, "  fluid: {}", fluid.description)?;
+            for scale in &fluid.scales {
+                writeln!(
+                    f,
+                    "    {}: terminal speed {:.4} m/s in still fluid, drag relaxation time {:.3e} s",
+                    scale.entry, scale.terminal_speed_m_s, scale.relaxation_time_s
+                )?;
+            }
+            for scale in fluid.too_fast_for(self.time_step_s) {
+                writeln!(
+                    f,
+                    "    warning: the drag on `{}` relaxes within {:.1} time steps (fewer than {}): its velocity \
+                     will be inaccurate; use a smaller run.time_step_s",
+                    scale.entry,
+                    scale.relaxation_time_s / self.time_step_s,
+                    crate::build::fluid::DRAG_STEPS_PER_RELAXATION_TIME
+                )?;
+            }
+        }
         let how = if self.time_step_is_automatic { "automatic" } else { "given" };
         write!(f, "  time step: {:.3e} s ({how})", self.time_step_s)?;
         match (&self.stable_time_step_s, &self.limiting_entry) {

@@ -159,6 +159,9 @@ impl Scene {
             );
         }
         crate::build::inlets::check(self, &materials, &mut errors);
+        if let Some(fluid) = &self.fluid {
+            crate::build::fluid::check(fluid, &mut errors);
+        }
         if let Some(mill) = &self.mill {
             collect(&mut errors, crate::build::mill::check(mill, "mill"));
             for (field, name) in [

@@ -6,6 +6,7 @@
 //! World's own stream 0 drives the sources during the run; stream 2 samples source shapes for the time-step bound.
 
 pub(crate) mod blocks;
+pub(crate) mod fluid;
 pub(crate) mod inlets;
 pub(crate) mod interactions;
 pub(crate) mod mill;
@@ -206,6 +207,7 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
         world.set_material(id, MaterialId(material as u16)).map_err(|e| engine_error(&e, &wall.path))?;
     }
     let mut drag_springs = 0;
+    let mut kinds: Vec<fluid::NominalParticle> = Vec::new();
     for particle in &particles {
         let id = world
             .add_particle(
@@ -217,6 +219,10 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
             )
             .map_err(|e| engine_error(&e, &particle.path))?;
         world.set_material(id, particle.material).map_err(|e| engine_error(&e, &particle.path))?;
+        if kinds.last().is_none_or(|kind| kind.entry != particle.path) {
+            let bodies = world.bodies();
+            kinds.push(fluid::NominalParticle::of_body(bodies, id, &particle.path));
+        }
         if let Some(spring) = particle.drag_spring {
             world.add_drag_spring(id, spring).map_err(|e| engine_error(&e, &particle.path))?;
             drag_springs += 1;
@@ -225,12 +231,25 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
     for (i, source) in sources.into_iter().enumerate() {
         world.add_source(source).map_err(|e| engine_error(&e, &format!("sources[{i}]")))?;
     }
+    for (i, inlet) in inlets.iter().enumerate() {
+        kinds.push(fluid::NominalParticle::of_inlet(inlet, scene.mass_model, &format!("inlets[{i}]")));
+    }
     for (i, inlet) in inlets.into_iter().enumerate() {
         world.add_inlet(inlet).map_err(|e| engine_error(&e, &format!("inlets[{i}]")))?;
     }
     for (i, outlet) in outlets.into_iter().enumerate() {
         world.add_outlet(outlet).map_err(|e| engine_error(&e, &format!("outlets[{i}]")))?;
     }
+    let fluid = match &scene.fluid {
+        Some(section) => {
+            let engine = fluid::plan(section, &fluid::scene_folder(scene))?;
+            let g = scene.gravity.largest_magnitude();
+            let summary = fluid::summary(section, &engine, &kinds, scene.mass_model, g);
+            world.set_fluid(engine).map_err(|e| engine_error(&e, "fluid"))?;
+            Some(summary)
+        }
+        None => None,
+    };
     world.check_time_step().map_err(|e| engine_error(&WorldError::Safety(e), "run.time_step_s"))?;
 
     let summary = Summary {
@@ -248,7 +267,10 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
             .fold(0.0, |a, m| a + m),
         drag_springs,
         sources: scene.sources.len(),
-        planned_insertions: scene.sources.iter().map(|s| planned_insertions(s, scene.run.end_time_s)).sum(),
+        inlets: scene.inlets.len(),
+        planned_insertions: scene.sources.iter().map(|s| planned_insertions(s, scene.run.end_time_s)).sum::<u64>()
+            + scene.inlets.iter().map(|i| inlets::planned_insertions(i, scene.run.end_time_s) as u64).sum::<u64>(),
+        fluid,
         time_step_s: time_step,
         time_step_is_automatic: scene.run.time_step_s.is_none(),
         stable_time_step_s: bound.as_ref().map(|b| b.time_step),

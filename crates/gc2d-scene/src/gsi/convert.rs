@@ -62,6 +62,7 @@ pub fn to_scene(import: &GsiImport, name: &str) -> Result<GsiConversion, GsiErro
         sources: source.drop_sources.iter().map(drop_source).collect(),
         inlets: Vec::new(),
         outlets: Vec::new(),
+        fluid: None,
         mill: None,
         view: source.display.as_ref().map(|display| converter.view(display)),
         source: None,

@@ -6,6 +6,7 @@
 //! Positions and vectors are `(x, y)` pairs, `[f64; 2]` in Rust. Angles are radians, counter-clockwise from +x.
 
 mod bodies;
+mod fluid;
 mod inlets;
 mod interactions;
 mod mill;
@@ -13,6 +14,7 @@ mod shapes;
 mod walls;
 
 pub use bodies::{Block, DragSpring, DropHeight, GridType, Particle, Source};
+pub use fluid::{Drag, Field, Fluid, Ramp, VtkSnapshot};
 pub use inlets::{Inlet, Outlet};
 pub use interactions::{AreaFormulation, Damping, Friction, FrictionStiffness, Interaction, InteractionLaw, Rolling};
 pub use mill::{BallPlacement, Balls, Chamber, Mill, Ore, Rotor};
@@ -76,6 +78,10 @@ pub struct Scene {
     /// Segments that remove the particles crossing them outward. Default: none.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub outlets: Vec<Outlet>,
+    /// The fluid the particles move in: drag, buoyancy and its velocity field (docs/scene-format.md "fluid").
+    /// Default: none (particles move in vacuum).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fluid: Option<Fluid>,
     /// A ball mill: chamber, rotor and balls, expanded into walls and particles. Default: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mill: Option<Mill>,
