@@ -262,3 +262,18 @@ fn horizontal_feedpipe_scene_carries_pellets_downstream_where_they_settle() {
     let mean_speed = on_floor.iter().map(|&i| b.velocity[i].length()).sum::<f64>() / on_floor.len() as f64;
     assert!(mean_speed < 0.5, "{mean_speed}");
 }
+
+#[test]
+fn cfd_feedpipe_scene_conveys_pellets_in_the_loaded_field() {
+    let mut world = Scene::from_path(scene_path("feedpipe_cfd")).unwrap().build().unwrap();
+    // The loaded field is the shipped OpenFOAM solution: 12 m/s entering through the floor.
+    let u = world.fluid().unwrap().field.velocity(gc2d_geometry::DVec2::new(0.0, 0.0), 1.0).unwrap();
+    assert!((u.y - 12.0).abs() < 1e-3, "{u}");
+    let end = if cfg!(debug_assertions) { 0.05 } else { 0.4 };
+    world.run_until(end).unwrap();
+    let s = world.stats();
+    assert_eq!(s.injected, world.bodies().particles().count() as u64 + s.removed_at_outlets);
+    if !cfg!(debug_assertions) {
+        assert!(s.removed_at_outlets > 0, "pellets reach the top within 0.4 s");
+    }
+}
