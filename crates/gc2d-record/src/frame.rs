@@ -1,13 +1,14 @@
 //! The messages of one frame, built from a World: the same for an MCAP recording and the live view.
 
+use crate::fluid::{drawn_region, fluid_arrows};
 use crate::network::{ContactForce, collect_contact_forces};
 use crate::quantities::{ParticleColours, mean_inscribed_radius};
 use crate::recorder::{DEFAULT_FORCE_WIDTH_RADII, RecordOptions};
-use crate::scene::{SceneStyle, contacts_update, particles_update, timestamp, walls_update};
+use crate::scene::{SceneStyle, contacts_update, fluid_update, particles_update, timestamp, walls_update};
 use crate::stats::FrameStats;
 use foxglove::schemas::SceneUpdate;
 use gc2d_engine::{BodyKind, World};
-use gc2d_geometry::Pose;
+use gc2d_geometry::{Aabb, Pose};
 
 /// Layers are this many mean inscribed radii apart in z.
 const LAYER_SPACING_RADII: f64 = 0.05;
@@ -24,6 +25,9 @@ pub struct Frame {
     pub walls: Option<SceneUpdate>,
     /// `/contacts`: the force network, when [`RecordOptions::force_network`] is on.
     pub contacts: Option<SceneUpdate>,
+    /// `/fluid`: the fluid's velocity arrows, in every frame of a World with a fluid (the field may change in
+    /// time); `None` without a fluid.
+    pub fluid: Option<SceneUpdate>,
     /// `/stats`.
     pub stats: FrameStats,
 }
@@ -46,6 +50,8 @@ pub struct FrameBuilder {
     forces: Vec<ContactForce>,
     colours: ParticleColours,
     walls_every_frame: bool,
+    /// The region the fluid is drawn over, fixed by the first frame.
+    fluid_region: Option<Aabb>,
 }
 
 impl FrameBuilder {
@@ -59,6 +65,7 @@ impl FrameBuilder {
             forces: Vec::new(),
             colours: ParticleColours::default(),
             walls_every_frame: false,
+            fluid_region: None,
         }
     }
 
@@ -87,9 +94,13 @@ impl FrameBuilder {
             let width = scales.map_or(0.0, |s| s.force_line_max_width);
             contacts_update(world, &self.forces, max_force, width, &style)
         });
+        let fluid = world.fluid().and_then(|_| {
+            let region = *self.fluid_region.get_or_insert(drawn_region(world)?);
+            fluid_arrows(world, region).map(|arrows| fluid_update(&arrows, &style))
+        });
         let stats = FrameStats::of(world, &self.forces, max_force);
         self.frames += 1;
-        Frame { log_time, particles, walls, contacts, stats }
+        Frame { log_time, particles, walls, contacts, fluid, stats }
     }
 
     /// The length scales of the drawing, fixed by the first frame with particles.

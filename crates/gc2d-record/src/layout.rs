@@ -44,7 +44,8 @@ pub fn foxglove_layout(view: &Aabb) -> Value {
         "topics": {
             "/walls": { "visible": true },
             "/particles": { "visible": true },
-            "/contacts": { "visible": true }
+            "/contacts": { "visible": true },
+            "/fluid": { "visible": true }
         },
         "layers": {},
         "publish": { "type": "point", "pointTopic": "/clicked_point", "poseTopic": "/move_base_simple/goal",

@@ -12,6 +12,7 @@
 pub mod cadence;
 pub mod colour;
 mod error;
+pub mod fluid;
 pub mod frame;
 pub mod layout;
 #[cfg(feature = "live")]
@@ -32,7 +33,7 @@ pub use live::LiveView;
 pub use png::{PngOptions, render_png};
 pub use quantities::{ColourBy, ColourRange};
 pub use recorder::{Observer, RecordOptions, Recorder, RecordingSummary, RunInfo, SceneFile};
-pub use scene::{FRAME_ID, PARTICLE_BLOCK_SLOTS, particle_entity_id};
+pub use scene::{FLUID_ENTITY, FRAME_ID, PARTICLE_BLOCK_SLOTS, particle_entity_id};
 pub use stats::FrameStats;
 
 /// Where the live view listens unless told otherwise: the Foxglove app's default for a local connection

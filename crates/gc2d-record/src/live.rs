@@ -23,6 +23,7 @@ pub struct LiveView {
     particles: Channel<SceneUpdate>,
     walls: Channel<SceneUpdate>,
     contacts: Channel<SceneUpdate>,
+    fluid: Channel<SceneUpdate>,
     stats: Arc<RawChannel>,
     builder: FrameBuilder,
     frames: u64,
@@ -48,6 +49,7 @@ impl LiveView {
         let particles = ChannelBuilder::new("/particles").context(&context).build::<SceneUpdate>();
         let walls = ChannelBuilder::new("/walls").context(&context).build::<SceneUpdate>();
         let contacts = ChannelBuilder::new("/contacts").context(&context).build::<SceneUpdate>();
+        let fluid = ChannelBuilder::new("/fluid").context(&context).build::<SceneUpdate>();
         let stats = ChannelBuilder::new("/stats")
             .context(&context)
             .message_encoding("json")
@@ -66,6 +68,7 @@ impl LiveView {
             particles,
             walls,
             contacts,
+            fluid,
             stats,
             builder: FrameBuilder::new(options).walls_every_frame(),
             frames: 0,
@@ -79,7 +82,11 @@ impl LiveView {
 
     /// True when a client is subscribed to at least one topic.
     pub fn has_subscribers(&self) -> bool {
-        self.particles.has_sinks() || self.walls.has_sinks() || self.contacts.has_sinks() || self.stats.has_sinks()
+        self.particles.has_sinks()
+            || self.walls.has_sinks()
+            || self.contacts.has_sinks()
+            || self.fluid.has_sinks()
+            || self.stats.has_sinks()
     }
 
     /// Frames sent so far.
@@ -102,6 +109,9 @@ impl LiveView {
         }
         if let Some(contacts) = &frame.contacts {
             self.contacts.log_with_meta(contacts, meta);
+        }
+        if let Some(fluid) = &frame.fluid {
+            self.fluid.log_with_meta(fluid, meta);
         }
         if self.stats.has_sinks() {
             self.stats.log_with_meta(frame.stats.to_json().to_string().as_bytes(), meta);

@@ -1,8 +1,10 @@
-//! PNG snapshots for people without Foxglove: walls grey, particles in the recording's colour map, optionally the
-//! force network, drawn with tiny-skia (pure Rust). The picture shows the x-y plane with y up.
+//! PNG snapshots for people without Foxglove: walls grey, a fluid's velocity as arrows (crate::fluid), particles in
+//! the recording's colour map, optionally the force network, drawn with tiny-skia (pure Rust). The picture shows the
+//! x-y plane with y up.
 
 use crate::RecordError;
 use crate::colour::{Rgba, WALL_GREY, force_colour};
+use crate::fluid::{drawn_region, fluid_arrows};
 use crate::network::{ContactForce, collect_contact_forces, contact_segments, line_width};
 use crate::quantities::{ColourBy, ColourRange, ParticleColours, mean_inscribed_radius};
 use crate::recorder::DEFAULT_FORCE_WIDTH_RADII;
@@ -90,6 +92,13 @@ fn render(world: &World, options: &PngOptions) -> Result<Pixmap, RecordError> {
     for i in (0..bodies.len()).filter(|&i| bodies.alive[i] && bodies.kind[i] == BodyKind::Wall) {
         draw_outline(&mut pixmap, &canvas, &bodies.shape_view(BodyId(i as u32)).traced_outline(), WALL_GREY);
     }
+    if let Some(arrows) = drawn_region(world).and_then(|region| fluid_arrows(world, region)) {
+        for arrow in &arrows {
+            for (from, to) in arrow.segments() {
+                draw_segment(&mut pixmap, &canvas, from, to, FLUID_ARROW_PIXELS, arrow.colour);
+            }
+        }
+    }
     let mut forces: Vec<ContactForce> = Vec::new();
     let max_force = collect_contact_forces(world, &mut forces);
     let mut colours = ParticleColours::default();
@@ -109,9 +118,7 @@ fn render(world: &World, options: &PngOptions) -> Result<Pixmap, RecordError> {
 
 /// The box around every living body, 2 % larger on each side.
 fn body_bounds(world: &World) -> Option<Aabb> {
-    let b = world.bodies();
-    let boxes = (0..b.len()).filter(|&i| b.alive[i]).map(|i| b.aabb[i]);
-    let bounds = boxes.reduce(|x, y| Aabb { min: x.min.min(y.min), max: x.max.max(y.max) })?;
+    let bounds = drawn_region(world)?;
     Some(bounds.expanded(0.02 * (bounds.max - bounds.min).max_element()))
 }
 
@@ -164,6 +171,22 @@ fn draw_force_network(
         let stroke = Stroke { width: width.max(0.5) as f32, line_cap: LineCap::Round, ..Stroke::default() };
         pixmap.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
     }
+}
+
+/// Width of the fluid's arrows, pixels.
+const FLUID_ARROW_PIXELS: f64 = 1.5;
+
+/// A straight line from `from` to `to` (m), `width` pixels wide.
+fn draw_segment(pixmap: &mut Pixmap, canvas: &Canvas, from: DVec2, to: DVec2, width: f64, colour: Rgba) {
+    let ((x0, y0), (x1, y1)) = (canvas.pixel(from), canvas.pixel(to));
+    let mut builder = PathBuilder::new();
+    builder.move_to(x0, y0);
+    builder.line_to(x1, y1);
+    let Some(path) = builder.finish() else { return };
+    let mut paint = Paint::default();
+    paint.set_color(skia_colour(colour));
+    let stroke = Stroke { width: width as f32, line_cap: LineCap::Round, ..Stroke::default() };
+    pixmap.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
 }
 
 fn skia_colour(c: Rgba) -> Color {

@@ -7,6 +7,8 @@
 //! - `/walls` — `foxglove.SceneUpdate`: the walls, in the first frame and then only in frames where a wall moved.
 //! - `/contacts` — `foxglove.SceneUpdate`: the force network (reference §5.5), if enabled: one entity `forces`
 //!   with a line list per width class.
+//! - `/fluid` — `foxglove.SceneUpdate`: in a World with a fluid, its velocity as arrows on a grid under the
+//!   particles, coloured by speed (one entity `fluid`, one line list); the channel exists only then.
 //! - `/stats` — JSON ([`FrameStats`](crate::FrameStats)): time, energies, contacts, overlap, coordination.
 //!
 //! The file also holds a Metadata record `gc2d-rs` (program version, seed, command line, cadence) and, if given,
@@ -102,6 +104,8 @@ struct Channels {
     particles: Channel,
     walls: Channel,
     contacts: Channel,
+    /// `/fluid`, added at the first frame that draws a fluid.
+    fluid: Option<Channel>,
     stats: Channel,
 }
 
@@ -129,6 +133,7 @@ impl Recorder {
             particles: file.add_protobuf_channel::<SceneUpdate>("/particles")?,
             walls: file.add_protobuf_channel::<SceneUpdate>("/walls")?,
             contacts: file.add_protobuf_channel::<SceneUpdate>("/contacts")?,
+            fluid: None,
             stats: file.add_json_channel("/stats", STATS_SCHEMA_NAME, STATS_JSON_SCHEMA)?,
         };
         file.metadata("gc2d-rs", run_metadata(info, &options))?;
@@ -171,6 +176,13 @@ impl Recorder {
         }
         if let Some(contacts) = &frame.contacts {
             file.write_protobuf(self.channels.contacts, log_time, contacts)?;
+        }
+        if let Some(fluid) = &frame.fluid {
+            let channel = match self.channels.fluid {
+                Some(channel) => channel,
+                None => *self.channels.fluid.insert(file.add_protobuf_channel::<SceneUpdate>("/fluid")?),
+            };
+            file.write_protobuf(channel, log_time, fluid)?;
         }
         file.write_json(self.channels.stats, log_time, &frame.stats.to_json())?;
         if self.frames == 0 {

@@ -5,6 +5,7 @@
 //! in the depth test; seen from above the offset is invisible.
 
 use crate::colour::{Rgba, WALL_GREY, force_colour};
+use crate::fluid::FluidArrow;
 use crate::network::{ContactForce, FORCE_WIDTH_CLASSES, class_width, contact_segments, width_class};
 use foxglove::schemas::{
     Color, LinePrimitive, Point3, Pose, Quaternion, SceneEntity, SceneEntityDeletion, SceneUpdate, Timestamp,
@@ -25,6 +26,12 @@ pub const PARTICLE_BLOCK_SLOTS: usize = 1024;
 /// Id of the entity of `/contacts` that holds the force network.
 pub const FORCES_ENTITY: &str = "forces";
 
+/// Id of the entity of `/fluid` that holds the fluid's velocity arrows.
+pub const FLUID_ENTITY: &str = "fluid";
+
+/// Width of the fluid's arrows, screen pixels.
+const FLUID_ARROW_PIXELS: f64 = 1.5;
+
 /// Outline width of particles and walls, screen pixels.
 const OUTLINE_PIXELS: f64 = 1.0;
 
@@ -35,6 +42,7 @@ const OUTLINE_SHADE: Rgba = Rgba { r: 0.0, g: 0.0, b: 0.0, a: 0.55 };
 /// Heights of the drawing layers, in units of the layer spacing.
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Layer {
+    Fluid = -2,
     Walls = -1,
     Fills = 0,
     Outlines = 1,
@@ -208,6 +216,30 @@ pub(crate) fn contacts_update(
             }
         }
         entity.lines = classes.into_iter().filter(|line| !line.points.is_empty()).collect();
+    }
+    style.replacing_all(vec![entity])
+}
+
+/// `/fluid`: one entity [`FLUID_ENTITY`] with one line list of the arrows' segments, each in its arrow's colour,
+/// under the walls and particles.
+pub(crate) fn fluid_update(arrows: &[FluidArrow], style: &SceneStyle) -> SceneUpdate {
+    let mut entity = style.entity(FLUID_ENTITY.to_string());
+    let mut line = LinePrimitive {
+        r#type: line_primitive::Type::LineList as i32,
+        pose: Some(lifted_pose(style.z(Layer::Fluid))),
+        thickness: FLUID_ARROW_PIXELS,
+        scale_invariant: true,
+        ..LinePrimitive::default()
+    };
+    for arrow in arrows {
+        let shade = color(arrow.colour);
+        for (from, to) in arrow.segments() {
+            line.points.extend([point(from), point(to)]);
+            line.colors.extend([shade, shade]);
+        }
+    }
+    if !line.points.is_empty() {
+        entity.lines.push(line);
     }
     style.replacing_all(vec![entity])
 }
