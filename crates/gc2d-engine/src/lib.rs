@@ -26,6 +26,7 @@ pub mod schedules;
 pub mod shape;
 pub mod sources;
 pub mod time_window;
+pub mod transits;
 pub mod world;
 
 pub use bodies::{Bodies, BodyId, BodyKind};
@@ -43,4 +44,5 @@ pub use safety::{SafetyError, SafetyLimits};
 pub use shape::{BodyShape, BodyShapeError, DiskRecipe, MassModel, ParticleRecipe, ShapeKind, shape_view};
 pub use sources::{DropHeight, DropSource};
 pub use time_window::TimeWindow;
+pub use transits::{InletEntry, Transit};
 pub use world::{ForceAlternation, RotorPower, RotorWork, StepStats, WallLoad, World, WorldConfig, WorldError};

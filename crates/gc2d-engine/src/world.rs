@@ -21,6 +21,7 @@ use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
 use crate::shape::{BodyShape, MassModel, shape_view};
 use crate::sources::{DropHeight, DropSource, PLACEMENT_ATTEMPTS, SourceState};
+use crate::transits::{InletEntry, Transit, TransitLog};
 use gc2d_geometry::{Aabb, DVec2, Pose, ShapeView, area_contact};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -210,6 +211,8 @@ pub struct World {
     rng: ChaCha8Rng,
     inlets: Vec<InletState>,
     outlets: Vec<OutletState>,
+    /// Inlet entries and outlet passages, in Worlds with inlets or outlets.
+    transits: TransitLog,
     /// Particle centres at the start of the step, for the outlets' crossing test; refilled every step, so not saved.
     #[serde(skip)]
     positions_before_step: Vec<DVec2>,
@@ -253,6 +256,7 @@ impl World {
             sources: Vec::new(),
             inlets: Vec::new(),
             outlets: Vec::new(),
+            transits: TransitLog::default(),
             positions_before_step: Vec::new(),
             ledger: EnergyLedger::default(),
             rotor_work: RotorWork::default(),
@@ -390,6 +394,16 @@ impl World {
             }
         }
         Ok(())
+    }
+
+    /// The particles that outlets removed on the last step, with how they came in (empty without outlets).
+    pub fn transits(&self) -> &[Transit] {
+        self.transits.last_step()
+    }
+
+    /// How particle `body` came in, if it came through an inlet and is still inside.
+    pub fn inlet_entry(&self, body: BodyId) -> Option<InletEntry> {
+        self.transits.entry(body)
     }
 
     /// The fluid the particles move in, if the World has one (for recordings and analyses that sample its field).
@@ -626,6 +640,7 @@ impl World {
             + crate::bodies::vec_bytes(&self.inlets)
             + crate::bodies::vec_bytes(&self.outlets)
             + crate::bodies::vec_bytes(&self.positions_before_step)
+            + self.transits.heap_bytes()
     }
 
     /// Every pair of bodies whose boxes touch, with its contact record (`a < b`).
@@ -668,6 +683,7 @@ impl World {
         let dt = self.config.time_step;
         let t_next = self.time + dt;
         if self.stages.outlets {
+            self.transits.start_step();
             self.positions_before_step.clear();
             self.positions_before_step.extend(self.bodies.pose.iter().map(|pose| pose.position));
         }
@@ -940,6 +956,7 @@ impl World {
             .collect();
         for id in escaped {
             self.remove_particle(id, g);
+            self.transits.forget(id);
             self.stats.removed += 1;
         }
     }
@@ -953,8 +970,9 @@ impl World {
                 continue;
             }
             let (before, after) = (self.positions_before_step[i], self.bodies.pose[i].position);
-            if let Some(outlet) = self.outlets.iter_mut().find(|o| o.outlet().crossed_outward(before, after)) {
-                outlet.removed();
+            if let Some(index) = self.outlets.iter().position(|o| o.outlet().crossed_outward(before, after)) {
+                self.outlets[index].removed();
+                self.transits.left(BodyId(i as u32), index, self.time);
                 self.remove_particle(BodyId(i as u32), g);
                 self.stats.removed_at_outlets += 1;
             }
@@ -978,11 +996,12 @@ impl World {
         let (step, dt) = (self.steps, self.config.time_step);
         for i in 0..self.inlets.len() {
             while self.inlets[i].next_is_due(step, dt) {
-                if self.insert_from_inlet(i).is_none() {
+                let Some(id) = self.insert_from_inlet(i) else {
                     self.inlets[i].postponed();
                     self.stats.postponed += 1;
                     break;
-                }
+                };
+                self.transits.entered(id, i, self.time);
                 self.inlets[i].inserted();
                 self.stats.injected += 1;
                 self.check_time_step()?;

@@ -147,3 +147,76 @@ fn bad_fluid_numbers_are_refused_with_the_field_named() {
     no_viscosity.properties.dynamic_viscosity_pa_s = 0.0;
     assert!(world.set_fluid(no_viscosity).unwrap_err().to_string().contains("viscosity_pa_s"));
 }
+
+/// The time a ball starting at `v0` upward takes to rise `height` in plug flow `u` > w_t, from
+/// dv/dt = g′·((u − v)²/w_t² − 1) (drag and buoyancy balance the weight at slip w_t), by RK4 in fine steps.
+fn rise_time(u: f64, v0: f64, height: f64) -> f64 {
+    let w_t = ball_terminal_speed();
+    let g_net = G * (STYROFOAM - AIR) / STYROFOAM;
+    let accel = |v: f64| g_net * ((u - v).powi(2) / (w_t * w_t) - 1.0);
+    let h = 1e-6;
+    let (mut t, mut y, mut v) = (0.0, 0.0, v0);
+    loop {
+        let (k1v, k1y) = (accel(v), v);
+        let (k2v, k2y) = (accel(v + 0.5 * h * k1v), v + 0.5 * h * k1v);
+        let (k3v, k3y) = (accel(v + 0.5 * h * k2v), v + 0.5 * h * k2v);
+        let (k4v, k4y) = (accel(v + h * k3v), v + h * k3v);
+        let y_next = y + h / 6.0 * (k1y + 2.0 * k2y + 2.0 * k3y + k4y);
+        if y_next >= height {
+            return t + h * (height - y) / (y_next - y);
+        }
+        (y, v, t) = (y_next, v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v), t + h);
+    }
+}
+
+#[test]
+fn a_ball_fed_into_plug_flow_crosses_the_riser_in_the_time_the_drag_law_gives() {
+    use gc2d_engine::{DiskRecipe, Inlet, MaterialId, Outlet, ParticleRecipe};
+    use gc2d_geometry::Randomization;
+    // An inlet across the floor feeds one styrofoam ball at 0.5 m/s upward into air rising at U = 5 m/s
+    // (w_t = 3.4993 m/s); an outlet 2 m up removes it. Its transit record must give the time the drag law gives:
+    // about 2 m / (U − w_t) = 1.33 s plus the start transient.
+    let (dt, u, height, v0) = (1e-4, 5.0, 2.0, 0.5);
+    let mut world = sphere_world(law(1.0, 0.0, 0.0), dt, G);
+    world.set_fluid(air(DVec2::new(0.0, u))).unwrap();
+    let recipe = ParticleRecipe::Disk(DiskRecipe {
+        radius: RADIUS,
+        size_randomization: Randomization::Const,
+        size_variation: 0.0,
+    });
+    let mut transits = Vec::new();
+    world
+        .add_inlet(Inlet {
+            name: "feed".into(),
+            // Walking from `from` to `to` the domain lies on the left: above the floor.
+            from: DVec2::new(-0.1, 0.0),
+            to: DVec2::new(0.1, 0.0),
+            rate: 1.0,
+            start: 0.0,
+            stop: 0.5,
+            velocity: DVec2::new(0.0, v0),
+            angular_velocity: 0.0,
+            recipe,
+            density: STYROFOAM,
+            material: MaterialId(0),
+        })
+        .unwrap();
+    world
+        .add_outlet(Outlet { name: "top".into(), from: DVec2::new(0.1, height), to: DVec2::new(-0.1, height) })
+        .unwrap();
+    while world.time() < 2.0 {
+        world.step().unwrap();
+        transits.extend_from_slice(world.transits());
+    }
+    assert_eq!(transits.len(), 1);
+    let transit = transits[0];
+    let entry = transit.entry.expect("it came through the inlet");
+    assert_eq!((entry.inlet, transit.outlet), (0, 0));
+    assert!((entry.time - dt).abs() < 1e-12, "inserted at the end of the first step: {}", entry.time);
+    let expected = rise_time(u, v0, height);
+    let measured = transit.transit_time().unwrap();
+    // The record is taken at the end of the crossing step: within one step of the crossing.
+    assert!((measured - expected).abs() < 2.0 * dt, "{measured} s against {expected} s");
+    let asymptotic = height / (u - ball_terminal_speed());
+    assert!(measured > asymptotic && measured < 1.2 * asymptotic, "{measured} against {asymptotic}");
+}
