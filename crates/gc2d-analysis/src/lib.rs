@@ -17,12 +17,14 @@ pub mod particle_state;
 pub mod pressure;
 pub mod repose;
 pub mod run;
+pub mod scene_feedpipe;
 pub mod scene_mill;
 pub mod scene_pile;
 pub mod scene_silo;
 pub mod snapshot;
 pub mod statistics;
 pub mod stress;
+mod table;
 
 pub use density::{Grid, LocalDensity, bulk_packing_fraction, density_grid, local_density};
 pub use error::AnalysisError;
@@ -35,6 +37,7 @@ pub use pressure::{
 };
 pub use repose::{FlankFit, FlankOptions, PileShape, Repose, angle_of_repose, surface_envelope};
 pub use run::{AnalyzeOptions, Report, SceneKind, analyze_run, analyze_snapshot, detect_scene};
+pub use scene_feedpipe::{FeedpipeOptions, FeedpipeReport, analyze_feedpipe, feedpipe_report};
 pub use scene_mill::{
     BallSpeeds, CollisionClass, MillOptions, MillPower, MillReport, StressEnergySpectrum, WarmUp, analyze_mill,
     mill_report,

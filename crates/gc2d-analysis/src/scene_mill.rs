@@ -21,6 +21,7 @@ use crate::mill_speeds::{
 use crate::output::OutputDir;
 use crate::particle_state::csv::{DUMPS_DIR, dump_files, read_csv};
 use crate::particle_state::{ParticleShape, ParticleState};
+use crate::table::{Table, number};
 use gc2d_engine::{BodyKind, ShapeKind, World};
 use gc2d_geometry::DVec2;
 use serde::Serialize;
@@ -211,35 +212,6 @@ impl MillReport {
             self.all_classes.collisions,
         )
     }
-}
-
-/// A CSV file read as columns by name.
-struct Table {
-    header: Vec<String>,
-    rows: Vec<Vec<String>>,
-}
-
-impl Table {
-    fn read(path: &Path) -> Result<Self, AnalysisError> {
-        let text =
-            std::fs::read_to_string(path).map_err(|source| AnalysisError::Io { path: path.to_path_buf(), source })?;
-        let mut lines = text.lines();
-        let header: Vec<String> = lines.next().unwrap_or_default().split(',').map(str::to_owned).collect();
-        let rows =
-            lines.map(|l| l.split(',').map(str::to_owned).collect::<Vec<_>>()).filter(|r| r.len() == header.len());
-        Ok(Self { rows: rows.collect(), header })
-    }
-
-    /// The index of column `name`, or an error naming the file's kind.
-    fn column(&self, name: &str, what: &str) -> Result<usize, AnalysisError> {
-        self.header.iter().position(|h| h == name).ok_or_else(|| {
-            AnalysisError::NotEnoughData(format!("{what} has no column `{name}` (written by another version?)"))
-        })
-    }
-}
-
-fn number(field: &str) -> f64 {
-    field.parse().unwrap_or(f64::NAN)
 }
 
 /// `ball` for a disk particle, `ore` for a polygon particle.

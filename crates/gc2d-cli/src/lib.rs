@@ -13,3 +13,4 @@ pub mod runner;
 pub mod segments;
 pub mod sinks;
 pub mod sweep;
+pub mod transits;

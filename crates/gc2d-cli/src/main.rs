@@ -4,7 +4,9 @@
 //! Ctrl-C, SIGTERM or SIGHUP.
 
 use clap::{Parser, Subcommand};
-use gc2d_analysis::{AnalyzeOptions, MillOptions, SceneKind, analyze_mill, analyze_run, mill_report};
+use gc2d_analysis::{
+    AnalyzeOptions, FeedpipeOptions, MillOptions, SceneKind, analyze_feedpipe, analyze_mill, analyze_run, mill_report,
+};
 use gc2d_cli::console;
 use gc2d_cli::dumps::StateDumps;
 use gc2d_cli::events::EventsWriter;
@@ -14,6 +16,7 @@ use gc2d_cli::resume::{ResumePoint, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
 use gc2d_cli::segments::SegmentLog;
 use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording, save_checkpoint};
+use gc2d_cli::transits::{TRANSITS_FILE, TransitsWriter};
 use gc2d_engine::World;
 use gc2d_record::{ColourBy, PngOptions, RecordOptions, Recorder, RunInfo, SceneFile, render_png};
 use gc2d_scene::{ErrorKind, Scene, SceneError};
@@ -61,7 +64,7 @@ enum Command {
     Analyze {
         /// The run directory (written by `gc2d-rs run`).
         run: PathBuf,
-        /// What the run is: a pile, a silo, a ball mill, or (pile or silo) decide from the wall forces.
+        /// What the run is: a pile, a silo, a ball mill, a feed pipe, or (pile or silo) decide from the wall forces.
         #[arg(long, value_enum, default_value_t = Kind::Auto)]
         kind: Kind,
         /// Half-width of the pressure window, m [default: about 15 contacts per window].
@@ -70,10 +73,13 @@ enum Command {
         /// Cell size of the density and stress grids, m [default: about 150 particles per cell].
         #[arg(long)]
         grid: Option<f64>,
-        /// Mill: the warm-up left out of the averages, s [default: the automatic cut of the median-speed series by
-        /// its stationarity test, docs/analysis.md].
+        /// Mill and feed pipe: the warm-up left out of the averages, s [default: the mill's automatic cut of the
+        /// median-speed series by its stationarity test; the feed pipe's first removal at an outlet; docs/analysis.md].
         #[arg(long)]
         warm_up: Option<f64>,
+        /// Feed pipe: bins across the pipe's section for the profiles.
+        #[arg(long, default_value_t = 12)]
+        bins: usize,
     },
     /// Convert a legacy gc2d input file (.gsi) into a RON scene; prints its `$` comments and every warning.
     ImportGsi {
@@ -135,6 +141,8 @@ enum Kind {
     Silo,
     /// A ball mill: collision statistics from events.csv and the power balance (run it with --events).
     Mill,
+    /// A feed pipe: throughput, transit times and profiles across the pipe from transits.csv and the dumps.
+    Feedpipe,
 }
 
 #[derive(clap::Args)]
@@ -179,8 +187,8 @@ struct RunArgs {
     #[arg(long)]
     no_events: bool,
     /// Write the state of every particle (position, angle, velocities, forces, contacts) every this many simulated
-    /// seconds into <out>/dumps/particles_<k>.csv; 0 writes none [default: a mill scene at its frames_per_second,
-    /// other scenes none].
+    /// seconds into <out>/dumps/particles_<k>.csv; 0 writes none [default: a mill scene and a scene with a fluid at
+    /// its frames_per_second, other scenes none].
     #[arg(long)]
     dump_every: Option<f64>,
     /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/).
@@ -219,7 +227,7 @@ fn main() -> ExitCode {
         Command::Run(args) => run(args),
         Command::Check { scene } => check(&scene),
         Command::Snapshot { run, output, width, colour_by, forces } => snapshot(&run, output, width, colour_by, forces),
-        Command::Analyze { run, kind, window, grid, warm_up } => analyze(&run, kind, window, grid, warm_up),
+        Command::Analyze { run, kind, window, grid, warm_up, bins } => analyze(&run, kind, window, grid, warm_up, bins),
         Command::Convergence { out, quick } => convergence(out, quick),
         Command::Sweep(args) => gc2d_cli::sweep::sweep(&args).map_err(|e| Failure { code: e.code, report: e.report }),
         Command::ImportGsi { gsi, output, part_size } => {
@@ -386,16 +394,25 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         written: 0,
     });
     let mill = scene.mill.is_some();
-    let dump_interval = args.dump_every.unwrap_or(if mill { frame_interval } else { 0.0 });
+    let dumps_by_default = mill || scene.fluid.is_some();
+    let dump_interval = args.dump_every.unwrap_or(if dumps_by_default { frame_interval } else { 0.0 });
     let mut dumps = (dump_interval > 0.0).then(|| StateDumps::new(&out, dump_interval, scene.material_names()));
     let mut events = if args.events || (mill && !args.no_events) {
         Some(start_events(&out, &scene, &mut world, args.resume.is_some(), frame_interval)?)
     } else {
         None
     };
+    let mut transits = if scene.outlets.is_empty() {
+        None
+    } else {
+        Some(start_transits(&out, &world, args.resume.is_some(), frame_interval)?)
+    };
     let mut sinks: Vec<&mut dyn FrameSink> = vec![&mut segments];
     if let Some(e) = events.as_mut() {
         sinks.push(e);
+    }
+    if let Some(t) = transits.as_mut() {
+        sinks.push(t);
     }
     if let Some(d) = dumps.as_mut() {
         sinks.push(d);
@@ -497,6 +514,17 @@ fn start_events(
     writer.map_err(|e| Failure::input(format!("cannot write {}: {e}", path.display())))
 }
 
+/// Opens `transits.csv` (continued on a resumed run that has one).
+fn start_transits(out: &Path, world: &World, resumed: bool, flush_interval: f64) -> Result<TransitsWriter, Failure> {
+    let path = out.join(TRANSITS_FILE);
+    let writer = if resumed && path.exists() {
+        TransitsWriter::continue_at(&path, flush_interval, world.time(), 0.5 * world.time_step())
+    } else {
+        TransitsWriter::create(&path, flush_interval)
+    };
+    writer.map_err(|e| Failure::input(format!("cannot write {}: {e}", path.display())))
+}
+
 /// Opens the MCAP recording with the scene file attached and the run's metadata.
 fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) -> Result<Recording, Failure> {
     let info = RunInfo {
@@ -581,6 +609,7 @@ fn analyze(
     window: Option<f64>,
     grid: Option<f64>,
     warm_up: Option<f64>,
+    bins: usize,
 ) -> Result<u8, Failure> {
     let failed = |e: gc2d_analysis::AnalysisError| Failure::input(format!("cannot analyse {}: {e}", run.display()));
     let scene = match kind {
@@ -589,6 +618,13 @@ fn analyze(
         Kind::Silo => SceneKind::Silo,
         Kind::Mill => {
             let report = analyze_mill(run, &MillOptions { warm_up_s: warm_up }).map_err(failed)?;
+            let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
+            console::out(&json).map_err(|e| Failure::stdout(&e))?;
+            console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
+            return Ok(0);
+        }
+        Kind::Feedpipe => {
+            let report = analyze_feedpipe(run, &FeedpipeOptions { warm_up_s: warm_up, bins }).map_err(failed)?;
             let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
             console::out(&json).map_err(|e| Failure::stdout(&e))?;
             console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));

@@ -1,0 +1,105 @@
+//! `gc2d-rs analyze RUN --kind feedpipe` (issue 15 item 5) end to end: styrofoam balls fed into a uniform upward
+//! stream at exactly U − w_t cross a 1 m riser at that speed, so every transit time is 1 m/(U − w_t), the throughput
+//! is the feed rate, and the slip is −w_t everywhere.
+
+use assert_cmd::Command;
+
+const U: f64 = 5.0;
+const RATE: f64 = 5.0;
+
+/// The thesis's styrofoam ball (R = 20 mm, 15 kg/m³) in air (1.25 kg/m³, c_w = 0.47, buoyancy on).
+fn terminal_speed() -> f64 {
+    (8.0f64 * 0.02 * 9.81 * (15.0 - 1.25) / (3.0 * 1.25 * 0.47)).sqrt()
+}
+
+fn scene() -> String {
+    let start = U - terminal_speed();
+    format!(
+        r#"Scene(
+    mass_model: SphereEquivalent,
+    run: (time_step_s: 1e-4, end_time_s: 2.0, frames_per_second: 20, max_impact_speed_m_s: 2.0),
+    materials: [(name: "styrofoam", density_kg_m3: 15, youngs_modulus_pa: 1e5)],
+    interactions: [(materials: ("styrofoam", "styrofoam"), law: Hertz(damping: Restitution(0.5)))],
+    inlets: [(name: "feed", from_m: (-0.2, 0.0), to_m: (0.2, 0.0), rate_per_s: {RATE}, velocity_m_s: (0.0, {start:.17}),
+              shape: (semi_axes_m: (0.02, 0.02), disk: true))],
+    outlets: [(name: "top", from_m: (0.25, 1.0), to_m: (-0.25, 1.0))],
+    fluid: (density_kg_m3: 1.25, field: Uniform((0.0, {U}))),
+)"#
+    )
+}
+
+#[test]
+fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_path = dir.path().join("riser.ron");
+    std::fs::write(&scene_path, scene()).unwrap();
+    let out = dir.path().join("run");
+    Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .arg("run")
+        .arg(&scene_path)
+        .arg("--quiet")
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    assert!(out.join("dumps").is_dir(), "a scene with a fluid writes dumps by default");
+    let output = Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .args(["analyze", out.to_str().unwrap(), "--kind", "feedpipe", "--bins", "4"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let report: serde_json::Value = serde_json::from_slice(&output).unwrap();
+    let w_t = terminal_speed();
+    let expected_transit = 1.0 / (U - w_t);
+    let transit = &report["transit_times"];
+    assert!(transit["count"].as_u64().unwrap() >= 5);
+    // Every ball takes the same time, so the mean and the quantiles agree; the record is exact to a step.
+    let quantiles = transit["quantiles_s"].as_array().unwrap().iter().map(|q| q.as_f64().unwrap());
+    for t in quantiles.chain([transit["mean_s"].as_f64().unwrap()]) {
+        assert!((t - expected_transit).abs() < 2e-4, "{t} against {expected_transit}");
+    }
+    // The window starts at the first removal (0.666 s) and ends at 2 s: 5 per second.
+    let outlet = &report["outlets"][0];
+    assert_eq!(outlet["outlet"], "top");
+    let rate = outlet["particles_per_second"].as_f64().unwrap();
+    assert!((rate - RATE).abs() < 1.0, "{rate}");
+    let slip = report["mean_slip_m_s"][0].as_f64().unwrap();
+    assert!((slip + w_t).abs() < 1e-6, "slip {slip} against −w_t = {}", -w_t);
+    for bin in report["profile"].as_array().unwrap() {
+        if bin["samples"].as_u64().unwrap() > 0 {
+            assert!((bin["slip_m_s"].as_f64().unwrap() + w_t).abs() < 1e-6, "{bin}");
+            assert!((bin["fluid_velocity_m_s"].as_f64().unwrap() - U).abs() < 1e-12, "{bin}");
+        }
+    }
+    for file in ["feedpipe.json", "feedpipe_profile.csv", "feedpipe_throughput.svg", "feedpipe_transit_times.svg"] {
+        assert!(out.join("analysis").join(file).is_file(), "{file} written");
+    }
+}
+
+#[test]
+fn a_run_without_outlets_is_refused_with_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_path = dir.path().join("still.ron");
+    std::fs::write(&scene_path, "Scene(run: (end_time_s: 0.01), particles: [(shape: Disk(radius_m: 0.01))])").unwrap();
+    let out = dir.path().join("run");
+    Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .arg("run")
+        .arg(&scene_path)
+        .arg("--quiet")
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let assert = Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .args(["analyze", out.to_str().unwrap(), "--kind", "feedpipe"])
+        .assert()
+        .failure();
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+    assert!(stderr.contains("no outlet"), "{stderr}");
+}
