@@ -96,6 +96,41 @@ fn hertz_head_on_of_steel_spheres_takes_the_analytic_contact_time_and_is_elastic
 }
 
 #[test]
+fn hertz_head_on_in_still_air_differs_from_vacuum_by_the_drag_bound() {
+    // The same impact as above in still air (ρ_f = 1.2 kg/m³, c_w = 0.47). During the contact the drag on a sphere
+    // is at most ½·ρ_f·c_w·π·R²·(v/2)² ≈ 1.4e-8 N, an impulse of about 2e-12 N·s over t_c against a momentum of
+    // 2.5e-3 N·s: contact time and restitution may change by 1e-6 at most, and the contact time still matches Hertz.
+    use gc2d_engine::Fluid;
+    use gc2d_fluid::{DragCoefficient, FluidField, FluidProperties};
+    let (radius, speed): (f64, f64) = (0.025, 0.01);
+    let e_star = steel_effective_modulus();
+    let mass = STEEL_DENSITY * 4.0 / 3.0 * PI * radius.powi(3);
+    let expected = hertz_contact_time(0.5 * mass, 0.5 * radius, e_star, speed);
+    let run = |air: bool| {
+        let law = PenetrationLaw::elastic(NormalSpring::Hertz { effective_modulus_pa: e_star });
+        let mut world = sphere_world(law, expected / 4000.0, 0.0);
+        if air {
+            world
+                .set_fluid(Fluid {
+                    field: FluidField::Uniform(DVec2::ZERO),
+                    properties: FluidProperties { density_kg_m3: 1.2, dynamic_viscosity_pa_s: 1.8e-5 },
+                    drag: DragCoefficient::Constant(0.47),
+                    buoyancy: true,
+                })
+                .unwrap();
+        }
+        let gap = 1e-8;
+        let a = add_disk(&mut world, radius, DVec2::new(-radius - gap, 0.0), DVec2::new(0.5 * speed, 0.0));
+        let b = add_disk(&mut world, radius, DVec2::new(radius + gap, 0.0), DVec2::new(-0.5 * speed, 0.0));
+        impact(&mut world, |w: &World| w.bodies().velocity[a].x - w.bodies().velocity[b].x)
+    };
+    let (vacuum, air) = (run(false), run(true));
+    assert!((air.contact_time - vacuum.contact_time).abs() <= 1e-6 * vacuum.contact_time);
+    assert!((air.relative_speed_after - vacuum.relative_speed_after).abs() <= 1e-6 * speed);
+    assert!((air.contact_time - expected).abs() < 0.005 * expected);
+}
+
+#[test]
 fn linear_spring_realises_its_target_restitution_at_every_speed() {
     let radius: f64 = 0.0025;
     let stiffness = 1e6;
