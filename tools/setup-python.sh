@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# Creates the Python environment of the recording checks: a venv under target/ with the reference MCAP reader
-# (the `mcap` package, independent of our Rust writer) and its protobuf decoder. Idempotent: the packages are
+# Creates the project's Python environment: a venv under target/ with the reference MCAP reader of the recording
+# checks (the `mcap` package, independent of our Rust writer) and its protobuf decoder, and polars for the export
+# example (docs/export.md). Idempotent: the packages are
 # installed only when the venv is new or this script's requirements changed. Prints the venv's python on stdout.
 set -euo pipefail
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 target="${CARGO_TARGET_DIR:-$repo/target}"
 venv="$target/python-venv"
-requirements="mcap>=1.2,<2 mcap-protobuf-support>=0.5,<1 protobuf>=4.25,<7"
+requirements="mcap>=1.2,<2 mcap-protobuf-support>=0.5,<1 protobuf>=4.25,<7 polars>=1.0,<2"
 stamp="$venv/.gc2d-requirements"
 
 python="${PYTHON:-python3}"

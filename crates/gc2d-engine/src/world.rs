@@ -396,6 +396,16 @@ impl World {
         Ok(())
     }
 
+    /// The unit normal of the touching pair {a, b} at the current poses, pointing from `b` into `a` (the direction of
+    /// the normal force on `a`), by the query the pair's contact model uses; `None` when they do not overlap. For
+    /// exports and diagnostics: it repeats a query the step made.
+    pub fn contact_normal(&self, a: BodyId, b: BodyId) -> Option<DVec2> {
+        let context =
+            PairContext { bodies: &self.bodies, interactions: &self.config.interactions, dt: self.config.time_step };
+        let (low, high) = if a.0 < b.0 { (a.0, b.0) } else { (b.0, a.0) };
+        context.contact_normal(low, high).map(|(i, _, n)| if i == a { n } else { -n })
+    }
+
     /// The particles that outlets removed on the last step, with how they came in (empty without outlets).
     pub fn transits(&self) -> &[Transit] {
         self.transits.last_step()

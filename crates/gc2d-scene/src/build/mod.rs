@@ -63,6 +63,8 @@ pub(crate) struct PlannedParticle {
 pub(crate) struct Built {
     pub world: World,
     pub summary: Summary,
+    /// The scene entry each body of the built World comes from, by body id ([`Scene::body_origins`]).
+    pub origins: Vec<String>,
 }
 
 impl Scene {
@@ -72,6 +74,14 @@ impl Scene {
     /// The same scene with the same seed gives a bitwise identical World.
     pub fn build(&self) -> Result<World, SceneError> {
         Ok(self.build_with_summary()?.world)
+    }
+
+    /// The scene entry each body of the built World comes from, by body id: `walls[0]` (with ` #k` for the k-th
+    /// piece of a wall macro that makes several), `particles[3]`, `blocks[1] #17` (the 17th particle of the block,
+    /// from 0), `mill.balls #4`, …: the names exports and messages give bodies. Bodies inserted later by sources and
+    /// inlets are not in the list (their ids follow it).
+    pub fn body_origins(&self) -> Result<Vec<String>, SceneError> {
+        Ok(self.build_with_summary()?.origins)
     }
 
     /// What the scene contains once built: counts of walls, particles and sources, materials, Δt and its bound.
@@ -280,7 +290,8 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
         end_time_s: scene.run.end_time_s,
         heap_bytes_at_start: world.heap_bytes(),
     };
-    Ok(Built { world, summary })
+    let paths = walls.iter().map(|w| w.path.as_str()).chain(particles.iter().map(|p| p.path.as_str()));
+    Ok(Built { world, summary, origins: numbered(paths) })
 }
 
 /// A note pointing at the scene entry whose particle sets the time-step bound.
@@ -434,4 +445,24 @@ fn planned_insertions(source: &Source, end_time: f64) -> u64 {
     }
     let span = (last - first) / source.interval_s;
     if span.is_finite() { span.floor() as u64 + u64::from(first < source.window_s[1]) } else { 0 }
+}
+
+/// Names for a list of entry paths: a path that occurs once as it is, one that occurs several times with ` #k`
+/// (k from 0, in order).
+fn numbered<'a>(paths: impl Iterator<Item = &'a str> + Clone) -> Vec<String> {
+    let mut counts: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    for path in paths.clone() {
+        *counts.entry(path).or_default() += 1;
+    }
+    let mut seen: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    paths
+        .map(|path| {
+            if counts[path] == 1 {
+                return path.to_owned();
+            }
+            let k = seen.entry(path).or_default();
+            *k += 1;
+            format!("{path} #{}", *k - 1)
+        })
+        .collect()
 }

@@ -1,0 +1,278 @@
+//! `gc2d-rs export RUN [--at T]`: the state of a run at one of its checkpoints as tables for pandas, polars, DuckDB
+//! and ParaView (docs/export.md): one row per particle and one per touching pair, as Parquet and CSV, and the
+//! particles' outlines as VTK (`.vtu` with a `.pvd` collection).
+
+pub mod rows;
+pub mod vtk;
+
+use crate::parquet_table::{NamedColumn, write_parquet};
+use gc2d_engine::World;
+use gc2d_scene::Scene;
+use rows::{ContactRow, ParticleRow, contact_rows, particle_rows};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The formats `export` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ExportFormat {
+    /// `particles.parquet` and `contacts.parquet`.
+    Parquet,
+    /// `particles.csv` and `contacts.csv`.
+    Csv,
+    /// `particles_<step>.vtu` and `particles.pvd`.
+    Vtk,
+}
+
+/// What `export` wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Exported {
+    /// The checkpoint exported and its time.
+    pub checkpoint: PathBuf,
+    /// Its simulated time, s.
+    pub time_s: f64,
+    /// Particles and contacts written.
+    pub particles: usize,
+    /// Touching pairs written.
+    pub contacts: usize,
+    /// The files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// The run's checkpoints (final.ckpt and checkpoints/checkpoint-<step>.ckpt) with their worlds' times, in time order.
+fn checkpoints(run: &Path) -> Result<Vec<(f64, PathBuf, World)>, String> {
+    let mut files = vec![run.join("final.ckpt")];
+    if let Ok(entries) = std::fs::read_dir(run.join("checkpoints")) {
+        files.extend(
+            entries.filter_map(Result::ok).map(|e| e.path()).filter(|p| p.extension().is_some_and(|e| e == "ckpt")),
+        );
+    }
+    let mut found = Vec::new();
+    for file in files.into_iter().filter(|f| f.is_file()) {
+        let world = World::load_checkpoint_file(&file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+        found.push((world.time(), file, world));
+    }
+    if found.is_empty() {
+        return Err(format!(
+            "{} holds no checkpoint (final.ckpt or checkpoints/*.ckpt): is it a run directory written by `gc2d-rs run`?",
+            run.display()
+        ));
+    }
+    found.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Ok(found)
+}
+
+/// The checkpoint to export: the last at or before `at` (within half a step), or the latest without `at`.
+fn choose(run: &Path, at: Option<f64>) -> Result<(f64, PathBuf, World), String> {
+    let mut all = checkpoints(run)?;
+    let Some(at) = at else { return Ok(all.pop().expect("not empty")) };
+    let times: Vec<String> = all.iter().map(|(t, _, _)| format!("{t}")).collect();
+    let index = all.iter().rposition(|(t, _, w)| *t <= at + 0.5 * w.time_step());
+    match index {
+        Some(i) => Ok(all.swap_remove(i)),
+        None => Err(format!(
+            "{} has no checkpoint at or before t = {at} s; its checkpoints are at {} s (write more with \
+             `run --checkpoint-every`)",
+            run.display(),
+            times.join(", ")
+        )),
+    }
+}
+
+/// Exports the state of the run `run` at `at` (default: its latest checkpoint) into `out` in `formats`.
+pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path) -> Result<Exported, String> {
+    if !run.is_dir() {
+        return Err(format!("{} is not a run directory", run.display()));
+    }
+    let (time_s, checkpoint, world) = choose(run, at)?;
+    // The scene as run names the materials and the bodies' origins; without it the names are left empty.
+    let scene = Scene::from_path(run.join("scene.ron")).ok();
+    let materials = scene.as_ref().map(Scene::material_names).unwrap_or_default();
+    let origins = scene.as_ref().and_then(|s| s.body_origins().ok());
+    let particles = particle_rows(&world, &materials, origins.as_deref());
+    let contacts = contact_rows(&world);
+    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let mut files = Vec::new();
+    let write = |files: &mut Vec<PathBuf>, name: &str, text: String| -> Result<(), String> {
+        let path = out.join(name);
+        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        files.push(path);
+        Ok(())
+    };
+    for format in formats {
+        match format {
+            ExportFormat::Csv => {
+                write(&mut files, "particles.csv", particles_csv(&particles))?;
+                write(&mut files, "contacts.csv", contacts_csv(&contacts, time_s))?;
+            }
+            ExportFormat::Vtk => {
+                let name = format!("particles_{}.vtu", world.steps());
+                write(&mut files, &name, vtk::particles_vtu(&world, &particles))?;
+                write(&mut files, "particles.pvd", vtk::collection(&[(time_s, Path::new(&name))]))?;
+            }
+            ExportFormat::Parquet => {
+                for (name, columns) in
+                    [("particles", particle_columns(&particles)), ("contacts", contact_columns(&contacts, time_s))]
+                {
+                    let path = out.join(format!("{name}.parquet"));
+                    write_parquet(name, &columns, &path)
+                        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                    files.push(path);
+                }
+            }
+        }
+    }
+    Ok(Exported { checkpoint, time_s, particles: particles.len(), contacts: contacts.len(), files })
+}
+
+/// Column names of the particle table, in order.
+pub const PARTICLE_COLUMNS: [&str; 18] = [
+    "time_s",
+    "id",
+    "origin",
+    "material",
+    "shape",
+    "corners",
+    "radius_m",
+    "x_m",
+    "y_m",
+    "phi_rad",
+    "vx_m_s",
+    "vy_m_s",
+    "omega_rad_s",
+    "fx_n",
+    "fy_n",
+    "torque_n_m",
+    "contacts",
+    "speed_m_s",
+];
+
+/// Column names of the contact table, in order.
+pub const CONTACT_COLUMNS: [&str; 16] = [
+    "time_s",
+    "a",
+    "b",
+    "kind_a",
+    "kind_b",
+    "x_m",
+    "y_m",
+    "normal_x",
+    "normal_y",
+    "normal_force_n",
+    "tangential_force_n",
+    "fx_on_a_n",
+    "fy_on_a_n",
+    "overlap_fraction",
+    "law",
+    "force_n",
+];
+
+fn particle_columns(rows: &[ParticleRow]) -> Vec<NamedColumn> {
+    let number = |name: &str, f: &dyn Fn(&ParticleRow) -> f64| NamedColumn::numbers(name, rows.iter().map(f));
+    let text = |name: &str, f: &dyn Fn(&ParticleRow) -> String| NamedColumn::texts(name, rows.iter().map(f));
+    let unsigned = |name: &str, f: &dyn Fn(&ParticleRow) -> u64| NamedColumn::unsigned(name, rows.iter().map(f));
+    vec![
+        number("time_s", &|r| r.state.time_s),
+        unsigned("id", &|r| u64::from(r.state.id)),
+        text("origin", &|r| r.origin.clone()),
+        text("material", &|r| r.state.material.clone()),
+        text("shape", &|r| r.state.shape.name().to_owned()),
+        unsigned("corners", &|r| r.corners as u64),
+        number("radius_m", &|r| r.radius_m),
+        number("x_m", &|r| r.state.x_m),
+        number("y_m", &|r| r.state.y_m),
+        number("phi_rad", &|r| r.state.phi_rad),
+        number("vx_m_s", &|r| r.state.vx_m_s),
+        number("vy_m_s", &|r| r.state.vy_m_s),
+        number("omega_rad_s", &|r| r.state.omega_rad_s),
+        number("fx_n", &|r| r.state.fx_n),
+        number("fy_n", &|r| r.state.fy_n),
+        number("torque_n_m", &|r| r.state.torque_n_m),
+        unsigned("contacts", &|r| u64::from(r.state.contacts)),
+        number("speed_m_s", &|r| r.state.speed()),
+    ]
+}
+
+fn contact_columns(rows: &[ContactRow], time_s: f64) -> Vec<NamedColumn> {
+    let number = |name: &str, f: &dyn Fn(&ContactRow) -> f64| NamedColumn::numbers(name, rows.iter().map(f));
+    let text = |name: &str, f: &dyn Fn(&ContactRow) -> String| NamedColumn::texts(name, rows.iter().map(f));
+    let unsigned = |name: &str, f: &dyn Fn(&ContactRow) -> u64| NamedColumn::unsigned(name, rows.iter().map(f));
+    vec![
+        number("time_s", &|_| time_s),
+        unsigned("a", &|r| u64::from(r.a)),
+        unsigned("b", &|r| u64::from(r.b)),
+        text("kind_a", &|r| r.kind_a.to_owned()),
+        text("kind_b", &|r| r.kind_b.to_owned()),
+        number("x_m", &|r| r.point.x),
+        number("y_m", &|r| r.point.y),
+        number("normal_x", &|r| r.normal.x),
+        number("normal_y", &|r| r.normal.y),
+        number("normal_force_n", &|r| r.normal_force_n),
+        number("tangential_force_n", &|r| r.tangential_force_n),
+        number("fx_on_a_n", &|r| r.force_on_a.x),
+        number("fy_on_a_n", &|r| r.force_on_a.y),
+        number("overlap_fraction", &|r| r.overlap_fraction),
+        text("law", &|r| r.law.to_owned()),
+        number("force_n", &|r| r.force_on_a.length()),
+    ]
+}
+
+/// A CSV field: as it is, or quoted when it holds a comma, a quote or a line break.
+fn field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) { format!("\"{}\"", text.replace('"', "\"\"")) } else { text.to_owned() }
+}
+
+fn particles_csv(rows: &[ParticleRow]) -> String {
+    let mut csv = format!("{}\n", PARTICLE_COLUMNS.join(","));
+    for r in rows {
+        let s = &r.state;
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e}",
+            s.time_s,
+            s.id,
+            field(&r.origin),
+            field(&s.material),
+            s.shape.name(),
+            r.corners,
+            r.radius_m,
+            s.x_m,
+            s.y_m,
+            s.phi_rad,
+            s.vx_m_s,
+            s.vy_m_s,
+            s.omega_rad_s,
+            s.fx_n,
+            s.fy_n,
+            s.torque_n_m,
+            s.contacts,
+            s.speed()
+        );
+    }
+    csv
+}
+
+fn contacts_csv(rows: &[ContactRow], time_s: f64) -> String {
+    let mut csv = format!("{}\n", CONTACT_COLUMNS.join(","));
+    for r in rows {
+        let _ = writeln!(
+            csv,
+            "{time_s},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e}",
+            r.a,
+            r.b,
+            r.kind_a,
+            r.kind_b,
+            r.point.x,
+            r.point.y,
+            r.normal.x,
+            r.normal.y,
+            r.normal_force_n,
+            r.tangential_force_n,
+            r.force_on_a.x,
+            r.force_on_a.y,
+            r.overlap_fraction,
+            r.law,
+            r.force_on_a.length()
+        );
+    }
+    csv
+}

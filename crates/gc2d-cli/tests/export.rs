@@ -1,0 +1,183 @@
+//! `gc2d-rs export` (issue 16 item 1): the particle and contact tables against the World's own state, read back from
+//! CSV, from Parquet with the parquet crate's reader and with polars in the project's venv (the docs' example), the
+//! VTK files' structure, and located refusals.
+
+use assert_cmd::Command;
+use gc2d_engine::World;
+use parquet::file::reader::{FileReader, SerializedFileReader};
+use parquet::record::RowAccessor;
+use std::path::{Path, PathBuf};
+
+/// Disks of two materials and 7-gons dropped into a box: they touch the floor and each other within 0.15 s.
+const SCENE: &str = r#"Scene(
+    run: (end_time_s: 0.15, checkpoint_interval_s: 0.05),
+    materials: [(name: "glass", density_kg_m2: 2500), (name: "sand", density_kg_m2: 2600)],
+    walls: [Box(x_range_m: (-0.03, 0.03), y_range_m: (0.0, 0.08), thickness_m: 0.005)],
+    blocks: [
+        (x_range_m: (-0.02, 0.02), y_range_m: (0.005, 0.02), grid_spacing_m: (0.0085, 0.0085),
+         shape: (semi_axes_m: (0.004, 0.004), disk: true), material: "glass"),
+        (x_range_m: (-0.02, 0.02), y_range_m: (0.03, 0.04), grid_spacing_m: (0.0095, 0.0095),
+         shape: (semi_axes_m: (0.004, 0.004), corners: 7), material: "sand"),
+    ],
+)"#;
+
+fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// A finished run of [`SCENE`] in a fresh folder.
+fn run() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("drop.ron");
+    std::fs::write(&scene, SCENE).unwrap();
+    let out = dir.path().join("run");
+    Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .arg("run")
+        .arg(&scene)
+        .arg("--quiet")
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    (dir, out)
+}
+
+fn csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(str::to_owned).collect();
+    (header, lines.map(|l| l.split(',').map(str::to_owned).collect()).collect())
+}
+
+#[test]
+fn exported_rows_are_the_worlds_state_in_every_format() {
+    let (_dir, run_dir) = run();
+    Command::cargo_bin("gc2d-rs").unwrap().args(["export", run_dir.to_str().unwrap()]).assert().success();
+    let export = run_dir.join("export");
+    let world = World::load_checkpoint_file(run_dir.join("final.ckpt")).unwrap();
+    let bodies = world.bodies();
+
+    // Particles: every living particle once, in id order, with its state bit for bit (CSV floats round-trip).
+    let (header, rows) = csv(&export.join("particles.csv"));
+    assert_eq!(header, gc2d_cli::export::PARTICLE_COLUMNS);
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let ids: Vec<u32> = bodies.particles().map(|id| id.0).collect();
+    assert_eq!(rows.len(), ids.len());
+    for (row, &id) in rows.iter().zip(&ids) {
+        let i = id as usize;
+        assert_eq!(row[column("id")].parse::<u32>().unwrap(), id);
+        let value = |name: &str| row[column(name)].parse::<f64>().unwrap();
+        assert_eq!(value("x_m"), bodies.pose[i].position.x);
+        assert_eq!(value("y_m"), bodies.pose[i].position.y);
+        assert_eq!(value("vy_m_s"), bodies.velocity[i].y);
+        assert_eq!(value("fx_n"), bodies.force[i].x);
+        assert_eq!(value("torque_n_m"), bodies.torque[i]);
+        let (material, shape, origin) = (&row[column("material")], &row[column("shape")], &row[column("origin")]);
+        if shape == "disk" {
+            assert_eq!((material.as_str(), origin.starts_with("blocks[0] #")), ("glass", true), "{row:?}");
+        } else {
+            assert_eq!((material.as_str(), origin.starts_with("blocks[1] #")), ("sand", true), "{row:?}");
+            assert_eq!(row[column("corners")], "7");
+        }
+    }
+
+    // Contacts: every touching pair, its force split along the normal and the tangent.
+    let (header, rows) = csv(&export.join("contacts.csv"));
+    assert_eq!(header, gc2d_cli::export::CONTACT_COLUMNS);
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let pairs: Vec<_> = world.contacts().collect();
+    assert!(pairs.len() > 10, "the drop makes contacts: {}", pairs.len());
+    assert_eq!(rows.len(), pairs.len());
+    for (row, (a, b, contact)) in rows.iter().zip(&pairs) {
+        let value = |name: &str| row[column(name)].parse::<f64>().unwrap();
+        assert_eq!((value("a") as u32, value("b") as u32), (a.0, b.0));
+        assert_eq!((value("fx_on_a_n"), value("fy_on_a_n")), (contact.force_on_a.x, contact.force_on_a.y));
+        let normal = world.contact_normal(*a, *b).unwrap();
+        assert!((normal.length() - 1.0).abs() < 1e-12);
+        let (fn_, ft) = (value("normal_force_n"), value("tangential_force_n"));
+        assert!((fn_.hypot(ft) - contact.force_on_a.length()).abs() <= 1e-9 * contact.force_on_a.length());
+        assert!(fn_ > 0.0, "a soft contact pushes the bodies apart: {row:?}");
+        assert_eq!(value("overlap_fraction"), contact.overlap_fraction);
+    }
+
+    // Parquet: the same rows, read with the parquet crate's own reader.
+    for (name, count, columns) in [
+        ("particles", ids.len(), gc2d_cli::export::PARTICLE_COLUMNS.len()),
+        ("contacts", pairs.len(), gc2d_cli::export::CONTACT_COLUMNS.len()),
+    ] {
+        let reader =
+            SerializedFileReader::new(std::fs::File::open(export.join(format!("{name}.parquet"))).unwrap()).unwrap();
+        let metadata = reader.metadata().file_metadata();
+        assert_eq!(metadata.num_rows() as usize, count, "{name}");
+        assert_eq!(metadata.schema_descr().num_columns(), columns, "{name}");
+    }
+    let reader = SerializedFileReader::new(std::fs::File::open(export.join("particles.parquet")).unwrap()).unwrap();
+    let first = reader.get_row_iter(None).unwrap().next().unwrap().unwrap();
+    assert_eq!(first.get_ulong(1).unwrap(), u64::from(ids[0]));
+    assert_eq!(first.get_double(7).unwrap(), bodies.pose[ids[0] as usize].position.x);
+
+    // VTK: one polygon cell per particle with its outline's corners (a disk traced with 48), and a collection.
+    let vtu_name = format!("particles_{}.vtu", world.steps());
+    let vtu = std::fs::read_to_string(export.join(&vtu_name)).unwrap();
+    let corners: usize =
+        ids.iter().map(|&id| if bodies.shape[id as usize] == gc2d_engine::ShapeKind::Disk { 48 } else { 7 }).sum();
+    assert!(vtu.contains(&format!(r#"NumberOfPoints="{corners}" NumberOfCells="{}""#, ids.len())), "{}", &vtu[..300]);
+    let pvd = std::fs::read_to_string(export.join("particles.pvd")).unwrap();
+    assert!(pvd.contains(&format!(r#"file="{vtu_name}""#)), "{pvd}");
+}
+
+#[test]
+fn the_python_example_of_the_docs_reads_the_export() {
+    // The docs show docs/examples/export_summary.py verbatim.
+    let example = std::fs::read_to_string(repo_root().join("docs/examples/export_summary.py")).unwrap();
+    let docs = std::fs::read_to_string(repo_root().join("docs/export.md")).unwrap();
+    assert!(docs.contains(&format!("```python\n{example}```")), "docs/export.md must show the example verbatim");
+    if std::process::Command::new("python3").arg("--version").output().is_err() {
+        eprintln!("SKIPPED: python3 is not installed, so the export cannot be read by polars");
+        return;
+    }
+    let setup = std::process::Command::new("bash").arg(repo_root().join("tools/setup-python.sh")).output().unwrap();
+    assert!(setup.status.success(), "setup-python.sh failed: {}", String::from_utf8_lossy(&setup.stderr));
+    let python = String::from_utf8(setup.stdout).unwrap().lines().last().unwrap().trim().to_string();
+    let (_dir, run_dir) = run();
+    Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .args(["export", run_dir.to_str().unwrap(), "--format", "parquet"])
+        .assert()
+        .success();
+    let output = std::process::Command::new(python)
+        .arg(repo_root().join("docs/examples/export_summary.py"))
+        .current_dir(&run_dir)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{stdout}{}", String::from_utf8_lossy(&output.stderr));
+    let world = World::load_checkpoint_file(run_dir.join("final.ckpt")).unwrap();
+    let glass = world
+        .bodies()
+        .particles()
+        .filter(|id| world.bodies().shape[id.index()] == gc2d_engine::ShapeKind::Disk)
+        .count();
+    let glass_line = stdout.lines().find(|l| l.contains("glass")).unwrap_or_else(|| panic!("{stdout}"));
+    assert!(glass_line.contains(&format!("│ {glass} ")) || glass_line.contains(&format!(" {glass} ")), "{stdout}");
+    assert!(stdout.contains("mean normal force:"), "{stdout}");
+}
+
+#[test]
+fn refusals_name_the_problem() {
+    let dir = tempfile::tempdir().unwrap();
+    let failure = |args: &[&str]| {
+        let assert = Command::cargo_bin("gc2d-rs").unwrap().args(args).assert().failure();
+        String::from_utf8_lossy(&assert.get_output().stderr).to_string()
+    };
+    let not_a_run = failure(&["export", dir.path().to_str().unwrap()]);
+    assert!(not_a_run.contains("holds no checkpoint"), "{not_a_run}");
+    let (_keep, run_dir) = run();
+    let too_early = failure(&["export", run_dir.to_str().unwrap(), "--at=-1"]);
+    assert!(too_early.contains("no checkpoint at or before t = -1 s") && too_early.contains("0.05"), "{too_early}");
+    let blocked = dir.path().join("file");
+    std::fs::write(&blocked, "").unwrap();
+    let unwritable = failure(&["export", run_dir.to_str().unwrap(), "--out", blocked.join("x").to_str().unwrap()]);
+    assert!(unwritable.contains("cannot create"), "{unwritable}");
+}
