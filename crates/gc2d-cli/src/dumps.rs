@@ -1,5 +1,7 @@
-//! `gc2d-rs run --dump-every T`: the state of every living particle every T of simulated time, one CSV per dump in
-//! `<out>/dumps/particles_<k>.csv` (the rows and the file format are gc2d-analysis's [`particle_state`]).
+//! `gc2d-rs run --dump-every T`: the state of every living particle every T of simulated time, one file per dump and
+//! format in `<out>/dumps/`: `particles_<k>.csv` (the rows and the file format are gc2d-analysis's
+//! [`particle_state`]), with `--dump-format` also `particles_<k>.parquet` (the export's particle table) and
+//! `particles_<k>.vtu` with the collection `particles.pvd` listing every dump's `.vtu` at its nominal time k·T.
 //!
 //! Dump k is written at the first step at or after k·T (within half a step): the same files, byte for byte, for any
 //! thread count and for a run split by a checkpoint, whose resumed part rewrites the dumps the stopped part wrote
@@ -7,6 +9,9 @@
 //!
 //! [`particle_state`]: gc2d_analysis::particle_state
 
+use crate::export::rows::particle_rows;
+use crate::export::{ExportFormat, particle_columns, vtk};
+use crate::parquet_table::write_parquet;
 use crate::runner::FrameSink;
 use gc2d_analysis::particle_state::csv::{DUMPS_DIR, dump_file_name, write_csv};
 use gc2d_analysis::particle_states;
@@ -19,12 +24,54 @@ pub struct StateDumps {
     dir: PathBuf,
     interval: f64,
     materials: Vec<String>,
+    formats: Vec<ExportFormat>,
 }
 
 impl StateDumps {
-    /// Dumps into `<out>/dumps/` every `interval` s; `materials` names the material ids.
-    pub fn new(out: &Path, interval: f64, materials: Vec<String>) -> Self {
-        Self { dir: out.join(DUMPS_DIR), interval, materials }
+    /// Dumps into `<out>/dumps/` every `interval` s in `formats`; `materials` names the material ids.
+    pub fn new(out: &Path, interval: f64, materials: Vec<String>, formats: Vec<ExportFormat>) -> Self {
+        Self { dir: out.join(DUMPS_DIR), interval, materials, formats }
+    }
+
+    /// Writes dump `index` of `world` in the format `format`.
+    fn write(&self, world: &World, index: u64, format: ExportFormat) -> Result<(), String> {
+        let name = dump_file_name(index);
+        let path = match format {
+            ExportFormat::Csv => self.dir.join(&name),
+            ExportFormat::Parquet => self.dir.join(&name).with_extension("parquet"),
+            ExportFormat::Vtk => self.dir.join(&name).with_extension("vtu"),
+        };
+        let failed = |e: &dyn std::fmt::Display| format!("cannot write {}: {e}", path.display());
+        match format {
+            ExportFormat::Csv => {
+                let write = || -> std::io::Result<()> {
+                    let mut file = BufWriter::new(std::fs::File::create(&path)?);
+                    write_csv(&particle_states(world, &self.materials), &mut file)?;
+                    file.flush()
+                };
+                write().map_err(|e| failed(&e))
+            }
+            ExportFormat::Parquet => {
+                let rows = particle_rows(world, &self.materials, None);
+                write_parquet("particles", &particle_columns(&rows), &path).map_err(|e| failed(&e))
+            }
+            ExportFormat::Vtk => {
+                let rows = particle_rows(world, &self.materials, None);
+                std::fs::write(&path, vtk::particles_vtu(world, &rows)).map_err(|e| failed(&e))?;
+                self.write_collection(index)
+            }
+        }
+    }
+
+    /// Rewrites `particles.pvd` with every dump's `.vtu` up to `last` that exists, at its nominal time k·T.
+    fn write_collection(&self, last: u64) -> Result<(), String> {
+        let names: Vec<(f64, PathBuf)> = (0..=last)
+            .map(|k| (k as f64 * self.interval, PathBuf::from(dump_file_name(k)).with_extension("vtu")))
+            .filter(|(_, name)| self.dir.join(name).is_file())
+            .collect();
+        let entries: Vec<(f64, &Path)> = names.iter().map(|(t, name)| (*t, name.as_path())).collect();
+        let path = self.dir.join("particles.pvd");
+        std::fs::write(&path, vtk::collection(&entries)).map_err(|e| format!("cannot write {}: {e}", path.display()))
     }
 
     /// The index of the last dump time reached at the World's time: ⌊(t + Δt/2)/T⌋.
@@ -40,12 +87,7 @@ impl FrameSink for StateDumps {
 
     fn take(&mut self, world: &World) -> Result<(), String> {
         std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
-        let path = self.dir.join(dump_file_name(self.index(world)));
-        let write = || -> std::io::Result<()> {
-            let mut file = BufWriter::new(std::fs::File::create(&path)?);
-            write_csv(&particle_states(world, &self.materials), &mut file)?;
-            file.flush()
-        };
-        write().map_err(|e| format!("cannot write {}: {e}", path.display()))
+        let index = self.index(world);
+        self.formats.iter().try_for_each(|&format| self.write(world, index, format))
     }
 }

@@ -207,6 +207,10 @@ struct RunArgs {
     /// its frames_per_second, other scenes none].
     #[arg(long)]
     dump_every: Option<f64>,
+    /// The formats of the dumps: csv (what `analyze` reads), parquet (the export's particle table) and vtk (.vtu per
+    /// dump with dumps/particles.pvd for ParaView); docs/export.md.
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [ExportFormat::Csv])]
+    dump_format: Vec<ExportFormat>,
     /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/).
     #[arg(long)]
     png_every: Option<f64>,
@@ -413,7 +417,8 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     let mill = scene.mill.is_some();
     let dumps_by_default = mill || scene.fluid.is_some();
     let dump_interval = args.dump_every.unwrap_or(if dumps_by_default { frame_interval } else { 0.0 });
-    let mut dumps = (dump_interval > 0.0).then(|| StateDumps::new(&out, dump_interval, scene.material_names()));
+    let mut dumps = (dump_interval > 0.0)
+        .then(|| StateDumps::new(&out, dump_interval, scene.material_names(), args.dump_format.clone()));
     let mut events = if args.events || (mill && !args.no_events) {
         Some(start_events(&out, &scene, &mut world, args.resume.is_some(), frame_interval)?)
     } else {

@@ -138,3 +138,48 @@ fn dumps_and_events_can_be_switched_off_for_a_mill_and_on_for_any_scene() {
     let world = World::load_checkpoint_file(plain.join("final.ckpt")).unwrap();
     assert_eq!(rows.len(), world.bodies().particles().count());
 }
+
+/// Every file of a run's dumps folder, name and bytes, in order.
+fn dump_bytes(out: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(out.join("dumps"))
+        .unwrap()
+        .map(|e| e.unwrap())
+        .map(|e| (e.file_name().into_string().unwrap(), std::fs::read(e.path()).unwrap()))
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn parquet_and_vtk_dumps_with_their_collection_are_the_same_for_any_thread_count_and_across_a_resume() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = small_mill(dir.path());
+    let formats = ["--dump-format", "csv,parquet,vtk"];
+    let one = dir.path().join("one");
+    run(&scene, &one, "0.01", &[&["--threads", "1"][..], &formats[..]].concat());
+    let files = dump_bytes(&one);
+    let names: Vec<&str> = files.iter().map(|f| f.0.as_str()).collect();
+    for k in 0..=5 {
+        for extension in ["csv", "parquet", "vtu"] {
+            assert!(names.contains(&format!("particles_{k:06}.{extension}").as_str()), "{names:?}");
+        }
+    }
+    let pvd = String::from_utf8(files.iter().find(|f| f.0 == "particles.pvd").unwrap().1.clone()).unwrap();
+    assert_eq!(pvd.matches("<DataSet ").count(), 6, "{pvd}");
+    assert!(pvd.contains(r#"timestep="1e-2" group="" part="0" file="particles_000005.vtu""#), "{pvd}");
+    let two = dir.path().join("two");
+    run(&scene, &two, "0.01", &[&["--threads", "2"][..], &formats[..]].concat());
+    assert!(dump_bytes(&two) == files, "dumps differ between one and two threads");
+    let split = dir.path().join("split");
+    run(&scene, &split, "0.004", &formats);
+    let resumed = gc2d()
+        .arg("run")
+        .arg(&scene)
+        .args(["--quiet", "--until", "0.01", "--resume"])
+        .arg(&split)
+        .args(formats)
+        .output()
+        .unwrap();
+    assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
+    assert!(dump_bytes(&split) == files, "dumps differ across a resume");
+}

@@ -166,7 +166,8 @@ pub const CONTACT_COLUMNS: [&str; 16] = [
     "force_n",
 ];
 
-fn particle_columns(rows: &[ParticleRow]) -> Vec<NamedColumn> {
+/// The Parquet columns of particle rows, in [`PARTICLE_COLUMNS`] order.
+pub fn particle_columns(rows: &[ParticleRow]) -> Vec<NamedColumn> {
     let number = |name: &str, f: &dyn Fn(&ParticleRow) -> f64| NamedColumn::numbers(name, rows.iter().map(f));
     let text = |name: &str, f: &dyn Fn(&ParticleRow) -> String| NamedColumn::texts(name, rows.iter().map(f));
     let unsigned = |name: &str, f: &dyn Fn(&ParticleRow) -> u64| NamedColumn::unsigned(name, rows.iter().map(f));
