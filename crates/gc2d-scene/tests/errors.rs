@@ -131,7 +131,7 @@ fn time_steps_above_the_bound_name_the_limiting_particle() {
 fn overlapping_initial_particles_are_refused() {
     let text = "Scene(\n    particles: [\n        (shape: Square(side_m: 0.01)),\n        (shape: Square(side_m: 0.01), position_m: (0.008, 0)),\n    ],\n)";
     let error = check("overlap", text, ErrorKind::Overlap, "particles[1]", (4, 9));
-    assert!(error.message().contains("20.0 %"), "{}", error.message());
+    assert!(error.message().contains("20.00 %"), "{}", error.message());
 }
 
 #[test]

@@ -177,7 +177,10 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
         .map(|w| PlacedBody { shape: &w.shape, pose: w.pose, is_wall: true, path: &w.path })
         .chain(particles.iter().map(|p| PlacedBody { shape: &p.shape, pose: p.pose, is_wall: false, path: &p.path }))
         .collect();
-    if let Some(error) = SceneError::combine(safety::overlap_errors(&placed, scene.run.max_overlap_fraction)) {
+    // The rule the engine applies before its first step (`SafetyLimits::max_initial_overlap_fraction`), so that a
+    // scene `check` passes is never refused by `run` for its start.
+    let initial_tolerance = SafetyLimits::default().max_initial_overlap_fraction;
+    if let Some(error) = SceneError::combine(safety::overlap_errors(&placed, initial_tolerance)) {
         return Err(error);
     }
 

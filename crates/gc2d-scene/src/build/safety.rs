@@ -202,6 +202,11 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
     errors
 }
 
+/// A percentage to two decimals, or to three significant digits below 0.01 %.
+fn percent(p: f64) -> String {
+    if p >= 0.01 { format!("{p:.2}") } else { format!("{p:.2e}") }
+}
+
 fn overlap_error(a: &PlacedBody, b: &PlacedBody, at: DVec2, fraction: f64, limit: f64) -> SceneError {
     let what = if a.is_wall || b.is_wall { "a particle and a wall" } else { "two particles" };
     let other = if a.path == b.path { "another body of the same entry".to_owned() } else { format!("`{}`", a.path) };
@@ -209,17 +214,17 @@ fn overlap_error(a: &PlacedBody, b: &PlacedBody, at: DVec2, fraction: f64, limit
         ErrorKind::Overlap,
         b.path,
         format!(
-            "{what} overlap by {:.1} % of the smaller particle's area at ({:.4}, {:.4}) m (limit {:.1} %); the other \
-             body is {other}",
-            100.0 * fraction,
+            "{what} overlap by {} % of the smaller particle's area at ({:.4}, {:.4}) m; the other body is {other}. \
+             Bodies must not overlap at the start beyond round-off ({} of the smaller area): the run would refuse \
+             them before its first step, since an overlap at the start has no place in the energy ledger and its \
+             damping would kick the bodies apart",
+            percent(100.0 * fraction),
             at.x,
             at.y,
-            100.0 * limit
+            crate::checks::number(limit)
         ),
     )
-    .with_help(
-        "move them apart (for blocks: a larger grid spacing or smaller particles), or raise `run.max_overlap_fraction`",
-    )
+    .with_help("move them apart (for blocks: a larger grid spacing or smaller particles)")
     .with_label("overlaps")
 }
 
@@ -262,7 +267,7 @@ mod tests {
         let bodies = [body(&big, 0.0, false, "a"), body(&small, 0.014, false, "b")];
         let errors = overlap_errors(&bodies, 0.05);
         assert_eq!(errors.len(), 1);
-        assert!(errors[0].message().contains("10.0 %"), "{}", errors[0].message());
+        assert!(errors[0].message().contains("10.00 %"), "{}", errors[0].message());
         assert!(overlap_errors(&bodies, 0.11).is_empty());
         // Walls never count against each other.
         let walls = [body(&big, 0.0, true, "a"), body(&small, 0.014, true, "b")];
