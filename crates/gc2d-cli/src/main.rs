@@ -452,9 +452,12 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         sinks.push(p);
     }
     let started = Instant::now();
-    let RunOutcome { status, chatter } = pool.install(|| {
+    let RunOutcome { mut status, chatter, failed_bodies } = pool.install(|| {
         run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet, earlier_chatter)
     });
+    if let RunStatus::Failed(message) = &mut status {
+        message.push_str(&body_names(&scene, &failed_bodies));
+    }
     drop(sinks);
     if let Some(l) = live {
         l.stop();
@@ -534,6 +537,23 @@ fn start_events(
         EventsWriter::create(&path, names, flush_interval)
     };
     writer.map_err(|e| Failure::input(format!("cannot write {}: {e}", path.display())))
+}
+
+/// The scene's names of `bodies` (ids an engine error named), as a sentence to append to its message: `walls[0]`,
+/// `blocks[1] #17`, or a particle a source or inlet inserted; empty when there are none.
+fn body_names(scene: &Scene, bodies: &[u32]) -> String {
+    if bodies.is_empty() {
+        return String::new();
+    }
+    let origins = scene.body_origins().unwrap_or_default();
+    let names: Vec<String> = bodies
+        .iter()
+        .map(|&id| match origins.get(id as usize) {
+            Some(origin) => format!("body {id} is `{origin}`"),
+            None => format!("body {id} was inserted during the run by a source or an inlet"),
+        })
+        .collect();
+    format!(" ({})", names.join(", "))
 }
 
 /// Opens `transits.csv` (continued on a resumed run that has one).

@@ -76,6 +76,9 @@ pub struct RunOutcome {
     /// The force-alternation windows of the whole run: this process's (warned once on stderr when they exceeded the
     /// threshold) and the earlier processes' largest.
     pub chatter: ChatterSummary,
+    /// The bodies the engine's error named when the run failed in a step (by id), for the caller to name them as
+    /// the scene does; empty otherwise.
+    pub failed_bodies: Vec<u32>,
 }
 
 /// Steps `world` until `end_time`, appending a row to `series` every `series_interval` of simulated time and
@@ -103,6 +106,7 @@ pub fn run_to(
             Cadence { sink: &mut **sink, ticks }
         })
         .collect();
+    let mut failed_bodies = Vec::new();
     let status = loop {
         if rows.due(world.time(), slack) {
             if let Err(e) = series.append(world) {
@@ -120,6 +124,7 @@ pub fn run_to(
             break RunStatus::Interrupted;
         }
         if let Err(e) = world.step() {
+            failed_bodies = e.bodies();
             break RunStatus::Failed(e.to_string());
         }
         if let Some(message) = cadences.iter_mut().find_map(|c| c.sink.after_step(world).err()) {
@@ -141,7 +146,7 @@ pub fn run_to(
         failed => failed,
     };
     progress.finish(&status);
-    RunOutcome { status, chatter: chatter.summary() }
+    RunOutcome { status, chatter: chatter.summary(), failed_bodies }
 }
 
 /// The progress bar: simulated time, steps/s, contacts and ETA; hidden when stderr is not a terminal.

@@ -174,6 +174,18 @@ pub enum SafetyError {
     },
 }
 
+impl SafetyError {
+    /// The bodies the error names, by id (for a front end that knows the scene's names for them).
+    pub fn bodies(&self) -> Vec<u32> {
+        match *self {
+            SafetyError::UnsafeTimeStep { particle, .. } => vec![particle],
+            SafetyError::NotFinite { body, .. } | SafetyError::ExcessiveTravel { body, .. } => vec![body],
+            SafetyError::ExcessiveOverlap { a, b, .. } | SafetyError::InitialOverlap { a, b, .. } => vec![a, b],
+            SafetyError::EnergyJump { .. } => Vec::new(),
+        }
+    }
+}
+
 /// The particle whose time-step bound is the lowest, and that bound.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TimeStepBound {

@@ -74,6 +74,16 @@ pub enum WorldError {
     FluidOutside(#[from] gc2d_fluid::OutsideField),
 }
 
+impl WorldError {
+    /// The bodies the error names, by id: a safety error's bodies, none otherwise.
+    pub fn bodies(&self) -> Vec<u32> {
+        match self {
+            WorldError::Safety(error) => error.bodies(),
+            _ => Vec::new(),
+        }
+    }
+}
+
 /// A wall that moves, with the pose it moves from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct MovingWall {

@@ -105,11 +105,27 @@ impl Scene {
 
     pub(crate) fn build_with_summary(&self) -> Result<Built, SceneError> {
         self.validate()?;
-        build(self).map_err(|e| e.located(self.source.as_ref()))
+        build(self, StartOverlaps::Refuse).map_err(|e| e.located(self.source.as_ref()))
+    }
+
+    /// The summary of the scene built without the start-overlap check: for the gsi importer, which needs the
+    /// time-step bound of a scene whose bodies may overlap (and then reports the overlap on loading it back).
+    pub(crate) fn summary_ignoring_start_overlaps(&self) -> Result<Summary, SceneError> {
+        self.validate()?;
+        Ok(build(self, StartOverlaps::Ignore).map_err(|e| e.located(self.source.as_ref()))?.summary)
     }
 }
 
-fn build(scene: &Scene) -> Result<Built, SceneError> {
+/// Whether the build refuses bodies that overlap at the start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum StartOverlaps {
+    /// As the engine would before its first step.
+    Refuse,
+    /// Not checked (the World is then not runnable; only its summary is used).
+    Ignore,
+}
+
+fn build(scene: &Scene, start_overlaps: StartOverlaps) -> Result<Built, SceneError> {
     let materials = Materials::of(scene);
     let table = interactions::interaction_table(scene, &materials)?;
     let models = table.models_per_material();
@@ -180,7 +196,9 @@ fn build(scene: &Scene) -> Result<Built, SceneError> {
     // The rule the engine applies before its first step (`SafetyLimits::max_initial_overlap_fraction`), so that a
     // scene `check` passes is never refused by `run` for its start.
     let initial_tolerance = SafetyLimits::default().max_initial_overlap_fraction;
-    if let Some(error) = SceneError::combine(safety::overlap_errors(&placed, initial_tolerance)) {
+    if start_overlaps == StartOverlaps::Refuse
+        && let Some(error) = SceneError::combine(safety::overlap_errors(&placed, initial_tolerance))
+    {
         return Err(error);
     }
 

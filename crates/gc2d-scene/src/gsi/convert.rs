@@ -145,9 +145,9 @@ impl Converter {
     /// not as a time step above the bound. A scene that does not build for other reasons keeps `DELTA_T`: loading it
     /// reports those reasons.
     fn fit_time_step(&mut self, scene: &mut Scene, time_step: &Sourced<f64>) {
-        let run = Run { time_step_s: None, max_overlap_fraction: f64::MAX, ..scene.run.clone() };
+        let run = Run { time_step_s: None, ..scene.run.clone() };
         let automatic = Scene { run, ..scene.clone() };
-        let Ok(summary) = automatic.summary() else { return };
+        let Ok(summary) = automatic.summary_ignoring_start_overlaps() else { return };
         let Some(bound) = summary.refusal_time_step_s else { return };
         if time_step.value > bound {
             let consequence = format!(
