@@ -335,52 +335,63 @@ pub fn stable_time_step(
     max_impact_speed: f64,
 ) -> Option<TimeStepBound> {
     let models = interactions.models_per_material();
-    bodies
-        .particles()
-        .filter_map(|id| {
-            let i = id.index();
-            let scale = bodies.pose[i].scale;
-            let inertia = ParticleInertia {
-                inscribed_radius: bodies.inscribed_radius[i] * scale,
-                area_density: bodies.mass[i] / bodies.area[i],
-                mass: bodies.mass[i],
-                inertia: 1.0 / bodies.inverse_inertia[i],
-                contact_radius: bodies.contact_radius(i),
-                reach: bodies.reach[i] * scale,
-                flat_contact_ratio: match bodies.shape[i] {
-                    ShapeKind::Polygon => {
-                        flat_contact_ratio(&bodies.body_vertices[bodies.vertices[i].range()], DVec2::ZERO)
-                    }
-                    _ => 0.0,
-                },
-            };
-            let models = models[bodies.material[i].index()].iter().copied();
-            particle_time_steps(models, &inertia, max_impact_speed).map(|bounds| TimeStepBound {
-                dt: bounds.stable,
-                particle: id,
-                refusal: bounds.reference,
-            })
-        })
-        .reduce(|x, y| {
-            let refusal = x.refusal.min(y.refusal);
-            let limiting = if y.dt.total_cmp(&x.dt).then(y.particle.cmp(&x.particle)).is_lt() { y } else { x };
-            TimeStepBound { refusal, ..limiting }
-        })
+    bodies.particles().filter_map(|id| particle_bound(bodies, &models, id, max_impact_speed)).reduce(|x, y| {
+        let refusal = x.refusal.min(y.refusal);
+        let limiting = if y.dt.total_cmp(&x.dt).then(y.particle.cmp(&x.particle)).is_lt() { y } else { x };
+        TimeStepBound { refusal, ..limiting }
+    })
 }
 
-/// Refuses `dt` above the refusal bound (the §3.6 bound, [`TimeStepBound::refusal`]) unless `limits` allow it;
-/// the error offers the stable bound.
-pub fn check_time_step(
+/// The time-step bound of particle `id` against the contact models its material meets (`models`, by material, as
+/// [`InteractionTable::models_per_material`] gives them); `None` when it meets none.
+fn particle_bound(
+    bodies: &Bodies,
+    models: &[Vec<&ContactModel>],
+    id: BodyId,
+    max_impact_speed: f64,
+) -> Option<TimeStepBound> {
+    let i = id.index();
+    let scale = bodies.pose[i].scale;
+    let inertia = ParticleInertia {
+        inscribed_radius: bodies.inscribed_radius[i] * scale,
+        area_density: bodies.mass[i] / bodies.area[i],
+        mass: bodies.mass[i],
+        inertia: 1.0 / bodies.inverse_inertia[i],
+        contact_radius: bodies.contact_radius(i),
+        reach: bodies.reach[i] * scale,
+        flat_contact_ratio: match bodies.shape[i] {
+            ShapeKind::Polygon => flat_contact_ratio(&bodies.body_vertices[bodies.vertices[i].range()], DVec2::ZERO),
+            _ => 0.0,
+        },
+    };
+    let models = models[bodies.material[i].index()].iter().copied();
+    particle_time_steps(models, &inertia, max_impact_speed).map(|bounds| TimeStepBound {
+        dt: bounds.stable,
+        particle: id,
+        refusal: bounds.reference,
+    })
+}
+
+/// [`check_time_step`] for one particle just added to bodies that passed it: only the new particle can have lowered
+/// the bound, so this costs one particle's bound instead of a pass over all (a source or an inlet inserting into a
+/// World of a million particles checks in constant time).
+pub fn check_added_particle_time_step(
     bodies: &Bodies,
     interactions: &InteractionTable,
+    id: BodyId,
     dt: f64,
     limits: &SafetyLimits,
 ) -> Result<(), SafetyError> {
-    let Some(TimeStepBound { dt: safe_dt, particle, refusal }) =
-        stable_time_step(bodies, interactions, limits.max_impact_speed)
-    else {
-        return Ok(());
-    };
+    let models = interactions.models_per_material();
+    match particle_bound(bodies, &models, id, limits.max_impact_speed) {
+        Some(bound) => refuse_above(bound, bodies, dt, limits),
+        None => Ok(()),
+    }
+}
+
+/// The error for `dt` above `bound`'s refusal bound, unless `limits` allow it.
+fn refuse_above(bound: TimeStepBound, bodies: &Bodies, dt: f64, limits: &SafetyLimits) -> Result<(), SafetyError> {
+    let TimeStepBound { dt: safe_dt, particle, refusal } = bound;
     if dt <= refusal || limits.allow_unsafe_time_step {
         return Ok(());
     }
@@ -391,6 +402,20 @@ pub fn check_time_step(
         particle: particle.0,
         inscribed_radius: bodies.inscribed_radius[i] * bodies.pose[i].scale,
     })
+}
+
+/// Refuses `dt` above the refusal bound (the §3.6 bound, [`TimeStepBound::refusal`]) unless `limits` allow it;
+/// the error offers the stable bound.
+pub fn check_time_step(
+    bodies: &Bodies,
+    interactions: &InteractionTable,
+    dt: f64,
+    limits: &SafetyLimits,
+) -> Result<(), SafetyError> {
+    match stable_time_step(bodies, interactions, limits.max_impact_speed) {
+        Some(bound) => refuse_above(bound, bodies, dt, limits),
+        None => Ok(()),
+    }
 }
 
 /// Overlaps at most this fraction of the smaller particle's area count as touching at the start: bodies placed edge

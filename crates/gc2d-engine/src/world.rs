@@ -685,6 +685,18 @@ impl World {
         safety::check_time_step(&self.bodies, &self.config.interactions, self.config.time_step, &self.config.safety)
     }
 
+    /// [`Self::check_time_step`] after inserting particle `id` into a World that passed it: only `id` can have
+    /// lowered the bound, so only its bound is computed.
+    fn check_added_time_step(&self, id: BodyId) -> Result<(), SafetyError> {
+        safety::check_added_particle_time_step(
+            &self.bodies,
+            &self.config.interactions,
+            id,
+            self.config.time_step,
+            &self.config.safety,
+        )
+    }
+
     /// Advances by one Δt. The first call checks the time step, refuses bodies that already overlap, and opens the
     /// energy ledger.
     pub fn step(&mut self) -> Result<(), WorldError> {
@@ -1024,7 +1036,7 @@ impl World {
                 self.transits.entered(id, i, self.time);
                 self.inlets[i].inserted();
                 self.stats.injected += 1;
-                self.check_time_step()?;
+                self.check_added_time_step(id)?;
             }
         }
         Ok(())
@@ -1065,9 +1077,9 @@ impl World {
             while self.sources[s].take_due(t) {
                 let source = self.sources[s].source.clone();
                 match self.insert_from_source(&source) {
-                    Some(_) => {
+                    Some(id) => {
                         self.stats.inserted += 1;
-                        self.check_time_step()?;
+                        self.check_added_time_step(id)?;
                     }
                     None => self.stats.insertions_skipped += 1,
                 }
