@@ -92,11 +92,12 @@ pub enum SafetyError {
         /// A time step to try, s.
         suggested_dt: f64,
     },
-    /// Two bodies overlap far more than elastic contacts ever do: one has tunnelled into the other.
+    /// Two bodies overlap far more than elastic contacts ever do: one has tunnelled into the other (the time step is
+    /// too large), or an impact pressed them together deeper than their contact allows (it is too soft).
     #[error(
         "the simulation blew up at t = {time:.6} s (step {step}): bodies {a} and {b} overlap by {percent:.1} % of the \
-         smaller particle's area (limit {limit_percent:.1} %); a particle moved too far in one step — reduce the \
-         time step (try {suggested_dt:.3e} s)"
+         smaller particle's area (limit {limit_percent:.1} %); {}",
+        overlap_advice(*.approach_per_step, *.approach_speed_m_s, *.suggested_dt)
     )]
     ExcessiveOverlap {
         /// Simulated time, s.
@@ -111,6 +112,13 @@ pub enum SafetyError {
         percent: f64,
         /// The limit in percent.
         limit_percent: f64,
+        /// How fast the bodies move relative to each other along the contact normal (closing, or thrown apart by
+        /// the overlap's force within the step), m/s.
+        approach_speed_m_s: f64,
+        /// How far they move in one step at that speed, as a fraction of the overlap's depth: near 1 or above when
+        /// one step made the overlap (the time step is the cause), small when it grew over many steps (the contact
+        /// is too soft for the impact).
+        approach_per_step: f64,
         /// A time step to try, s.
         suggested_dt: f64,
     },
@@ -172,6 +180,32 @@ pub enum SafetyError {
         /// A time step to try, s.
         suggested_dt: f64,
     },
+}
+
+/// An overlap that one step's approach makes less than this fraction of is blamed on the contact's softness, not on
+/// the time step: it grew over at least this many steps, which a smaller step would only resolve more finely.
+pub const SOFT_CONTACT_APPROACH_FRACTION: f64 = 0.25;
+
+/// The advice of an [`SafetyError::ExcessiveOverlap`]: a smaller Δt when one step's approach made a good part of the
+/// overlap, a stiffer contact (or a larger overlap limit) when the overlap grew over many steps of an impact.
+fn overlap_advice(approach_per_step: f64, approach_speed: f64, suggested_dt: f64) -> String {
+    if approach_per_step < SOFT_CONTACT_APPROACH_FRACTION {
+        format!(
+            "the bodies move at {approach_speed:.3} m/s relative to each other along the contact normal, {:.1} % of \
+             the overlap's depth per step, so the overlap \
+             grew over many steps and a smaller time step would not prevent it: the contact is too soft for this \
+             impact — stiffen it (a larger Young's modulus of the two materials, or of their interaction) or allow \
+             more overlap (`run.max_overlap_fraction`)",
+            100.0 * approach_per_step
+        )
+    } else {
+        format!(
+            "the bodies move at {approach_speed:.3} m/s relative to each other along the contact normal, {:.0} % of \
+             the overlap's depth in one step: a particle \
+             moved too far in one step — reduce the time step (try {suggested_dt:.3e} s)",
+            100.0 * approach_per_step
+        )
+    }
 }
 
 impl SafetyError {

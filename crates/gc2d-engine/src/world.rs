@@ -15,7 +15,7 @@ use crate::integrator::{BodyIntegrator, GearState, Integrator, IntegratorError, 
 use crate::interactions::{InteractionError, InteractionTable, MaterialId};
 use crate::ledger::EnergyLedger;
 use crate::motion::WallMotion;
-use crate::narrowphase::{PairContact, PairContext};
+use crate::narrowphase::{ContactHistory, PairContact, PairContext};
 use crate::outlets::{Outlet, OutletState};
 use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
@@ -1163,6 +1163,38 @@ impl World {
         self.broadphase.pairs().iter().map(|p| p.payload.stored_energy).sum()
     }
 
+    /// How fast bodies `a` and `b` of the touching pair `contact` move relative to each other along its normal at its
+    /// force point (m/s, closing or separating), and the overlap's depth (m): the area over the contact chord for the overlap-area
+    /// law, the depth for penetration laws. For the advice of an excessive overlap.
+    fn approach_and_depth(&self, a: BodyId, b: BodyId, contact: &PairContact) -> (f64, f64) {
+        let bodies = &self.bodies;
+        let point_velocity = |id: BodyId| {
+            let i = id.index();
+            let r = contact.point - bodies.pose[i].position;
+            bodies.velocity[i] + bodies.angular_velocity[i] * r.perp()
+        };
+        let normal = self.contact_normal(a, b).unwrap_or(DVec2::ZERO);
+        // Closing or already thrown apart: a force that reversed the motion within the step is as telling as the
+        // approach before it.
+        let approach = (point_velocity(a) - point_velocity(b)).dot(normal).abs();
+        let (i, j) = (a.index(), b.index());
+        let depth = match contact.state {
+            ContactHistory::OverlapArea(state) if state.previous_chord > 0.0 => {
+                let smaller = bodies.overlap_reference_area(i).min(bodies.overlap_reference_area(j));
+                contact.overlap_fraction * smaller / state.previous_chord
+            }
+            ContactHistory::Penetration(state) => state.previous_depth,
+            ContactHistory::OverlapArea(_) => {
+                let radius = |k: usize| match bodies.kind[k] {
+                    BodyKind::Particle => bodies.contact_radius(k),
+                    BodyKind::Wall => f64::INFINITY,
+                };
+                contact.overlap_fraction * 2.0 * radius(i).min(radius(j))
+            }
+        };
+        (approach, depth)
+    }
+
     /// Stops the run on NaN (`finite` is false when some living body's state is not finite), on a tunnelling
     /// overlap, or on an energy gain the ledger cannot explain.
     fn check_blow_up(&self, finite: bool) -> Result<(), WorldError> {
@@ -1182,6 +1214,7 @@ impl World {
             && let Some((a, bb, c)) =
                 self.contacts().max_by(|x, y| x.2.overlap_fraction.total_cmp(&y.2.overlap_fraction))
         {
+            let (approach_speed_m_s, depth) = self.approach_and_depth(a, bb, c);
             return Err(SafetyError::ExcessiveOverlap {
                 time: self.time,
                 step: self.steps,
@@ -1189,6 +1222,8 @@ impl World {
                 b: bb.0,
                 percent: 100.0 * c.overlap_fraction,
                 limit_percent: 100.0 * limits.max_overlap_fraction,
+                approach_speed_m_s,
+                approach_per_step: approach_speed_m_s * self.config.time_step / depth,
                 suggested_dt: suggested(),
             }
             .into());

@@ -83,7 +83,37 @@ fn tunnelling_into_a_thin_wall_stops_with_the_time_bodies_and_a_time_step() {
     }
     let message = error.to_string();
     assert!(message.contains(&format!("{suggested:.3e}")), "the message must suggest a Δt: {message}");
+    assert!(message.contains("reduce the time step"), "one step made the overlap: {message}");
+    if let WorldError::Safety(SafetyError::ExcessiveOverlap { approach_per_step, approach_speed_m_s, .. }) = &error {
+        assert!(*approach_per_step > 1.0, "one step's approach {approach_per_step} of the depth");
+        assert!(*approach_speed_m_s > 10.0, "thrown back by the overlap's force: {approach_speed_m_s}");
+    }
     assert_eq!(world.steps(), 1, "the run stops at the step that tunnelled");
+}
+
+#[test]
+fn an_impact_too_hard_for_a_soft_contact_advises_stiffness_not_a_smaller_time_step() {
+    // The issue's case in small (issue 19 item 5): a 1 cm square at 3.6 m/s hits a wall face on with a soft contact
+    // (E = 1e4 N/m) at Δt = 1 µs, where a step moves it 3.6 µm against an overlap 0.5 mm deep at 5 %: the overlap
+    // grows over many steps beyond 5 %. A smaller Δt would not change it, so the advice must be the stiffness or the
+    // overlap limit.
+    let e = 1e4;
+    let dt = 1e-6;
+    let mut world = world(config(dt, law(e, 0.5, 0.5), 0.0));
+    add_static_wall(&mut world, &rectangle(0.01, 0.1).unwrap(), Pose::new(DVec2::ZERO, 0.0));
+    let start = Pose::new(DVec2::new(-0.0101, 0.0), 0.0);
+    world.add_particle(square(SIDE).unwrap(), start, RHO_THESIS, DVec2::new(3.6, 0.0), 0.0).unwrap();
+    let error = world.run_until(0.1).expect_err("the overlap exceeds the limit");
+    match &error {
+        WorldError::Safety(SafetyError::ExcessiveOverlap { approach_per_step, approach_speed_m_s, .. }) => {
+            assert!(*approach_per_step < 0.25, "the overlap grew over many steps: {approach_per_step}");
+            assert!(*approach_speed_m_s > 0.0 && *approach_speed_m_s <= 3.6, "{approach_speed_m_s}");
+        }
+        other => panic!("expected ExcessiveOverlap, got {other:?}"),
+    }
+    let message = error.to_string();
+    assert!(message.contains("too soft") && message.contains("max_overlap_fraction"), "{message}");
+    assert!(!message.contains("reduce the time step"), "{message}");
 }
 
 /// Steps `world` up to `steps` times and checks that every step either fails or leaves every particle and every
