@@ -30,7 +30,7 @@ pub struct Exported {
     pub checkpoint: PathBuf,
     /// Its simulated time, s.
     pub time_s: f64,
-    /// Particles and contacts written.
+    /// Particles written.
     pub particles: usize,
     /// Touching pairs written.
     pub contacts: usize,
