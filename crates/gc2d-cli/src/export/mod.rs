@@ -38,43 +38,66 @@ pub struct Exported {
     pub files: Vec<PathBuf>,
 }
 
-/// The run's checkpoints (final.ckpt and checkpoints/checkpoint-<step>.ckpt) with their worlds' times, in time order.
-fn checkpoints(run: &Path) -> Result<Vec<(f64, PathBuf, World)>, String> {
-    let mut files = vec![run.join("final.ckpt")];
-    if let Ok(entries) = std::fs::read_dir(run.join("checkpoints")) {
-        files.extend(
-            entries.filter_map(Result::ok).map(|e| e.path()).filter(|p| p.extension().is_some_and(|e| e == "ckpt")),
-        );
-    }
-    let mut found = Vec::new();
-    for file in files.into_iter().filter(|f| f.is_file()) {
-        let world = World::load_checkpoint_file(&file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
-        found.push((world.time(), file, world));
-    }
-    if found.is_empty() {
-        return Err(format!(
-            "{} holds no checkpoint (final.ckpt or checkpoints/*.ckpt): is it a run directory written by `gc2d-rs run`?",
-            run.display()
-        ));
-    }
-    found.sort_by(|a, b| a.0.total_cmp(&b.0));
-    Ok(found)
+/// Loads a checkpoint file, with a message naming it.
+fn load(file: &Path) -> Result<World, String> {
+    World::load_checkpoint_file(file).map_err(|e| format!("cannot read {}: {e}", file.display()))
 }
 
-/// The checkpoint to export: the last at or before `at` (within half a step), or the latest without `at`.
-fn choose(run: &Path, at: Option<f64>) -> Result<(f64, PathBuf, World), String> {
-    let mut all = checkpoints(run)?;
-    let Some(at) = at else { return Ok(all.pop().expect("not empty")) };
-    let times: Vec<String> = all.iter().map(|(t, _, _)| format!("{t}")).collect();
-    let index = all.iter().rposition(|(t, _, w)| *t <= at + 0.5 * w.time_step());
-    match index {
-        Some(i) => Ok(all.swap_remove(i)),
-        None => Err(format!(
-            "{} has no checkpoint at or before t = {at} s; its checkpoints are at {} s (write more with \
-             `run --checkpoint-every`)",
-            run.display(),
-            times.join(", ")
-        )),
+/// The run's numbered checkpoints `checkpoints/checkpoint-<step>.ckpt`, by step.
+fn numbered_checkpoints(run: &Path) -> Vec<(u64, PathBuf)> {
+    let Ok(entries) = std::fs::read_dir(run.join("checkpoints")) else { return Vec::new() };
+    let mut found: Vec<(u64, PathBuf)> = entries
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter_map(|path| {
+            let name = path.file_name()?.to_str()?;
+            let step = name.strip_prefix("checkpoint-")?.strip_suffix(".ckpt")?.parse().ok()?;
+            Some((step, path))
+        })
+        .collect();
+    found.sort();
+    found
+}
+
+/// The checkpoint to export and its World: the last at or before `at` (within half a step), or the latest without
+/// `at`. Loads final.ckpt (or, without it, the newest numbered checkpoint) for the time step, and then only the
+/// chosen file: a numbered checkpoint's time is its step times Δt.
+fn choose(run: &Path, at: Option<f64>) -> Result<(PathBuf, World), String> {
+    let numbered = numbered_checkpoints(run);
+    let final_path = run.join("final.ckpt");
+    let (reference_path, reference) = if final_path.is_file() {
+        (final_path, load(&run.join("final.ckpt"))?)
+    } else if let Some((_, path)) = numbered.last() {
+        (path.clone(), load(path)?)
+    } else {
+        return Err(format!(
+            "{} holds no checkpoint (final.ckpt or checkpoints/checkpoint-<step>.ckpt): is it a run directory written \
+             by `gc2d-rs run`?",
+            run.display()
+        ));
+    };
+    let dt = reference.time_step();
+    // Every candidate with its step count: the reference's own, and the numbered ones'.
+    let mut candidates: Vec<(u64, PathBuf)> = numbered.into_iter().filter(|(_, p)| *p != reference_path).collect();
+    candidates.push((reference.steps(), reference_path.clone()));
+    candidates.sort();
+    let chosen = match at {
+        None => candidates.last().cloned(),
+        Some(at) => candidates.iter().rev().find(|(step, _)| *step as f64 * dt <= at + 0.5 * dt).cloned(),
+    };
+    match chosen {
+        Some((_, path)) if path == reference_path => Ok((path, reference)),
+        Some((_, path)) => Ok((path.clone(), load(&path)?)),
+        None => {
+            let times: Vec<String> = candidates.iter().map(|(step, _)| format!("{}", *step as f64 * dt)).collect();
+            Err(format!(
+                "{} has no checkpoint at or before t = {} s; its checkpoints are at {} s (write more with \
+                 `run --checkpoint-every`)",
+                run.display(),
+                at.unwrap_or(f64::NAN),
+                times.join(", ")
+            ))
+        }
     }
 }
 
@@ -83,7 +106,8 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     if !run.is_dir() {
         return Err(format!("{} is not a run directory", run.display()));
     }
-    let (time_s, checkpoint, world) = choose(run, at)?;
+    let (checkpoint, world) = choose(run, at)?;
+    let time_s = world.time();
     // The scene as run names the materials and the bodies' origins; without it the names are left empty.
     let scene = Scene::from_path(run.join("scene.ron")).ok();
     let materials = scene.as_ref().map(Scene::material_names).unwrap_or_default();
