@@ -160,9 +160,10 @@ pub struct RotorWork {
 /// `change` = Σ|F(n) − 2F(n−1) + F(n−2)| and `scale` = 2Σ(|F(n)| + |F(n−1)|), in N.
 ///
 /// Their ratio is the relative step-to-step alternation: a force alternating M ± A gives A/M (a flat plate
-/// chattering on a floor: 1), smooth motion about (ω Δt)², far below 0.01. A contact that closes adds about half
-/// its first force for a step or two, which is why a few bouncing grains can reach tenths on single steps;
-/// summing both parts over many steps before dividing (as `gc2d-rs run` does) weighs that by force.
+/// chattering on a floor: 1), smooth motion about (ω Δt)², far below 0.01. A pair counts only on steps where it has
+/// a force now and had one two steps ago, so the opening and closing of a contact (a whole force appearing or
+/// vanishing, which is not an alternation) do not read as chatter; summing both parts over many steps before
+/// dividing (as `gc2d-rs run` does) weighs the rest by force (docs/validation.md, "Chatter warning").
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ForceAlternation {
     /// Σ|F(n) − 2F(n−1) + F(n−2)|, N.
@@ -894,8 +895,14 @@ impl World {
             let c = &pair.payload;
             contact_stored += c.stored_energy;
             let [previous, before_previous] = c.earlier_forces;
-            alternation += (c.force_on_a - 2.0 * previous + before_previous).length();
-            force_scale += c.force_on_a.length() + previous.length();
+            // Only steps with a force now and two steps ago count: the first two steps of a contact and the steps
+            // after its last change the force by a whole force (a Hertz force's onset alone reads 0.11) without
+            // any alternation, so a bounce would read as chatter. Period-2 chatter is still seen: one that lifts
+            // off every other step (F, 0, F, …) counts on its steps with a force, at the full ratio 1.
+            if c.force_on_a != DVec2::ZERO && before_previous != DVec2::ZERO {
+                alternation += (c.force_on_a - 2.0 * previous + before_previous).length();
+                force_scale += c.force_on_a.length() + previous.length();
+            }
             stats.multi_pass_queries += usize::from(c.passes > 1);
             let energy = &c.energy;
             ledger.dissipated_normal_damping += energy.normal_damping;
