@@ -15,8 +15,8 @@ use gc2d_fluid::{
 use gc2d_geometry::DVec2;
 use std::path::{Path, PathBuf};
 
-/// The drag may change a particle's slip by at most this fraction per step at the time step `check` accepts
-/// without a warning: Δt ≤ τ_drag/20 (docs/model.md, "Fluid": the time step and the drag).
+/// Time steps per drag relaxation time below which `check` warns: Δt ≤ τ_drag/20 passes silently, so the drag
+/// changes a particle's slip by at most about 5 % per step (docs/model.md, "Fluid": the time step and the drag).
 pub const DRAG_STEPS_PER_RELAXATION_TIME: f64 = 20.0;
 
 const PATH: &str = "fluid";
