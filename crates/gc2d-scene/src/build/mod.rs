@@ -63,7 +63,8 @@ pub(crate) struct PlannedParticle {
 pub(crate) struct Built {
     pub world: World,
     pub summary: Summary,
-    /// The scene entry each body of the built World comes from, by body id ([`Scene::body_origins`]).
+    /// The scene entry each body of the built World comes from, by body id ([`Scene::body_origins`]); named only
+    /// when asked for ([`BuildOptions::origins`]), so a plain build allocates no name per body.
     pub origins: Vec<String>,
 }
 
@@ -81,7 +82,9 @@ impl Scene {
     /// from 0), `mill.balls #4`, …: the names exports and messages give bodies. Bodies inserted later by sources and
     /// inlets are not in the list (their ids follow it).
     pub fn body_origins(&self) -> Result<Vec<String>, SceneError> {
-        Ok(self.build_with_summary()?.origins)
+        self.validate()?;
+        let options = BuildOptions { start_overlaps: StartOverlaps::Refuse, origins: true };
+        Ok(build(self, options).map_err(|e| e.located(self.source.as_ref()))?.origins)
     }
 
     /// What the scene contains once built: counts of walls, particles and sources, materials, Δt and its bound.
@@ -105,14 +108,16 @@ impl Scene {
 
     pub(crate) fn build_with_summary(&self) -> Result<Built, SceneError> {
         self.validate()?;
-        build(self, StartOverlaps::Refuse).map_err(|e| e.located(self.source.as_ref()))
+        let options = BuildOptions { start_overlaps: StartOverlaps::Refuse, origins: false };
+        build(self, options).map_err(|e| e.located(self.source.as_ref()))
     }
 
     /// The summary of the scene built without the start-overlap check: for the gsi importer, which needs the
     /// time-step bound of a scene whose bodies may overlap (and then reports the overlap on loading it back).
     pub(crate) fn summary_ignoring_start_overlaps(&self) -> Result<Summary, SceneError> {
         self.validate()?;
-        Ok(build(self, StartOverlaps::Ignore).map_err(|e| e.located(self.source.as_ref()))?.summary)
+        let options = BuildOptions { start_overlaps: StartOverlaps::Ignore, origins: false };
+        Ok(build(self, options).map_err(|e| e.located(self.source.as_ref()))?.summary)
     }
 }
 
@@ -125,7 +130,16 @@ enum StartOverlaps {
     Ignore,
 }
 
-fn build(scene: &Scene, start_overlaps: StartOverlaps) -> Result<Built, SceneError> {
+/// What a build checks and keeps besides the World.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct BuildOptions {
+    /// Whether bodies overlapping at the start are refused.
+    start_overlaps: StartOverlaps,
+    /// Whether the bodies' scene entries are named ([`Built::origins`]).
+    origins: bool,
+}
+
+fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
     let materials = Materials::of(scene);
     let table = interactions::interaction_table(scene, &materials)?;
     let models = table.models_per_material();
@@ -196,7 +210,7 @@ fn build(scene: &Scene, start_overlaps: StartOverlaps) -> Result<Built, SceneErr
     // The rule the engine applies before its first step (`SafetyLimits::max_initial_overlap_fraction`), so that a
     // scene `check` passes is never refused by `run` for its start.
     let initial_tolerance = SafetyLimits::default().max_initial_overlap_fraction;
-    if start_overlaps == StartOverlaps::Refuse
+    if options.start_overlaps == StartOverlaps::Refuse
         && let Some(error) = SceneError::combine(safety::overlap_errors(&placed, initial_tolerance))
     {
         return Err(error);
@@ -311,8 +325,12 @@ fn build(scene: &Scene, start_overlaps: StartOverlaps) -> Result<Built, SceneErr
         end_time_s: scene.run.end_time_s,
         heap_bytes_at_start: world.heap_bytes(),
     };
-    let paths = walls.iter().map(|w| w.path.as_str()).chain(particles.iter().map(|p| p.path.as_str()));
-    Ok(Built { world, summary, origins: numbered(paths) })
+    let origins = if options.origins {
+        numbered(walls.iter().map(|w| w.path.as_str()).chain(particles.iter().map(|p| p.path.as_str())))
+    } else {
+        Vec::new()
+    };
+    Ok(Built { world, summary, origins })
 }
 
 /// A note pointing at the scene entry whose particle sets the time-step bound.
