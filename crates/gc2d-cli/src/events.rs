@@ -6,8 +6,10 @@
 //! point at first touch (where the collision happened). Episodes still open when the run stops are in the final
 //! checkpoint, not in the file; a resumed run writes them when they end.
 
+use crate::resumed_csv::continue_csv;
 use crate::runner::FrameSink;
-use gc2d_engine::{BodyKind, ContactEvent, ContactEventKind, World};
+use gc2d_analysis::particle_state::csv::quoted;
+use gc2d_engine::{ContactEvent, ContactEventKind, World};
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -61,35 +63,13 @@ impl EventsWriter {
         resumed_at: f64,
         slack: f64,
     ) -> io::Result<Self> {
-        let text = std::fs::read_to_string(path)?;
-        let mut lines = text.lines();
-        let header = lines.next().unwrap_or_default();
-        if header != EVENT_COLUMNS.join(",") {
-            return Err(io::Error::new(
-                io::ErrorKind::InvalidData,
-                "its first line is not this version's events header; resume into a new --out directory",
-            ));
-        }
-        let end_time = |line: &str| {
-            let fields: Vec<&str> = line.split(',').collect();
-            (fields.len() == EVENT_COLUMNS.len()).then(|| fields[1].parse::<f64>().ok()).flatten()
-        };
-        let mut kept = format!("{header}\n");
-        for line in lines.filter(|line| end_time(line).is_some_and(|t| t < resumed_at + slack)) {
-            kept.push_str(line);
-            kept.push('\n');
-        }
-        std::fs::write(path, kept)?;
-        let file = std::fs::OpenOptions::new().append(true).open(path)?;
+        let file = continue_csv(path, &EVENT_COLUMNS, 1, "events", resumed_at, slack)?;
         Ok(Self { file: BufWriter::new(file), materials, flush_interval })
     }
 
     fn write_row(&mut self, world: &World, event: &ContactEvent) -> io::Result<()> {
-        let kind = |id: gc2d_engine::BodyId| match world.bodies().kind[id.index()] {
-            BodyKind::Particle => "particle",
-            BodyKind::Wall => "wall",
-        };
-        let name = |m: gc2d_engine::MaterialId| csv_field(self.materials.get(m.index()).map_or("?", String::as_str));
+        let kind = |id: gc2d_engine::BodyId| world.bodies().kind[id.index()].name();
+        let name = |m: gc2d_engine::MaterialId| quoted(self.materials.get(m.index()).map_or("?", String::as_str));
         let e = &event.episode;
         let angular = event.wall_angular_impulse.map_or(String::new(), |l| format!("{l:e}"));
         writeln!(
@@ -133,14 +113,5 @@ impl FrameSink for EventsWriter {
             self.write_row(world, event).map_err(|e| format!("events.csv: {e}"))?;
         }
         Ok(())
-    }
-}
-
-/// A CSV field: as it is, or quoted (with quotes doubled) when it holds a comma, a quote or a line break.
-fn csv_field(text: &str) -> std::borrow::Cow<'_, str> {
-    if text.contains([',', '"', '\n', '\r']) {
-        std::borrow::Cow::Owned(format!("\"{}\"", text.replace('"', "\"\"")))
-    } else {
-        std::borrow::Cow::Borrowed(text)
     }
 }

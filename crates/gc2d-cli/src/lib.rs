@@ -11,6 +11,7 @@ pub mod live;
 pub mod outputs;
 pub mod parquet_table;
 pub mod resume;
+pub mod resumed_csv;
 pub mod runner;
 pub mod segments;
 pub mod sinks;

@@ -5,6 +5,7 @@
 //! Rows are written after the step that removed the particle, so the file is the same for any thread count; a resumed
 //! run drops the rows the earlier run wrote after its checkpoint and writes them again.
 
+use crate::resumed_csv::continue_csv;
 use crate::runner::FrameSink;
 use gc2d_engine::{Transit, World};
 use std::fs::File;
@@ -37,26 +38,7 @@ impl TransitsWriter {
     /// Continues `path` for a run resumed at `resumed_at`: rows of particles removed after it (written by the earlier
     /// run after its checkpoint) and a half-written last line are dropped; the resumed run writes them again.
     pub fn continue_at(path: &Path, flush_interval: f64, resumed_at: f64, slack: f64) -> io::Result<Self> {
-        let text = std::fs::read_to_string(path)?;
-        let mut lines = text.lines();
-        let header = lines.next().unwrap_or_default();
-        if header != TRANSIT_COLUMNS.join(",") {
-            return Err(io::Error::new(
-                io::ErrorKind::InvalidData,
-                "its first line is not this version's transits header; resume into a new --out directory",
-            ));
-        }
-        let left_at = |line: &str| {
-            let fields: Vec<&str> = line.split(',').collect();
-            (fields.len() == TRANSIT_COLUMNS.len()).then(|| fields[4].parse::<f64>().ok()).flatten()
-        };
-        let mut kept = format!("{header}\n");
-        for line in lines.filter(|line| left_at(line).is_some_and(|t| t < resumed_at + slack)) {
-            kept.push_str(line);
-            kept.push('\n');
-        }
-        std::fs::write(path, kept)?;
-        let file = std::fs::OpenOptions::new().append(true).open(path)?;
+        let file = continue_csv(path, &TRANSIT_COLUMNS, 4, "transits", resumed_at, slack)?;
         Ok(Self { file: BufWriter::new(file), flush_interval })
     }
 

@@ -31,6 +31,16 @@ pub enum BodyKind {
     Wall,
 }
 
+impl BodyKind {
+    /// `particle` or `wall`, as the run's tables write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            BodyKind::Particle => "particle",
+            BodyKind::Wall => "wall",
+        }
+    }
+}
+
 /// Range of a body's vertices in the flat vertex arrays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct VertexRange {

@@ -123,8 +123,9 @@ pub fn dump_files(dir: &Path) -> Result<Vec<(u64, PathBuf)>, AnalysisError> {
     Ok(files)
 }
 
-/// A CSV field: as it is, or quoted (with quotes doubled) when it holds a comma, a quote or a line break.
-fn quoted(text: &str) -> std::borrow::Cow<'_, str> {
+/// A CSV field: as it is, or quoted (with quotes doubled) when it holds a comma, a quote or a line break. The one
+/// quoting rule of the run's CSV outputs (dumps, events, exports).
+pub fn quoted(text: &str) -> std::borrow::Cow<'_, str> {
     if text.contains([',', '"', '\n', '\r']) {
         std::borrow::Cow::Owned(format!("\"{}\"", text.replace('"', "\"\"")))
     } else {

@@ -6,6 +6,7 @@ pub mod rows;
 pub mod vtk;
 
 use crate::parquet_table::{NamedColumn, write_parquet};
+use gc2d_analysis::particle_state::csv::quoted;
 use gc2d_engine::World;
 use gc2d_scene::Scene;
 use rows::{ContactRow, ParticleRow, contact_rows, particle_rows};
@@ -66,7 +67,8 @@ fn choose(run: &Path, at: Option<f64>) -> Result<(PathBuf, World), String> {
     let numbered = numbered_checkpoints(run);
     let final_path = run.join("final.ckpt");
     let (reference_path, reference) = if final_path.is_file() {
-        (final_path, load(&run.join("final.ckpt"))?)
+        let world = load(&final_path)?;
+        (final_path, world)
     } else if let Some((_, path)) = numbered.last() {
         (path.clone(), load(path)?)
     } else {
@@ -241,11 +243,6 @@ fn contact_columns(rows: &[ContactRow], time_s: f64) -> Vec<NamedColumn> {
     ]
 }
 
-/// A CSV field: as it is, or quoted when it holds a comma, a quote or a line break.
-fn field(text: &str) -> String {
-    if text.contains([',', '"', '\n', '\r']) { format!("\"{}\"", text.replace('"', "\"\"")) } else { text.to_owned() }
-}
-
 fn particles_csv(rows: &[ParticleRow]) -> String {
     let mut csv = format!("{}\n", PARTICLE_COLUMNS.join(","));
     for r in rows {
@@ -255,8 +252,8 @@ fn particles_csv(rows: &[ParticleRow]) -> String {
             "{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e}",
             s.time_s,
             s.id,
-            field(&r.origin),
-            field(&s.material),
+            quoted(&r.origin),
+            quoted(&s.material),
             s.shape.name(),
             r.corners,
             r.radius_m,

@@ -2,7 +2,7 @@
 //! corner count) and one per touching pair of bodies (point, normal, normal and tangential force, overlap).
 
 use gc2d_analysis::{ParticleState, particle_states};
-use gc2d_engine::{BodyKind, ContactModel, World};
+use gc2d_engine::{ContactModel, World};
 use gc2d_geometry::DVec2;
 
 /// One particle.
@@ -75,7 +75,7 @@ pub fn particle_rows(world: &World, materials: &[String], origins: Option<&[Stri
 /// The contact rows of `world`, in pair order.
 pub fn contact_rows(world: &World) -> Vec<ContactRow> {
     let bodies = world.bodies();
-    let kind = |i: usize| if bodies.kind[i] == BodyKind::Wall { "wall" } else { "particle" };
+    let kind = |i: usize| bodies.kind[i].name();
     world
         .contacts()
         .map(|(a, b, contact)| {
