@@ -9,7 +9,7 @@
 //!
 //! [`particle_state`]: gc2d_analysis::particle_state
 
-use crate::export::rows::particle_rows;
+use crate::export::rows::{ParticleRow, particle_rows};
 use crate::export::{ExportFormat, particle_columns, vtk};
 use crate::parquet_table::write_parquet;
 use crate::runner::FrameSink;
@@ -33,8 +33,9 @@ impl StateDumps {
         Self { dir: out.join(DUMPS_DIR), interval, materials, formats }
     }
 
-    /// Writes dump `index` of `world` in the format `format`.
-    fn write(&self, world: &World, index: u64, format: ExportFormat) -> Result<(), String> {
+    /// Writes dump `index` of `world` in the format `format`; `rows` are the export's particle rows of `world`
+    /// (Parquet and VTK write them; made once per dump).
+    fn write(&self, world: &World, rows: &[ParticleRow], index: u64, format: ExportFormat) -> Result<(), String> {
         let name = dump_file_name(index);
         let path = match format {
             ExportFormat::Csv => self.dir.join(&name),
@@ -51,13 +52,9 @@ impl StateDumps {
                 };
                 write().map_err(|e| failed(&e))
             }
-            ExportFormat::Parquet => {
-                let rows = particle_rows(world, &self.materials, None);
-                write_parquet("particles", &particle_columns(&rows), &path).map_err(|e| failed(&e))
-            }
+            ExportFormat::Parquet => write_parquet("particles", &particle_columns(rows), &path).map_err(|e| failed(&e)),
             ExportFormat::Vtk => {
-                let rows = particle_rows(world, &self.materials, None);
-                std::fs::write(&path, vtk::particles_vtu(world, &rows)).map_err(|e| failed(&e))?;
+                std::fs::write(&path, vtk::particles_vtu(world, rows)).map_err(|e| failed(&e))?;
                 self.write_collection(index)
             }
         }
@@ -88,6 +85,8 @@ impl FrameSink for StateDumps {
     fn take(&mut self, world: &World) -> Result<(), String> {
         std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
         let index = self.index(world);
-        self.formats.iter().try_for_each(|&format| self.write(world, index, format))
+        let needs_rows = self.formats.iter().any(|&f| f != ExportFormat::Csv);
+        let rows = if needs_rows { particle_rows(world, &self.materials, None) } else { Vec::new() };
+        self.formats.iter().try_for_each(|&format| self.write(world, &rows, index, format))
     }
 }
