@@ -28,21 +28,26 @@ fn scene() -> String {
     )
 }
 
-#[test]
-fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene_path = dir.path().join("riser.ron");
-    std::fs::write(&scene_path, scene()).unwrap();
-    let out = dir.path().join("run");
+/// Writes the scene `text` into `dir` and runs it; returns the run directory.
+fn run(dir: &std::path::Path, text: &str) -> std::path::PathBuf {
+    let scene_path = dir.join("scene_under_test.ron");
+    std::fs::write(&scene_path, text).unwrap();
+    let out = dir.join("run");
     Command::cargo_bin("gc2d-rs")
         .unwrap()
         .arg("run")
         .arg(&scene_path)
-        .arg("--quiet")
-        .arg("--out")
+        .args(["--quiet", "--out"])
         .arg(&out)
         .assert()
         .success();
+    out
+}
+
+#[test]
+fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = run(dir.path(), &scene());
     assert!(out.join("dumps").is_dir(), "a scene with a fluid writes dumps by default");
     let output = Command::cargo_bin("gc2d-rs")
         .unwrap()
@@ -83,18 +88,7 @@ fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
 #[test]
 fn a_run_without_outlets_is_refused_with_the_reason() {
     let dir = tempfile::tempdir().unwrap();
-    let scene_path = dir.path().join("still.ron");
-    std::fs::write(&scene_path, "Scene(run: (end_time_s: 0.01), particles: [(shape: Disk(radius_m: 0.01))])").unwrap();
-    let out = dir.path().join("run");
-    Command::cargo_bin("gc2d-rs")
-        .unwrap()
-        .arg("run")
-        .arg(&scene_path)
-        .arg("--quiet")
-        .arg("--out")
-        .arg(&out)
-        .assert()
-        .success();
+    let out = run(dir.path(), "Scene(run: (end_time_s: 0.01), particles: [(shape: Disk(radius_m: 0.01))])");
     let assert = Command::cargo_bin("gc2d-rs")
         .unwrap()
         .args(["analyze", out.to_str().unwrap(), "--kind", "feedpipe"])

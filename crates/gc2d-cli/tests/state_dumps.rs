@@ -37,15 +37,9 @@ fn run(scene: &Path, out: &Path, until: &str, extra: &[&str]) -> String {
     stderr
 }
 
-/// The dump files of a run directory, name and content, in order.
+/// The dump files of a run directory, name and content as text, in order.
 fn dumps(out: &Path) -> Vec<(String, String)> {
-    let mut files: Vec<(String, String)> = std::fs::read_dir(out.join("dumps"))
-        .unwrap()
-        .map(|e| e.unwrap())
-        .map(|e| (e.file_name().into_string().unwrap(), std::fs::read_to_string(e.path()).unwrap()))
-        .collect();
-    files.sort();
-    files
+    dump_bytes(out).into_iter().map(|(name, bytes)| (name, String::from_utf8(bytes).unwrap())).collect()
 }
 
 #[test]

@@ -72,61 +72,60 @@ fn hertz_contact_time(effective_mass: f64, effective_radius: f64, effective_modu
             .powf(0.2)
 }
 
-#[test]
-fn hertz_head_on_of_steel_spheres_takes_the_analytic_contact_time_and_is_elastic() {
-    let (radius, speed): (f64, f64) = (0.025, 0.01);
-    let e_star = steel_effective_modulus();
-    let mass = STEEL_DENSITY * 4.0 / 3.0 * PI * radius.powi(3);
-    let expected = hertz_contact_time(0.5 * mass, 0.5 * radius, e_star, speed);
-    let law = PenetrationLaw::elastic(NormalSpring::Hertz { effective_modulus_pa: e_star });
-    let mut world = sphere_world(law, expected / 4000.0, 0.0);
-    let gap = 1e-8;
+/// Radius (m) and relative speed (m/s) of the steel head-on impact.
+const HEAD_ON_RADIUS: f64 = 0.025;
+const HEAD_ON_SPEED: f64 = 0.01;
+
+/// Hertz's contact time of the steel head-on impact, s.
+fn head_on_contact_time() -> f64 {
+    let mass = STEEL_DENSITY * 4.0 / 3.0 * PI * HEAD_ON_RADIUS.powi(3);
+    hertz_contact_time(0.5 * mass, 0.5 * HEAD_ON_RADIUS, steel_effective_modulus(), HEAD_ON_SPEED)
+}
+
+/// Two steel spheres meeting head on at [`HEAD_ON_SPEED`] under an elastic Hertz law, 1e-8 m apart at the start, at
+/// Δt = t_c/4000, optionally in still air (ρ_f = 1.2 kg/m³, c_w = 0.47, buoyancy on).
+fn steel_head_on(air: bool) -> Impact {
+    let law = PenetrationLaw::elastic(NormalSpring::Hertz { effective_modulus_pa: steel_effective_modulus() });
+    let mut world = sphere_world(law, head_on_contact_time() / 4000.0, 0.0);
+    if air {
+        world
+            .set_fluid(gc2d_engine::Fluid {
+                field: gc2d_fluid::FluidField::Uniform(DVec2::ZERO),
+                properties: gc2d_fluid::FluidProperties { density_kg_m3: 1.2, dynamic_viscosity_pa_s: 1.8e-5 },
+                drag: gc2d_fluid::DragCoefficient::Constant(0.47),
+                buoyancy: true,
+            })
+            .unwrap();
+    }
+    let (radius, speed, gap) = (HEAD_ON_RADIUS, HEAD_ON_SPEED, 1e-8);
     let a = add_disk(&mut world, radius, DVec2::new(-radius - gap, 0.0), DVec2::new(0.5 * speed, 0.0));
     let b = add_disk(&mut world, radius, DVec2::new(radius + gap, 0.0), DVec2::new(-0.5 * speed, 0.0));
-    let relative = |w: &World| w.bodies().velocity[a].x - w.bodies().velocity[b].x;
-    let result = impact(&mut world, relative);
+    impact(&mut world, |w: &World| w.bodies().velocity[a].x - w.bodies().velocity[b].x)
+}
+
+#[test]
+fn hertz_head_on_of_steel_spheres_takes_the_analytic_contact_time_and_is_elastic() {
+    let expected = head_on_contact_time();
+    let result = steel_head_on(false);
     let time_error = (result.contact_time - expected).abs() / expected;
     assert!(
         time_error < 0.005,
         "contact time {} s against Hertz's {expected} s ({time_error:.2e})",
         result.contact_time
     );
-    let restitution = -result.relative_speed_after / speed;
+    let restitution = -result.relative_speed_after / HEAD_ON_SPEED;
     assert!((restitution - 1.0).abs() < 1e-5, "e = {restitution}");
 }
 
 #[test]
 fn hertz_head_on_in_still_air_differs_from_vacuum_by_the_drag_bound() {
-    // The same impact as above in still air (ρ_f = 1.2 kg/m³, c_w = 0.47). During the contact the drag on a sphere
-    // is at most ½·ρ_f·c_w·π·R²·(v/2)² ≈ 1.4e-8 N, an impulse of about 2e-12 N·s over t_c against a momentum of
-    // 2.5e-3 N·s: contact time and restitution may change by 1e-6 at most, and the contact time still matches Hertz.
-    use gc2d_engine::Fluid;
-    use gc2d_fluid::{DragCoefficient, FluidField, FluidProperties};
-    let (radius, speed): (f64, f64) = (0.025, 0.01);
-    let e_star = steel_effective_modulus();
-    let mass = STEEL_DENSITY * 4.0 / 3.0 * PI * radius.powi(3);
-    let expected = hertz_contact_time(0.5 * mass, 0.5 * radius, e_star, speed);
-    let run = |air: bool| {
-        let law = PenetrationLaw::elastic(NormalSpring::Hertz { effective_modulus_pa: e_star });
-        let mut world = sphere_world(law, expected / 4000.0, 0.0);
-        if air {
-            world
-                .set_fluid(Fluid {
-                    field: FluidField::Uniform(DVec2::ZERO),
-                    properties: FluidProperties { density_kg_m3: 1.2, dynamic_viscosity_pa_s: 1.8e-5 },
-                    drag: DragCoefficient::Constant(0.47),
-                    buoyancy: true,
-                })
-                .unwrap();
-        }
-        let gap = 1e-8;
-        let a = add_disk(&mut world, radius, DVec2::new(-radius - gap, 0.0), DVec2::new(0.5 * speed, 0.0));
-        let b = add_disk(&mut world, radius, DVec2::new(radius + gap, 0.0), DVec2::new(-0.5 * speed, 0.0));
-        impact(&mut world, |w: &World| w.bodies().velocity[a].x - w.bodies().velocity[b].x)
-    };
-    let (vacuum, air) = (run(false), run(true));
+    // The same impact in still air. During the contact the drag on a sphere is at most ½·ρ_f·c_w·π·R²·(v/2)² ≈
+    // 1.4e-8 N, an impulse of about 2e-12 N·s over t_c against a momentum of 2.5e-3 N·s: contact time and
+    // restitution may change by 1e-6 at most, and the contact time still matches Hertz.
+    let (vacuum, air) = (steel_head_on(false), steel_head_on(true));
     assert!((air.contact_time - vacuum.contact_time).abs() <= 1e-6 * vacuum.contact_time);
-    assert!((air.relative_speed_after - vacuum.relative_speed_after).abs() <= 1e-6 * speed);
+    assert!((air.relative_speed_after - vacuum.relative_speed_after).abs() <= 1e-6 * HEAD_ON_SPEED);
+    let expected = head_on_contact_time();
     assert!((air.contact_time - expected).abs() < 0.005 * expected);
 }
 
