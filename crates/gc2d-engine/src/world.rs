@@ -722,7 +722,11 @@ impl World {
         }
         self.predict(t_next);
         self.bodies.update_world_vertices();
-        self.broadphase.update(&self.bodies.aabb);
+        if self.stages.sources || self.stages.inlets {
+            self.broadphase.update_for_queries(&self.bodies.aabb);
+        } else {
+            self.broadphase.update(&self.bodies.aabb);
+        }
         self.close_ended_pairs(t_next);
         self.evaluate_pairs();
         self.accumulate_contact_forces();
@@ -1102,13 +1106,7 @@ impl World {
         let y = match source.height {
             DropHeight::Absolute => source.position.y,
             DropHeight::AboveHighest => {
-                let b = &self.bodies;
-                let highest = b
-                    .particles()
-                    .map(|id| b.pose[id.index()].position)
-                    .filter(|p| (p.x - source.position.x).abs() <= half)
-                    .map(|p| p.y)
-                    .fold(f64::NEG_INFINITY, f64::max);
+                let highest = self.highest_particle_within(source.position.x, half);
                 source.position.y + if highest.is_finite() { highest } else { 0.0 }
             }
         };
@@ -1123,12 +1121,45 @@ impl World {
         None
     }
 
-    /// True when the particle outline `shape` (world frame) overlaps any living body.
+    /// The highest centroid (y) of a living particle whose centroid lies within `half_width` of `x`; −∞ if none.
+    ///
+    /// Walks the particles from the highest box top down (a broadphase query) and stops at the first box whose top
+    /// is below the best centroid found: a centroid lies inside its box, which is that of the predicted pose, and
+    /// the corrector moves a particle far less than its inscribed radius (the safety checks stop a run long before).
+    /// Particles inserted since the last update are not in the broadphase's order and are looked at one by one.
+    fn highest_particle_within(&self, x: f64, half_width: f64) -> f64 {
+        let b = &self.bodies;
+        let centroid_within = |body: u32| {
+            let i = body as usize;
+            let position = b.pose[i].position;
+            (b.alive[i] && b.kind[i] == BodyKind::Particle && (position.x - x).abs() <= half_width)
+                .then_some(position.y)
+        };
+        let mut highest = self
+            .broadphase
+            .pending()
+            .iter()
+            .filter_map(|&body| centroid_within(body))
+            .fold(f64::NEG_INFINITY, f64::max);
+        for (body, top) in self.broadphase.dynamic_bodies_from_top() {
+            if top < highest {
+                break;
+            }
+            if let Some(y) = centroid_within(body) {
+                highest = highest.max(y);
+            }
+        }
+        highest
+    }
+
+    /// True when the particle outline `shape` (world frame) overlaps any living body: a broadphase query for the
+    /// bodies whose boxes meet its box, then the exact overlap test on each.
     fn overlaps_any(&self, shape: ShapeView) -> bool {
         let aabb = shape.aabb();
         let b = &self.bodies;
-        (0..b.len()).any(|i| {
-            b.alive[i] && b.aabb[i].overlaps(&aabb) && area_contact(shape, b.shape_view(BodyId(i as u32))).is_some()
+        self.broadphase.any_box_meeting(&aabb, |body| {
+            let i = body as usize;
+            b.alive[i] && b.aabb[i].overlaps(&aabb) && area_contact(shape, b.shape_view(BodyId(body))).is_some()
         })
     }
 

@@ -46,7 +46,7 @@ pub(super) struct Interval {
 impl Interval {
     /// The interval of `min..max`, made safe to sort: a NaN lower bound becomes +∞, and an upper bound that is NaN
     /// or below the lower bound becomes the lower bound.
-    fn sanitised(min: f64, max: f64) -> Self {
+    pub(super) fn sanitised(min: f64, max: f64) -> Self {
         let lower = if min.is_nan() { f64::INFINITY } else { min };
         Self { lower, upper: if max >= lower { max } else { lower } }
     }
@@ -121,19 +121,41 @@ impl Bodies {
     }
 
     /// Starts an update: every box becomes the previous box, and bodies covered by `aabbs` take their new box.
-    pub(super) fn advance(&mut self, aabbs: &[Aabb]) {
+    /// With `MEASURE_EXTENT`, returns the largest width and height of a dynamic body's new box (0 when there is
+    /// none), which bounds how far before a query box a meeting box can begin (`box_query`): measured here, in the
+    /// pass that reads every box anyway, so that a query needs no pass of its own. Without, returns +∞ (unknown).
+    pub(super) fn advance<const MEASURE_EXTENT: bool>(&mut self, aabbs: &[Aabb]) -> [f64; 2] {
         std::mem::swap(&mut self.current, &mut self.previous);
-        for axis in 0..2 {
+        let mut extent = if MEASURE_EXTENT { [0.0_f64; 2] } else { [f64::INFINITY; 2] };
+        for (axis, extent) in extent.iter_mut().enumerate() {
             let (current, previous) = (&mut self.current[axis], &self.previous[axis]);
             for (index, (current, previous)) in current.iter_mut().zip(previous).enumerate() {
+                let flags = self.flags[index];
                 *current = match aabbs.get(index) {
-                    Some(aabb) if self.flags[index].state != SlotState::Absent => {
-                        Interval::sanitised(aabb.min[axis], aabb.max[axis])
+                    Some(aabb) if flags.state != SlotState::Absent => {
+                        let interval = Interval::sanitised(aabb.min[axis], aabb.max[axis]);
+                        if MEASURE_EXTENT && flags.kind == BodyKind::Dynamic {
+                            *extent = extent.max(interval.upper - interval.lower);
+                        }
+                        interval
                     }
                     _ => *previous,
                 };
             }
         }
+        extent
+    }
+
+    /// Whether `body` moves; the kind it was inserted with.
+    #[inline]
+    pub(super) fn kind(&self, body: u32) -> BodyKind {
+        self.flags[body as usize].kind
+    }
+
+    /// The static slots in the broadphase (pending or active), in id order.
+    pub(super) fn static_slots(&self) -> Vec<u32> {
+        let is_static = |f: &Flags| f.kind == BodyKind::Static && f.state != SlotState::Absent;
+        (0..self.flags.len() as u32).filter(|&body| is_static(&self.flags[body as usize])).collect()
     }
 
     /// The current interval of `body` on `axis`.
@@ -155,6 +177,13 @@ impl Bodies {
         (self.flags[a].kind == BodyKind::Dynamic || self.flags[b].kind == BodyKind::Dynamic)
             && self.current[0][a].meets(self.current[0][b])
             && self.current[1][a].meets(self.current[1][b])
+    }
+
+    /// True when the current box of `body` meets (overlaps or touches) the box `query` (x and y intervals).
+    #[inline]
+    pub(super) fn box_meets(&self, body: u32, query: [Interval; 2]) -> bool {
+        let index = body as usize;
+        self.current[0][index].meets(query[0]) && self.current[1][index].meets(query[1])
     }
 
     /// True when the pair could have existed before this update: the previous boxes overlapped or touched.
