@@ -4,6 +4,7 @@
 //! comments are printed as gc2d prints them, every warning is printed as `file:line: warning: …` and repeated in the
 //! written scene's comment header, and the written scene is loaded back and built before the command succeeds.
 
+use crate::failure::CommandFailure;
 use gc2d_scene::Scene;
 use gc2d_scene::gsi::{GsiWarning, PartSizeConvention, parse_gsi, to_scene};
 use std::path::{Path, PathBuf};
@@ -30,37 +31,18 @@ impl From<PartSizeOption> for PartSizeConvention {
     }
 }
 
-/// Why an import failed: the exit code (2 for bad input, 1 for I/O) and the report to print.
-#[derive(Debug)]
-pub struct ImportFailure {
-    /// The process exit code.
-    pub code: u8,
-    /// The messages, one per line, each starting with `file:line:` where a line is known.
-    pub report: String,
-}
-
-impl ImportFailure {
-    fn input(report: impl Into<String>) -> Self {
-        Self { code: 2, report: report.into() }
-    }
-
-    fn io(report: impl Into<String>) -> Self {
-        Self { code: 1, report: report.into() }
-    }
-}
-
 /// Converts `gsi` into a RON scene at `output` (default: `gsi` with the extension `.ron`), reading PART_SIZE as
 /// `part_size` says. Returns the path written.
-pub fn import_gsi(gsi: &Path, output: Option<&Path>, part_size: PartSizeOption) -> Result<PathBuf, ImportFailure> {
+pub fn import_gsi(gsi: &Path, output: Option<&Path>, part_size: PartSizeOption) -> Result<PathBuf, CommandFailure> {
     let output = output.map_or_else(|| gsi.with_extension("ron"), Path::to_path_buf);
     if output == gsi {
-        return Err(ImportFailure::input(format!("the output {} would overwrite the input", output.display())));
+        return Err(CommandFailure::input(format!("the output {} would overwrite the input", output.display())));
     }
     let file = gsi.display().to_string();
-    let text = std::fs::read_to_string(gsi).map_err(|e| ImportFailure::input(format!("cannot read {file}: {e}")))?;
+    let text = std::fs::read_to_string(gsi).map_err(|e| CommandFailure::input(format!("cannot read {file}: {e}")))?;
     let located = |errors: gc2d_scene::gsi::GsiErrors| {
         let lines: Vec<String> = errors.0.iter().map(|error| error.located(&file)).collect();
-        ImportFailure::input(lines.join("\n"))
+        CommandFailure::input(lines.join("\n"))
     };
     let import = parse_gsi(&text, &gc2d_scene::gsi::ImportOptions { part_size: part_size.into() }).map_err(located)?;
     for note in &import.notes {
@@ -72,13 +54,13 @@ pub fn import_gsi(gsi: &Path, output: Option<&Path>, part_size: PartSizeOption) 
     for warning in &conversion.warnings {
         crate::console::err(&warning_line(&file, warning));
     }
-    let ron = conversion.scene.to_ron_string().map_err(|e| ImportFailure::io(format!("cannot write RON: {e}")))?;
+    let ron = conversion.scene.to_ron_string().map_err(|e| CommandFailure::failed(format!("cannot write RON: {e}")))?;
     let written = format!("{}{ron}\n", header(&file, &name, &conversion.warnings));
     std::fs::write(&output, &written)
-        .map_err(|e| ImportFailure::io(format!("cannot write {}: {e}", output.display())))?;
+        .map_err(|e| CommandFailure::failed(format!("cannot write {}: {e}", output.display())))?;
     let output_name = output.display().to_string();
     let invalid = |error: gc2d_scene::SceneError| {
-        ImportFailure::input(format!(
+        CommandFailure::input(format!(
             "{output_name} was written but is not a valid scene:\n{:?}",
             miette::Report::new(error)
         ))

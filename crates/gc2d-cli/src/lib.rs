@@ -1,11 +1,13 @@
 //! The `gc2d-rs` command line as a library: the run loop and the files a run writes. `main.rs` parses the
 //! arguments and wires scenes, recordings and checkpoints to these.
 
+pub mod bench;
 pub mod chatter;
 pub mod console;
 pub mod dumps;
 pub mod events;
 pub mod export;
+pub mod failure;
 pub mod import;
 pub mod live;
 pub mod outputs;

@@ -11,6 +11,7 @@ use gc2d_cli::console;
 use gc2d_cli::dumps::StateDumps;
 use gc2d_cli::events::EventsWriter;
 use gc2d_cli::export::ExportFormat;
+use gc2d_cli::failure::CommandFailure;
 use gc2d_cli::live::LiveSink;
 use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_scene_copy};
 use gc2d_cli::resume::{ResumePoint, load_resume_point};
@@ -111,6 +112,9 @@ enum Command {
     /// Run a parameter sweep or ensemble: a run per point, several at once, resumable; a table and plots of the
     /// results; or a Slurm job-array script (docs/sweeps.md).
     Sweep(gc2d_cli::sweep::SweepArgs),
+    /// Measure gc2d-rs on this machine: the standard piles, settled once and cached, stepped on each thread count;
+    /// particle-steps per second, contacts and memory per grain (docs/performance.md).
+    Bench(gc2d_cli::bench::BenchArgs),
     /// Error against run time of the integrators on reference problems (docs/validation.md).
     Convergence {
         /// Output directory for the tables and figures.
@@ -219,28 +223,6 @@ struct RunArgs {
     colour_by: Colour,
 }
 
-/// A failure and the exit code it maps to.
-struct Failure {
-    code: u8,
-    report: String,
-}
-
-impl Failure {
-    fn input(report: impl Into<String>) -> Self {
-        Self { code: 2, report: report.into() }
-    }
-
-    /// A failed write to stdout: a reader that has gone (`| head`) ends the program quietly with exit code 0, any
-    /// other error is a failure.
-    fn stdout(error: &std::io::Error) -> Self {
-        if console::is_closed(error) {
-            Self { code: 0, report: String::new() }
-        } else {
-            Self { code: 1, report: format!("cannot write to standard output: {error}") }
-        }
-    }
-}
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -250,11 +232,10 @@ fn main() -> ExitCode {
         Command::Snapshot { run, output, width, colour_by, forces } => snapshot(&run, output, width, colour_by, forces),
         Command::Analyze { run, kind, window, grid, warm_up, bins } => analyze(&run, kind, window, grid, warm_up, bins),
         Command::Convergence { out, quick } => convergence(out, quick),
-        Command::Sweep(args) => gc2d_cli::sweep::sweep(&args).map_err(|e| Failure { code: e.code, report: e.report }),
+        Command::Sweep(args) => gc2d_cli::sweep::sweep(&args),
+        Command::Bench(args) => gc2d_cli::bench::bench(&args),
         Command::ImportGsi { gsi, output, part_size } => {
-            gc2d_cli::import::import_gsi(&gsi, output.as_deref(), part_size)
-                .map(|_| 0)
-                .map_err(|e| Failure { code: e.code, report: e.report })
+            gc2d_cli::import::import_gsi(&gsi, output.as_deref(), part_size).map(|_| 0)
         }
     };
     match result {
@@ -279,36 +260,36 @@ fn render(error: gc2d_scene::SceneError) -> String {
 }
 
 /// Loads and validates a scene, printing its warnings (an inlet too slow for its rate) to stderr.
-fn load(path: &Path) -> Result<Scene, Failure> {
-    let scene = Scene::from_path(path).map_err(|e| Failure::input(render(e)))?;
+fn load(path: &Path) -> Result<Scene, CommandFailure> {
+    let scene = Scene::from_path(path).map_err(|e| CommandFailure::input(render(e)))?;
     for warning in scene.inlet_warnings() {
         console::err(&format!("warning: {}: {warning}", path.display()));
     }
     Ok(scene)
 }
 
-fn check(path: &Path) -> Result<u8, Failure> {
+fn check(path: &Path) -> Result<u8, CommandFailure> {
     let scene = load(path)?;
-    let summary = scene.summary().map_err(|e| Failure::input(render(e)))?;
+    let summary = scene.summary().map_err(|e| CommandFailure::input(render(e)))?;
     refuse_a_run_shorter_than_its_step(&scene, summary.time_step_s, None, || summary.limiting_entry.clone())?;
-    console::out(&summary.to_string()).map_err(|e| Failure::stdout(&e))?;
+    console::out(&summary.to_string()).map_err(|e| CommandFailure::stdout(&e))?;
     Ok(0)
 }
 
-fn run(args: RunArgs) -> Result<u8, Failure> {
+fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     let mut scene = load(&args.scene)?;
     if let Some(seed) = args.seed {
         scene.run.seed = seed;
     }
     if args.threads == Some(0) {
-        return Err(Failure::input("--threads must be at least 1"));
+        return Err(CommandFailure::input("--threads must be at least 1"));
     }
     // A recording cannot be continued (an MCAP file ends with its index): writing a resumed run into the file of the
     // run before would overwrite the frames recorded before the stop.
     if let (Some(_), Some(record)) = (&args.resume, &args.record)
         && std::fs::metadata(record).is_ok_and(|file| file.len() > 0)
     {
-        return Err(Failure::input(format!(
+        return Err(CommandFailure::input(format!(
             "--record {}: the file exists and holds the frames recorded before; a resumed run would overwrite them. \
              Record the resumed part into a new file (say {}); the Foxglove app opens several recordings of one \
              run together",
@@ -319,13 +300,15 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     if let Some(interval) = args.dump_every
         && !(interval.is_finite() && interval >= 0.0)
     {
-        return Err(Failure::input(format!("--dump-every must be a time in seconds (0: no dumps), got {interval}")));
+        return Err(CommandFailure::input(format!(
+            "--dump-every must be a time in seconds (0: no dumps), got {interval}"
+        )));
     }
     for (flag, interval) in [("--checkpoint-every", args.checkpoint_every), ("--png-every", args.png_every)] {
         if let Some(interval) = interval
             && !(interval.is_finite() && interval > 0.0)
         {
-            return Err(Failure::input(format!("{flag} must be a positive time in seconds, got {interval}")));
+            return Err(CommandFailure::input(format!("{flag} must be a positive time in seconds, got {interval}")));
         }
     }
     // The whole run loop executes on a worker of this pool: the engine's parallel sections then start from inside
@@ -334,14 +317,14 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
         .build()
-        .map_err(|e| Failure::input(format!("could not start the worker threads: {e}")))?;
+        .map_err(|e| CommandFailure::input(format!("could not start the worker threads: {e}")))?;
     let end_time = args.until.unwrap_or(scene.run.end_time_s);
     if !(end_time.is_finite() && end_time >= 0.0) {
-        return Err(Failure::input(format!("--until must be a non-negative time in seconds, got {end_time}")));
+        return Err(CommandFailure::input(format!("--until must be a non-negative time in seconds, got {end_time}")));
     }
     let (mut world, resumed_from) = match &args.resume {
         Some(from) => {
-            let ResumePoint { path, world } = load_resume_point(from).map_err(Failure::input)?;
+            let ResumePoint { path, world } = load_resume_point(from).map_err(CommandFailure::input)?;
             console::err(&format!(
                 "Resuming from {} at t = {:.6} s (step {}).",
                 path.display(),
@@ -351,7 +334,7 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
             (world, Some(path))
         }
         None => {
-            let world = scene.build().map_err(|e| Failure::input(render(e)))?;
+            let world = scene.build().map_err(|e| CommandFailure::input(render(e)))?;
             refuse_a_run_shorter_than_its_step(&scene, world.time_step(), args.until, || {
                 scene.summary().ok().and_then(|summary| summary.limiting_entry)
             })?;
@@ -364,13 +347,14 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         (None, _) => default_out_dir(&args.scene),
     };
     std::fs::create_dir_all(&out)
-        .map_err(|e| Failure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
+        .map_err(|e| CommandFailure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
     gc2d_cli::resume::remove_temporary_files(&out);
     let copy = out.join(SCENE_COPY);
     // The copy records what a fresh run started from; a resumed run keeps it, and the user's own scene file is
     // never overwritten by it (a scene named scene.ron run into its own directory).
     if args.resume.is_none() && !same_file(&copy, &args.scene) {
-        write_scene_copy(&copy, &scene).map_err(|e| Failure::input(format!("cannot write {}: {e}", copy.display())))?;
+        write_scene_copy(&copy, &scene)
+            .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", copy.display())))?;
     }
     let series_path = out.join("timeseries.csv");
     let mut series = if args.resume.is_some() && series_path.exists() {
@@ -378,7 +362,7 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
     } else {
         TimeSeriesWriter::create(&series_path)
     }
-    .map_err(|e| Failure::input(format!("cannot write {}: {e}", series_path.display())))?;
+    .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", series_path.display())))?;
 
     let stop = Arc::new(AtomicBool::new(false));
     let handler_flag = Arc::clone(&stop);
@@ -397,11 +381,11 @@ fn run(args: RunArgs) -> Result<u8, Failure> {
         &world,
         checkpoint_interval.unwrap_or(frame_interval),
     )
-    .map_err(|e| Failure::input(format!("cannot write {}: {e}", segments_path.display())))?;
+    .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", segments_path.display())))?;
     let earlier_chatter = segments.earlier_chatter();
     let live_options = RecordOptions { colour_by: args.colour_by.into(), ..RecordOptions::default() };
     let mut live = match &args.live {
-        Some(address) => Some(LiveSink::start(address, live_options, frame_interval).map_err(Failure::input)?),
+        Some(address) => Some(LiveSink::start(address, live_options, frame_interval).map_err(CommandFailure::input)?),
         None => None,
     };
     let mut recording = match &args.record {
@@ -527,7 +511,7 @@ fn start_events(
     world: &mut World,
     resumed: bool,
     flush_interval: f64,
-) -> Result<EventsWriter, Failure> {
+) -> Result<EventsWriter, CommandFailure> {
     world.record_contact_events();
     let path = out.join("events.csv");
     let names = scene.material_names();
@@ -536,7 +520,7 @@ fn start_events(
     } else {
         EventsWriter::create(&path, names, flush_interval)
     };
-    writer.map_err(|e| Failure::input(format!("cannot write {}: {e}", path.display())))
+    writer.map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", path.display())))
 }
 
 /// The scene's names of `bodies` (ids an engine error named), as a sentence to append to its message: `walls[0]`,
@@ -557,18 +541,23 @@ fn body_names(scene: &Scene, bodies: &[u32]) -> String {
 }
 
 /// Opens `transits.csv` (continued on a resumed run that has one).
-fn start_transits(out: &Path, world: &World, resumed: bool, flush_interval: f64) -> Result<TransitsWriter, Failure> {
+fn start_transits(
+    out: &Path,
+    world: &World,
+    resumed: bool,
+    flush_interval: f64,
+) -> Result<TransitsWriter, CommandFailure> {
     let path = out.join(TRANSITS_FILE);
     let writer = if resumed && path.exists() {
         TransitsWriter::continue_at(&path, flush_interval, world.time(), 0.5 * world.time_step())
     } else {
         TransitsWriter::create(&path, flush_interval)
     };
-    writer.map_err(|e| Failure::input(format!("cannot write {}: {e}", path.display())))
+    writer.map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", path.display())))
 }
 
 /// Opens the MCAP recording with the scene file attached and the run's metadata.
-fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) -> Result<Recording, Failure> {
+fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) -> Result<Recording, CommandFailure> {
     let info = RunInfo {
         program_version: env!("CARGO_PKG_VERSION").into(),
         seed: scene.run.seed,
@@ -585,7 +574,7 @@ fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) ->
         ..RecordOptions::default()
     };
     let recorder = Recorder::create(path, options, &info)
-        .map_err(|e| Failure::input(format!("cannot record to {}: {e}", path.display())))?;
+        .map_err(|e| CommandFailure::input(format!("cannot record to {}: {e}", path.display())))?;
     Ok(Recording { recorder: Some(recorder), interval })
 }
 
@@ -598,7 +587,7 @@ fn refuse_a_run_shorter_than_its_step(
     time_step: f64,
     until: Option<f64>,
     limiting: impl FnOnce() -> Option<String>,
-) -> Result<(), Failure> {
+) -> Result<(), CommandFailure> {
     let end_time = until.unwrap_or(scene.run.end_time_s);
     if scene.run.time_step_s.is_some() || end_time <= 0.0 || time_step <= end_time {
         return Ok(());
@@ -623,18 +612,24 @@ fn refuse_a_run_shorter_than_its_step(
                 .with_label("sets the bound"),
         );
     }
-    Err(Failure::input(render(error.located(scene.source.as_ref()))))
+    Err(CommandFailure::input(render(error.located(scene.source.as_ref()))))
 }
 
 /// `snapshot`: draws a checkpoint (a run directory's final.ckpt, or the given file).
-fn snapshot(run: &Path, output: Option<PathBuf>, width: u32, colour_by: Colour, forces: bool) -> Result<u8, Failure> {
+fn snapshot(
+    run: &Path,
+    output: Option<PathBuf>,
+    width: u32,
+    colour_by: Colour,
+    forces: bool,
+) -> Result<u8, CommandFailure> {
     let checkpoint = if run.is_dir() { run.join("final.ckpt") } else { run.to_path_buf() };
     let world = World::load_checkpoint_file(&checkpoint)
-        .map_err(|e| Failure::input(format!("cannot read {}: {e}", checkpoint.display())))?;
+        .map_err(|e| CommandFailure::input(format!("cannot read {}: {e}", checkpoint.display())))?;
     let output = output.unwrap_or_else(|| checkpoint.with_file_name("snapshot.png"));
     let options = PngOptions { width, colour_by: colour_by.into(), force_network: forces, ..PngOptions::default() };
     render_png(&world, &output, &options)
-        .map_err(|e| Failure { code: 1, report: format!("cannot draw {}: {e}", output.display()) })?;
+        .map_err(|e| CommandFailure { code: 1, report: format!("cannot draw {}: {e}", output.display()) })?;
     console::err(&format!(
         "Wrote {} (t = {:.6} s, {} particles).",
         output.display(),
@@ -652,39 +647,42 @@ fn analyze(
     grid: Option<f64>,
     warm_up: Option<f64>,
     bins: usize,
-) -> Result<u8, Failure> {
-    let failed = |e: gc2d_analysis::AnalysisError| Failure::input(format!("cannot analyse {}: {e}", run.display()));
+) -> Result<u8, CommandFailure> {
+    let failed =
+        |e: gc2d_analysis::AnalysisError| CommandFailure::input(format!("cannot analyse {}: {e}", run.display()));
     let scene = match kind {
         Kind::Auto => SceneKind::Auto,
         Kind::Pile => SceneKind::Pile,
         Kind::Silo => SceneKind::Silo,
         Kind::Mill => {
             let report = analyze_mill(run, &MillOptions { warm_up_s: warm_up }).map_err(failed)?;
-            let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
-            console::out(&json).map_err(|e| Failure::stdout(&e))?;
+            let json =
+                serde_json::to_string_pretty(&report).map_err(|e| CommandFailure { code: 1, report: e.to_string() })?;
+            console::out(&json).map_err(|e| CommandFailure::stdout(&e))?;
             console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
             return Ok(0);
         }
         Kind::Feedpipe => {
             let report = analyze_feedpipe(run, &FeedpipeOptions { warm_up_s: warm_up, bins }).map_err(failed)?;
-            let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
-            console::out(&json).map_err(|e| Failure::stdout(&e))?;
+            let json =
+                serde_json::to_string_pretty(&report).map_err(|e| CommandFailure { code: 1, report: e.to_string() })?;
+            console::out(&json).map_err(|e| CommandFailure::stdout(&e))?;
             console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
             return Ok(0);
         }
     };
     let options = AnalyzeOptions { scene, window_half_width: window, grid_cell: grid };
     let report = analyze_run(run, &options).map_err(failed)?;
-    let json = serde_json::to_string_pretty(&report).map_err(|e| Failure { code: 1, report: e.to_string() })?;
-    console::out(&json).map_err(|e| Failure::stdout(&e))?;
+    let json = serde_json::to_string_pretty(&report).map_err(|e| CommandFailure { code: 1, report: e.to_string() })?;
+    console::out(&json).map_err(|e| CommandFailure::stdout(&e))?;
     console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
     Ok(0)
 }
 
 /// `export`: a run's state at a checkpoint as tables and VTK.
-fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: Option<PathBuf>) -> Result<u8, Failure> {
+fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: Option<PathBuf>) -> Result<u8, CommandFailure> {
     let out = out.unwrap_or_else(|| run.join("export"));
-    let done = gc2d_cli::export::export(run, at, formats, &out).map_err(Failure::input)?;
+    let done = gc2d_cli::export::export(run, at, formats, &out).map_err(CommandFailure::input)?;
     console::err(&format!(
         "Exported t = {} s from {}: {} particles, {} contacts into {}.",
         done.time_s,
@@ -697,9 +695,9 @@ fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: Option<Pat
 }
 
 /// `convergence`: the work-precision study of the integrators.
-fn convergence(out: PathBuf, quick: bool) -> Result<u8, Failure> {
+fn convergence(out: PathBuf, quick: bool) -> Result<u8, CommandFailure> {
     let report = run_convergence(&ConvergenceOptions { out_dir: out.clone(), quick })
-        .map_err(|e| Failure { code: 1, report: format!("the convergence study failed: {e}") })?;
+        .map_err(|e| CommandFailure { code: 1, report: format!("the convergence study failed: {e}") })?;
     console::err(&format!("{} problems; tables and figures in {}.", report.problems.len(), out.display()));
     Ok(0)
 }
@@ -712,7 +710,7 @@ fn report_outcome(
     out: &Path,
     wall_time: f64,
     unwritten: &[String],
-) -> Result<u8, Failure> {
+) -> Result<u8, CommandFailure> {
     let particles = world.bodies().particles().count();
     if !unwritten.is_empty() {
         let (time, steps) = (world.time(), world.steps());
@@ -721,7 +719,7 @@ fn report_outcome(
             RunStatus::Interrupted => format!("was interrupted at t = {time:.6} s (step {steps})"),
             RunStatus::Failed(message) => format!("stopped at t = {time:.6} s (step {steps}): {message}"),
         };
-        return Err(Failure {
+        return Err(CommandFailure {
             code: 1,
             report: format!(
                 "The run {ended}, but these files could not be written: {}. The other outputs in {} end where they \
@@ -757,7 +755,7 @@ fn report_outcome(
             ));
             Ok(130)
         }
-        RunStatus::Failed(message) => Err(Failure {
+        RunStatus::Failed(message) => Err(CommandFailure {
             code: 1,
             report: format!(
                 "The run stopped at t = {:.6} s (step {}): {message}. The outputs in {} are complete up to this \

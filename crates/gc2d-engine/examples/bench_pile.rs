@@ -6,11 +6,14 @@
 //! cargo run --release -p gc2d-engine --example bench_pile -- layer 1000   # layers of the given sizes only
 //! ```
 //!
+//! `gc2d-rs bench` measures the same piles (and squares and disks) with a cache of settled states and any thread
+//! counts; this example stays for the LAMMPS comparison's bundle (../shared/bench/lammps), which ships it.
+//!
 //! Two tables. **Dense piles** (2,000 and 10,000 grains, twice as wide as high) are deposited (see
-//! `support/deposition.rs`), settled for `DENSE_SETTLE_TIME` on two threads, and stepped on a rayon pool of 1 and of
-//! 2 threads. **Layers** 1 cm deep (1,000, 10,000 and 100,000 grains, the same local packing at every size) settle
-//! for `LAYER_SETTLE_TIME` and are stepped on 1 thread for `LAYER_STEPS` steps, the same stretch of simulated time
-//! at every size: their time per particle-step shows how the step scales.
+//! `gc2d_bench::deposition`), settled for `StandardPile::settle_time` on two threads, and stepped on a rayon pool of
+//! 1 and of 2 threads. **Layers** 1 cm deep (1,000, 10,000 and 100,000 grains, the same local packing at every size)
+//! settle likewise and are stepped on 1 thread for `LAYER_STEPS` steps, the same stretch of simulated time at every
+//! size: their time per particle-step shows how the step scales.
 //!
 //! After `WARM_STEPS` untimed steps, the wall-clock time and the CPU time of all threads of the next steps are
 //! measured (for dense piles about `PARTICLE_STEPS_PER_RUN` particle-steps). Printed per run: particle-steps and contact evaluations
@@ -20,36 +23,21 @@
 //! the part of it held by the body columns (`Bodies::heap_bytes`).
 //! Nothing is cached on disk.
 
-#[path = "support/deposition.rs"]
-mod deposition;
-#[path = "support/thesis_material.rs"]
-mod thesis_material;
-#[path = "support/timing.rs"]
-mod timing;
-
-use deposition::PileShape;
+use gc2d_bench::StandardPile;
+use gc2d_bench::timing::{load_average, measure, pool, table_header};
 use gc2d_engine::World;
 use std::time::Instant;
-use timing::{load_average, measure, pool, print_header};
 
-/// Simulated time a dense pile settles before it is measured, s (its kinetic energy has peaked and decayed).
-const DENSE_SETTLE_TIME: f64 = 0.06;
-/// Simulated time a layer settles before it is measured, s.
-const LAYER_SETTLE_TIME: f64 = 0.005;
-/// Depth of the layers, m.
-const LAYER_DEPTH: f64 = 0.01;
 /// Particle-steps per measurement of a dense pile: the step count is this divided by the particle count.
 const PARTICLE_STEPS_PER_RUN: u64 = 20_000_000;
 /// Steps per measurement of a layer: the same stretch of simulated time (2 ms) at every size.
 const LAYER_STEPS: u64 = 1_000;
-/// Seed of the piles.
-const SEED: u64 = 2000;
 
-/// A deposited pile of `particles` grains after `settle_time` on two threads.
-fn settled_pile(particles: usize, shape: PileShape, settle_time: f64) -> World {
+/// A deposited pile of `particles` grains after its settling time on two threads.
+fn settled_pile(particles: usize, pile: StandardPile) -> World {
     let started = Instant::now();
-    let mut world = deposition::deposited_pile(particles, shape, SEED);
-    pool(2).install(|| world.run_until(settle_time)).expect("the pile settles without blowing up");
+    let mut world = pile.build(particles);
+    pool(2).install(|| world.run_until(pile.settle_time())).expect("the pile settles without blowing up");
     let stats = world.stats();
     eprintln!(
         "built and settled {particles} grains in {:.1} s: {} contacts, kinetic energy {:.3e} J",
@@ -67,21 +55,24 @@ fn main() {
     let sizes_or = |default: &[usize]| if sizes.is_empty() { default.to_vec() } else { sizes.clone() };
     println!("load average before: {}", load_average());
     if only("dense") {
-        println!("\ndense piles (twice as wide as high), settled {DENSE_SETTLE_TIME} s\n");
-        print_header("grain");
+        println!("\ndense piles (twice as wide as high), settled {} s\n", StandardPile::Dense7gons.settle_time());
+        println!("{}", table_header("grain"));
         for particles in sizes_or(&[2_000, 10_000]) {
-            let mut world = settled_pile(particles, PileShape::TwiceAsWideAsHigh, DENSE_SETTLE_TIME);
+            let mut world = settled_pile(particles, StandardPile::Dense7gons);
             for threads in [1, 2] {
-                measure(&mut world, threads, PARTICLE_STEPS_PER_RUN / particles as u64).print();
+                println!(
+                    "{}",
+                    measure(&mut world, threads, PARTICLE_STEPS_PER_RUN / particles as u64).expect("no blow-up").row()
+                );
             }
         }
     }
     if only("layer") {
-        println!("\nlayers {LAYER_DEPTH} m deep, settled {LAYER_SETTLE_TIME} s\n");
-        print_header("grain");
+        println!("\nlayers 0.01 m deep, settled {} s\n", StandardPile::Layer.settle_time());
+        println!("{}", table_header("grain"));
         for particles in sizes_or(&[1_000, 10_000, 100_000]) {
-            let mut world = settled_pile(particles, PileShape::Layer(LAYER_DEPTH), LAYER_SETTLE_TIME);
-            measure(&mut world, 1, LAYER_STEPS).print();
+            let mut world = settled_pile(particles, StandardPile::Layer);
+            println!("{}", measure(&mut world, 1, LAYER_STEPS).expect("no blow-up").row());
         }
     }
     println!("\nload average after: {}", load_average());

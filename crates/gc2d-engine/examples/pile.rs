@@ -11,9 +11,8 @@
 //! Every `REPORT_EVERY` steps it prints time, particles, contacts, kinetic energy and the energy ledger's balance
 //! error; at the end the particle count, the pile height, the run time and the throughput.
 
-#[path = "support/thesis_material.rs"]
-mod thesis_material;
-
+use gc2d_bench::piles::add_container;
+use gc2d_bench::thesis_material;
 use gc2d_engine::{DropHeight, DropSource, MaterialId, ParticleRecipe, TimeWindow, WallMotion, World};
 use gc2d_geometry::{DVec2, Pose, rectangle};
 use std::time::Instant;
@@ -44,7 +43,7 @@ const REPORT_EVERY: u64 = 25_000;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut world = World::new(thesis_material::thesis_config(7))?;
-    thesis_material::add_container(&mut world, BOX_WIDTH, BOX_HEIGHT);
+    add_container(&mut world, BOX_WIDTH, BOX_HEIGHT);
     add_funnel(&mut world)?;
     world.add_source(DropSource {
         position: DVec2::new(0.5 * BOX_WIDTH, SOURCE_HEIGHT),

@@ -6,12 +6,9 @@
 //! measures the two paths one after the other while no other test of this binary runs.
 
 use gc2d_alloc_count::{CountingAllocator, process_allocations};
+use gc2d_bench::thesis_material;
 use gc2d_engine::{WallMotion, World};
 use gc2d_geometry::{DVec2, Pose, rectangle, square};
-
-#[allow(dead_code)] // the test needs only the material, not the container and particle helpers
-#[path = "../examples/support/thesis_material.rs"]
-mod thesis_material;
 
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;

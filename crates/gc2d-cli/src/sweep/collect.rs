@@ -3,10 +3,10 @@
 //! (`analysis/<kind>.json`, the mill's run first where it is missing), read generically as flattened JSON, so that
 //! fields an analysis gains later appear as new columns.
 
-use super::SweepError;
 use super::scenes::PointScene;
 use super::spec::{SEED, Sweep};
 use super::state::outcome;
+use crate::failure::CommandFailure;
 use gc2d_analysis::{MillOptions, analyze_mill};
 use serde_json::Value;
 use std::collections::HashMap;
@@ -179,7 +179,7 @@ fn first_text(value: &Value) -> Option<&str> {
 
 /// Writes the table as CSV: `point`, the parameters, `seed`, `outcome`, then the numbers (empty where a row lacks
 /// one; numbers in Rust's shortest form that reads back to the same f64).
-pub fn write_csv(table: &Table, path: &Path) -> Result<(), SweepError> {
+pub fn write_csv(table: &Table, path: &Path) -> Result<(), CommandFailure> {
     let mut text = String::new();
     let header: Vec<String> = ["point".to_owned()]
         .into_iter()
@@ -199,7 +199,7 @@ pub fn write_csv(table: &Table, path: &Path) -> Result<(), SweepError> {
         text.push_str(&fields.join(","));
         text.push('\n');
     }
-    std::fs::write(path, text).map_err(|e| SweepError::failed(format!("cannot write {}: {e}", path.display())))
+    std::fs::write(path, text).map_err(|e| CommandFailure::failed(format!("cannot write {}: {e}", path.display())))
 }
 
 /// A number in Rust's shortest form that reads back to the same f64: plain for integers and for magnitudes from 1e-3

@@ -1,7 +1,7 @@
 //! The sweep file as written: a RON `Sweep(…)` read through serde, with ron's errors located in the file like a
 //! scene's (file, line, column, field path, and a "did you mean" for misspelled field names).
 
-use super::SweepError;
+use crate::failure::CommandFailure;
 use gc2d_scene::{ErrorKind, SceneError, SourceText, error::suggest};
 use ron::extensions::Extensions;
 use serde::Deserialize;
@@ -114,12 +114,12 @@ pub struct Parsed {
 }
 
 /// Parses the sweep file `text` read from `name`.
-pub fn parse(text: &str, name: &str) -> Result<Parsed, SweepError> {
+pub fn parse(text: &str, name: &str) -> Result<Parsed, CommandFailure> {
     let source = Arc::new(SourceText::new(name, text));
     let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
     match options.from_str::<SweepFile>(text) {
         Ok(file) => Ok(Parsed { file, source }),
-        Err(error) => Err(SweepError::input(render(&located(&error, &source)))),
+        Err(error) => Err(CommandFailure::input(render(&located(&error, &source)))),
     }
 }
 

@@ -3,9 +3,9 @@
 //! (Ctrl-C, SIGTERM, SIGHUP) is passed on to the running children as SIGTERM, so that each writes its final
 //! checkpoint, and no further point starts.
 
-use super::SweepError;
 use super::scenes::PointScene;
 use super::state::{State, state, write_scene};
+use crate::failure::CommandFailure;
 use crate::outputs::SCENE_COPY;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::collections::VecDeque;
@@ -60,7 +60,7 @@ struct Running<'a> {
 }
 
 /// Runs (or resumes) every point of `points` that is not finished; `stop` is set by the signal handler.
-pub fn run_points(points: &[PointScene], settings: &RunSettings, stop: &AtomicBool) -> Result<Tally, SweepError> {
+pub fn run_points(points: &[PointScene], settings: &RunSettings, stop: &AtomicBool) -> Result<Tally, CommandFailure> {
     let mut tally = Tally::default();
     let mut queue = VecDeque::new();
     for point in points {
@@ -76,7 +76,7 @@ pub fn run_points(points: &[PointScene], settings: &RunSettings, stop: &AtomicBo
     }
     let bar = progress_bar(queue.len() as u64, tally.skipped, settings.quiet);
     let exe = std::env::current_exe()
-        .map_err(|e| SweepError::failed(format!("cannot find the gc2d-rs program to run the points with: {e}")))?;
+        .map_err(|e| CommandFailure::failed(format!("cannot find the gc2d-rs program to run the points with: {e}")))?;
     let mut running: Vec<Running> = Vec::new();
     let mut forwarded = false;
     loop {
@@ -91,10 +91,9 @@ pub fn run_points(points: &[PointScene], settings: &RunSettings, stop: &AtomicBo
         }
         let mut k = 0;
         while k < running.len() {
-            let status = running[k]
-                .child
-                .try_wait()
-                .map_err(|e| SweepError::failed(format!("cannot watch the run of {}: {e}", running[k].point.name)))?;
+            let status = running[k].child.try_wait().map_err(|e| {
+                CommandFailure::failed(format!("cannot watch the run of {}: {e}", running[k].point.name))
+            })?;
             let Some(status) = status else {
                 k += 1;
                 continue;
@@ -122,7 +121,7 @@ pub fn run_points(points: &[PointScene], settings: &RunSettings, stop: &AtomicBo
 
 /// Starts `gc2d-rs run` on a point (writing its `scene.ron` first when it starts from the beginning); its output
 /// goes to `run.log` in the run directory.
-fn spawn(exe: &Path, point: &PointScene, resume: bool, settings: &RunSettings) -> Result<Child, SweepError> {
+fn spawn(exe: &Path, point: &PointScene, resume: bool, settings: &RunSettings) -> Result<Child, CommandFailure> {
     if !resume {
         write_scene(point, &settings.sweep_file)?;
     }
@@ -131,9 +130,9 @@ fn spawn(exe: &Path, point: &PointScene, resume: bool, settings: &RunSettings) -
         .create(true)
         .append(true)
         .open(&log_path)
-        .map_err(|e| SweepError::failed(format!("cannot write {}: {e}", log_path.display())))?;
+        .map_err(|e| CommandFailure::failed(format!("cannot write {}: {e}", log_path.display())))?;
     let log_err =
-        log.try_clone().map_err(|e| SweepError::failed(format!("cannot write {}: {e}", log_path.display())))?;
+        log.try_clone().map_err(|e| CommandFailure::failed(format!("cannot write {}: {e}", log_path.display())))?;
     let mut command = Command::new(exe);
     command
         .arg("run")
@@ -163,7 +162,7 @@ fn spawn(exe: &Path, point: &PointScene, resume: bool, settings: &RunSettings) -
         .stdout(log)
         .stderr(log_err)
         .spawn()
-        .map_err(|e| SweepError::failed(format!("cannot start the run of {}: {e}", point.name)))
+        .map_err(|e| CommandFailure::failed(format!("cannot start the run of {}: {e}", point.name)))
 }
 
 /// Asks a child to stop as a batch system does (SIGTERM): it writes its final checkpoint and summary.

@@ -16,6 +16,7 @@ mod spec;
 mod state;
 
 use crate::console;
+use crate::failure::CommandFailure;
 use local::{RunSettings, Tally, run_points};
 use scenes::PointScene;
 use slurm::{ScriptPaths, SlurmOptions};
@@ -70,45 +71,26 @@ pub struct SweepArgs {
     pub quiet: bool,
 }
 
-/// A failed sweep: its exit code (1 failure, 2 invalid input, 130 interrupted) and what to say.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct SweepError {
-    /// Exit code.
-    pub code: u8,
-    /// The message.
-    pub report: String,
-}
-
-impl SweepError {
-    /// Invalid input (exit code 2).
-    pub fn input(report: impl Into<String>) -> Self {
-        Self { code: 2, report: report.into() }
-    }
-
-    /// A failure while running or writing (exit code 1).
-    pub fn failed(report: impl Into<String>) -> Self {
-        Self { code: 1, report: report.into() }
-    }
-}
-
 /// Runs `gc2d-rs sweep`; returns the exit code.
-pub fn sweep(args: &SweepArgs) -> Result<u8, SweepError> {
+pub fn sweep(args: &SweepArgs) -> Result<u8, CommandFailure> {
     for (flag, value) in
         [("--jobs", Some(args.jobs)), ("--threads", args.threads), ("--points-per-task", Some(args.points_per_task))]
     {
         if value == Some(0) {
-            return Err(SweepError::input(format!("{flag} must be at least 1")));
+            return Err(CommandFailure::input(format!("{flag} must be at least 1")));
         }
     }
     if let Some(every) = args.checkpoint_every
         && !(every.is_finite() && every > 0.0)
     {
-        return Err(SweepError::input(format!("--checkpoint-every must be a positive time in seconds, got {every}")));
+        return Err(CommandFailure::input(format!(
+            "--checkpoint-every must be a positive time in seconds, got {every}"
+        )));
     }
     let bytes = std::fs::read(&args.sweep)
-        .map_err(|e| SweepError::input(format!("cannot read the sweep file {}: {e}", args.sweep.display())))?;
+        .map_err(|e| CommandFailure::input(format!("cannot read the sweep file {}: {e}", args.sweep.display())))?;
     let text = String::from_utf8(bytes)
-        .map_err(|_| SweepError::input(format!("{} is not UTF-8 text", args.sweep.display())))?;
+        .map_err(|_| CommandFailure::input(format!("{} is not UTF-8 text", args.sweep.display())))?;
     let parsed = file::parse(&text, &args.sweep.display().to_string())?;
     let sweep = Sweep::new(&args.sweep, parsed, args.out.clone())?;
     let points = scenes::point_scenes(&sweep)?;
@@ -175,13 +157,13 @@ fn report(tally: &Tally, total: usize, out: &Path) {
 }
 
 /// `--collect`: the table (CSV and Parquet) and the plots.
-fn collect_results(sweep: &Sweep, points: &[PointScene]) -> Result<u8, SweepError> {
+fn collect_results(sweep: &Sweep, points: &[PointScene]) -> Result<u8, CommandFailure> {
     let (table, warnings) = collect::collect(sweep, points);
     for warning in &warnings {
         console::err(&format!("warning: {warning}"));
     }
     std::fs::create_dir_all(&sweep.out)
-        .map_err(|e| SweepError::failed(format!("cannot create {}: {e}", sweep.out.display())))?;
+        .map_err(|e| CommandFailure::failed(format!("cannot create {}: {e}", sweep.out.display())))?;
     let csv = sweep.out.join(TABLE_CSV);
     collect::write_csv(&table, &csv)?;
     let parquet = sweep.out.join(TABLE_PARQUET);
@@ -209,12 +191,12 @@ fn write_slurm(
     sweep: &Sweep,
     points: usize,
     checkpoint_every_s: Option<f64>,
-) -> Result<u8, SweepError> {
+) -> Result<u8, CommandFailure> {
     let absolute = |path: &Path| {
-        std::path::absolute(path).map_err(|e| SweepError::failed(format!("cannot resolve {}: {e}", path.display())))
+        std::path::absolute(path).map_err(|e| CommandFailure::failed(format!("cannot resolve {}: {e}", path.display())))
     };
     let exe = std::env::current_exe()
-        .map_err(|e| SweepError::failed(format!("cannot find the gc2d-rs program for the script: {e}")))?;
+        .map_err(|e| CommandFailure::failed(format!("cannot find the gc2d-rs program for the script: {e}")))?;
     let paths = ScriptPaths { exe, sweep: absolute(&sweep.path)?, out: absolute(&sweep.out)? };
     let options = SlurmOptions {
         points_per_task: args.points_per_task,

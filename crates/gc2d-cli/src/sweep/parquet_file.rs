@@ -2,14 +2,14 @@
 //! where all its values are numbers and as a string otherwise, `seed` as an unsigned 64-bit integer and every result
 //! as an optional double.
 
-use super::SweepError;
 use super::collect::Table;
 use super::spec::SEED;
+use crate::failure::CommandFailure;
 use crate::parquet_table::{NamedColumn, ParquetColumn, write_parquet as write_table};
 use std::path::Path;
 
 /// Writes `table` to `path`.
-pub fn write_parquet(table: &Table, path: &Path) -> Result<(), SweepError> {
+pub fn write_parquet(table: &Table, path: &Path) -> Result<(), CommandFailure> {
     let rows = &table.rows;
     let text = |name: &str, values: Vec<Option<String>>| NamedColumn {
         name: name.into(),
@@ -31,5 +31,5 @@ pub fn write_parquet(table: &Table, path: &Path) -> Result<(), SweepError> {
         columns.push(NamedColumn { name: name.clone(), values: ParquetColumn::Number(values) });
     }
     write_table("sweep", &columns, path)
-        .map_err(|e| SweepError::failed(format!("cannot write {}: {e}", path.display())))
+        .map_err(|e| CommandFailure::failed(format!("cannot write {}: {e}", path.display())))
 }

@@ -2,9 +2,9 @@
 //! combination of the other parameters' values, each point the mean over the seeds with an error bar of ± one
 //! (sample) standard deviation; the legend says so.
 
-use super::SweepError;
 use super::collect::Table;
 use super::file::Plot;
+use crate::failure::CommandFailure;
 use gc2d_analysis::figures::{SERIES_COLOURS, padded_range};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
@@ -20,19 +20,19 @@ pub struct SeriesStats {
 }
 
 /// Draws every figure the sweep file asks for into `folder` (`<y>_vs_<x>.svg`); returns the files written.
-pub fn draw_plots(table: &Table, plots: &[Plot], folder: &Path) -> Result<Vec<PathBuf>, SweepError> {
+pub fn draw_plots(table: &Table, plots: &[Plot], folder: &Path) -> Result<Vec<PathBuf>, CommandFailure> {
     let mut written = Vec::new();
     if plots.is_empty() {
         return Ok(written);
     }
     std::fs::create_dir_all(folder)
-        .map_err(|e| SweepError::failed(format!("cannot create {}: {e}", folder.display())))?;
+        .map_err(|e| CommandFailure::failed(format!("cannot create {}: {e}", folder.display())))?;
     for plot in plots {
         for y in &plot.y {
             let series = series(table, &plot.x, y)?;
             let path = folder.join(format!("{}_vs_{}.svg", file_part(y), file_part(&plot.x)));
             draw(&path, &plot.x, y, &series)
-                .map_err(|e| SweepError::failed(format!("cannot draw {}: {e}", path.display())))?;
+                .map_err(|e| CommandFailure::failed(format!("cannot draw {}: {e}", path.display())))?;
             written.push(path);
         }
     }
@@ -41,14 +41,14 @@ pub fn draw_plots(table: &Table, plots: &[Plot], folder: &Path) -> Result<Vec<Pa
 
 /// The series of column `y` against parameter `x`: rows grouped by the other parameters' values, then by x; the mean
 /// and sample standard deviation over the group's seeds (rows where y is missing or not finite are left out).
-pub fn series(table: &Table, x: &str, y: &str) -> Result<Vec<SeriesStats>, SweepError> {
+pub fn series(table: &Table, x: &str, y: &str) -> Result<Vec<SeriesStats>, CommandFailure> {
     let Some(x_index) = table.parameters.iter().position(|p| p == x) else {
-        return Err(SweepError::input(format!("a plot's x, `{x}`, is not a parameter")));
+        return Err(CommandFailure::input(format!("a plot's x, `{x}`, is not a parameter")));
     };
     let Some(column) = table.column(y) else {
         let names: Vec<&str> = table.numbers.iter().map(String::as_str).collect();
         let hint = gc2d_scene::error::suggest(y, &names).map_or(String::new(), |s| format!(" (did you mean `{s}`?)"));
-        return Err(SweepError::input(format!(
+        return Err(CommandFailure::input(format!(
             "a plot's y, `{y}`, is not a column of the collected table{hint}; its columns are listed in sweep.csv"
         )));
     };
@@ -57,7 +57,7 @@ pub fn series(table: &Table, x: &str, y: &str) -> Result<Vec<SeriesStats>, Sweep
     let mut groups: BTreeMap<String, BTreeMap<OrderedX, Vec<f64>>> = BTreeMap::new();
     for (row, value) in table.rows.iter().zip(column) {
         let Ok(xv) = row.parameters[x_index].parse::<f64>() else {
-            return Err(SweepError::input(format!(
+            return Err(CommandFailure::input(format!(
                 "a plot's x, `{x}`, has the value `{}`, which is not a number",
                 row.parameters[x_index]
             )));

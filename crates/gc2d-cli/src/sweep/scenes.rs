@@ -2,9 +2,9 @@
 //! checked against it (errors at the parameter in the sweep file, with the scene loader's "did you mean"), every
 //! point's values put in, and the result loaded and built like `gc2d-rs check` does (errors name the point).
 
-use super::SweepError;
 use super::apply::{PathProblem, Target, put, target};
 use super::spec::{ParameterSpec, Point, Sweep};
+use crate::failure::CommandFailure;
 use crate::outputs::SCENE_COPY;
 use gc2d_scene::{ErrorKind, Scene};
 use rayon::prelude::*;
@@ -33,16 +33,16 @@ pub struct PointScene {
 }
 
 /// Makes and checks the scene of every point.
-pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, SweepError> {
+pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
     let base = Scene::from_path(&sweep.scene).map_err(|e| {
-        SweepError::input(format!(
+        CommandFailure::input(format!(
             "the base scene of {} does not load:\n{}",
             sweep.path.display(),
             super::file::render(&e)
         ))
     })?;
     let base_text =
-        base.to_ron_string().map_err(|e| SweepError::failed(format!("cannot write the base scene: {e}")))?;
+        base.to_ron_string().map_err(|e| CommandFailure::failed(format!("cannot write the base scene: {e}")))?;
     for parameter in &sweep.parameters {
         check_path(sweep, &base_text, parameter)?;
     }
@@ -51,7 +51,7 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, SweepError> {
     for point in &points {
         let name = sweep.dir_name(point);
         if let Some(other) = seen.insert(name.clone(), point.index) {
-            return Err(SweepError::input(format!(
+            return Err(CommandFailure::input(format!(
                 "points {other} and {} both get the directory name `{name}` (values that differ only in characters a \
                  directory name cannot hold): give different values",
                 point.index
@@ -81,7 +81,7 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, SweepError> {
                 if more > 0 { format!(" and {more} more") } else { String::new() }
             ));
         }
-        return Err(SweepError::input(message));
+        return Err(CommandFailure::input(message));
     }
     Ok(scenes)
 }
@@ -106,7 +106,7 @@ fn point_scene(sweep: &Sweep, base_text: &str, point: &Point) -> Result<PointSce
 
 /// Refuses a parameter whose path does not lead to a field of the base scene: located at the parameter in the sweep
 /// file, with the loader's suggestion where the name is misspelled.
-fn check_path(sweep: &Sweep, base_text: &str, parameter: &ParameterSpec) -> Result<(), SweepError> {
+fn check_path(sweep: &Sweep, base_text: &str, parameter: &ParameterSpec) -> Result<(), CommandFailure> {
     let first = &parameter.values[0];
     let (probe, problem) = match target(base_text, &parameter.path) {
         Ok(Target::Value(_)) => return Ok(()),

@@ -3,7 +3,7 @@
 //! the script passes it on to the sweep, whose runs write their final checkpoints, and requeues the task
 //! (`scontrol requeue`), which then resumes where it stopped. `gc2d-rs sweep SWEEP --collect` gathers the results.
 
-use super::SweepError;
+use crate::failure::CommandFailure;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
@@ -31,11 +31,11 @@ pub fn task_count(points: usize, points_per_task: usize) -> usize {
 }
 
 /// The points (indices) of array task `task`, or an error when there is no such task.
-pub fn task_points(task: usize, points: usize, points_per_task: usize) -> Result<Range<usize>, SweepError> {
+pub fn task_points(task: usize, points: usize, points_per_task: usize) -> Result<Range<usize>, CommandFailure> {
     let per = points_per_task.max(1);
     let tasks = task_count(points, per);
     if task >= tasks {
-        return Err(SweepError::input(format!(
+        return Err(CommandFailure::input(format!(
             "--task {task}: the sweep has {tasks} task{} of up to {per} point{} (0 to {})",
             if tasks == 1 { "" } else { "s" },
             if per == 1 { "" } else { "s" },
@@ -56,19 +56,19 @@ pub struct ScriptPaths {
 }
 
 /// Writes `<out>/slurm/sweep.sbatch` for `points` points and returns its path.
-pub fn write_script(paths: &ScriptPaths, points: usize, options: &SlurmOptions) -> Result<PathBuf, SweepError> {
+pub fn write_script(paths: &ScriptPaths, points: usize, options: &SlurmOptions) -> Result<PathBuf, CommandFailure> {
     if !valid_time(&options.time) {
-        return Err(SweepError::input(format!(
+        return Err(CommandFailure::input(format!(
             "--time {}: give Slurm's format, minutes (30), HH:MM:SS (2:00:00) or D-HH:MM:SS (1-12:00:00)",
             options.time
         )));
     }
     let folder = paths.out.join("slurm");
     std::fs::create_dir_all(&folder)
-        .map_err(|e| SweepError::failed(format!("cannot create {}: {e}", folder.display())))?;
+        .map_err(|e| CommandFailure::failed(format!("cannot create {}: {e}", folder.display())))?;
     let path = folder.join(SCRIPT);
     std::fs::write(&path, script(paths, points, options))
-        .map_err(|e| SweepError::failed(format!("cannot write {}: {e}", path.display())))?;
+        .map_err(|e| CommandFailure::failed(format!("cannot write {}: {e}", path.display())))?;
     Ok(path)
 }
 

@@ -1,8 +1,8 @@
 //! The sweep as it runs: the sweep file checked field by field (grids, names, seeds, plots), each parameter's values
 //! as the RON text put into the scene, and the points, their full grid.
 
-use super::SweepError;
 use super::file::{Parsed, Plot, Seeds, SweepFile, Values, render};
+use crate::failure::CommandFailure;
 use gc2d_scene::{ErrorKind, SceneError, SourceText};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -58,10 +58,10 @@ pub struct Point {
 
 impl Sweep {
     /// Checks the parsed file read from `path`; `out` overrides its output directory.
-    pub fn new(path: &Path, parsed: Parsed, out: Option<PathBuf>) -> Result<Self, SweepError> {
+    pub fn new(path: &Path, parsed: Parsed, out: Option<PathBuf>) -> Result<Self, CommandFailure> {
         let Parsed { file, source } = parsed;
         let error = |field: String, message: String| {
-            SweepError::input(render(&SceneError::new(ErrorKind::Value, field, message).located(Some(&source))))
+            CommandFailure::input(render(&SceneError::new(ErrorKind::Value, field, message).located(Some(&source))))
         };
         let folder = path.parent().unwrap_or(Path::new(""));
         let scene = folder.join(&file.scene);
@@ -185,13 +185,13 @@ impl Sweep {
     }
 
     /// An error located at a parameter's `path` field in the sweep file.
-    pub fn parameter_error(&self, parameter: &ParameterSpec, message: String, help: Option<String>) -> SweepError {
+    pub fn parameter_error(&self, parameter: &ParameterSpec, message: String, help: Option<String>) -> CommandFailure {
         let mut error =
             SceneError::new(ErrorKind::UnknownName, format!("parameters[{}].path", parameter.index), message);
         if let Some(help) = help {
             error = error.with_help(help);
         }
-        SweepError::input(render(&error.located(Some(&self.source))))
+        CommandFailure::input(render(&error.located(Some(&self.source))))
     }
 }
 

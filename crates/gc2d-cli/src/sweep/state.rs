@@ -1,8 +1,8 @@
 //! What a point's run directory says about it: not started, interrupted (resume it), or finished (skip it), and
 //! whether it belongs to this point at all (its `scene.ron` is the point's scene).
 
-use super::SweepError;
 use super::scenes::PointScene;
+use crate::failure::CommandFailure;
 use crate::outputs::SCENE_COPY;
 use std::path::Path;
 
@@ -18,11 +18,11 @@ pub enum State {
 }
 
 /// Reads the state of `point`'s run directory; a directory whose `scene.ron` is another scene is refused.
-pub fn state(point: &PointScene) -> Result<State, SweepError> {
+pub fn state(point: &PointScene) -> Result<State, CommandFailure> {
     let copy = point.dir.join(SCENE_COPY);
     let Ok(written) = std::fs::read_to_string(&copy) else { return Ok(State::Fresh) };
     if scene_text(&written) != point.text.trim() {
-        return Err(SweepError::input(format!(
+        return Err(CommandFailure::input(format!(
             "{} holds another scene than point `{}` now has (was the sweep file or the base scene changed?): move \
              the directory away, or give the sweep another output directory, before running again",
             copy.display(),
@@ -37,9 +37,9 @@ pub fn state(point: &PointScene) -> Result<State, SweepError> {
 }
 
 /// Writes `scene.ron` of a point about to start from the beginning.
-pub fn write_scene(point: &PointScene, sweep_file: &Path) -> Result<(), SweepError> {
+pub fn write_scene(point: &PointScene, sweep_file: &Path) -> Result<(), CommandFailure> {
     std::fs::create_dir_all(&point.dir)
-        .map_err(|e| SweepError::failed(format!("cannot create {}: {e}", point.dir.display())))?;
+        .map_err(|e| CommandFailure::failed(format!("cannot create {}: {e}", point.dir.display())))?;
     let header = format!(
         "// Point {} of the sweep {}, as gc2d-rs {} made it from the base scene; every field is written.\n",
         point.name,
@@ -48,7 +48,7 @@ pub fn write_scene(point: &PointScene, sweep_file: &Path) -> Result<(), SweepErr
     );
     let copy = point.dir.join(SCENE_COPY);
     std::fs::write(&copy, header + &point.text + "\n")
-        .map_err(|e| SweepError::failed(format!("cannot write {}: {e}", copy.display())))
+        .map_err(|e| CommandFailure::failed(format!("cannot write {}: {e}", copy.display())))
 }
 
 /// The outcome `summary.json` in `dir` gives (`completed`, `interrupted`, `failed`), if it is there and readable.

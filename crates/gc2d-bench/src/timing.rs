@@ -1,9 +1,7 @@
-//! Timing of `World::step` for the throughput examples (`bench_pile`, `bench_disk_pile`): one measurement on a
-//! rayon pool of a given size, wall-clock and CPU time, and its row in the Markdown table docs/performance.md quotes.
+//! Timing of `World::step`: one measurement on a rayon pool of a given size, wall-clock and CPU time, and its row in
+//! the Markdown table docs/performance.md quotes.
 
-#![allow(dead_code)] // each example uses its own subset
-
-use gc2d_engine::World;
+use gc2d_engine::{World, WorldError};
 use std::time::Instant;
 
 /// Untimed steps before each measurement (fills the caches, lets the thread pool spin up).
@@ -37,10 +35,15 @@ impl Measurement {
         self.particles as f64 * self.steps as f64 / self.seconds
     }
 
-    /// Prints the run as a row of the table of [`print_header`].
-    pub fn print(&self) {
+    /// Contacts (touching pairs, walls included) per particle, averaged over the timed steps.
+    pub fn contacts_per_particle(&self) -> f64 {
+        self.contacts as f64 / self.steps as f64 / self.particles as f64
+    }
+
+    /// The run as a row of the Markdown table of [`table_header`].
+    pub fn row(&self) -> String {
         let per_step = |x: u64| x as f64 / self.steps as f64 / self.particles as f64;
-        println!(
+        format!(
             "| {:>7} | {:>7} | {:>6} | {:>8.3} | {:>8.3} | {:>10.2} | {:>10.2} | {:>6.1} | {:>8.1} | {:>8.2} | {:>8.2} | {:>7} | {:>7} |",
             self.particles,
             self.threads,
@@ -55,17 +58,17 @@ impl Measurement {
             per_step(self.contacts),
             self.heap_bytes / self.particles,
             self.body_heap_bytes / self.particles,
-        );
+        )
     }
 }
 
-/// Prints the head of the table of [`Measurement::print`]; `particle` names them ("grain", "disk").
-pub fn print_header(particle: &str) {
-    println!(
+/// The head of the Markdown table of [`Measurement::row`] (two lines); `particle` names them ("grain", "disk").
+pub fn table_header(particle: &str) -> String {
+    format!(
         "| {particle}s | threads | steps | wall s | CPU s | M p-steps/s | M contacts/s | wall ns/p-step | CPU ns/p-step \
-         | box pairs/{particle} | contacts/{particle} | heap B/{particle} | of it bodies |"
-    );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+         | box pairs/{particle} | contacts/{particle} | heap B/{particle} | of it bodies |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    )
 }
 
 /// A rayon pool of `threads` threads.
@@ -73,36 +76,36 @@ pub fn pool(threads: usize) -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool")
 }
 
-/// CPU time used by all threads of this process so far, s (the sum of `/proc/self/task/*/schedstat`), or `None`
-/// where that is not available. On a shared machine it is the better measure of the work a run needs.
+/// CPU time used by all threads of this process so far, s, those that have ended included (the threads of an
+/// earlier measurement's pool end during the next one), or `None` where the clock cannot be read. On a shared machine
+/// it is the better measure of the work a run needs.
 fn process_cpu_seconds() -> Option<f64> {
-    let mut nanoseconds = 0u64;
-    for task in std::fs::read_dir("/proc/self/task").ok()? {
-        let stat = std::fs::read_to_string(task.ok()?.path().join("schedstat")).ok()?;
-        nanoseconds += stat.split_whitespace().next()?.parse::<u64>().ok()?;
-    }
-    Some(nanoseconds as f64 * 1e-9)
+    let mut time = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: clock_gettime writes one timespec through the valid pointer it is given and keeps no reference to it.
+    let status = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut time) };
+    (status == 0).then_some(time.tv_sec as f64 + time.tv_nsec as f64 * 1e-9)
 }
 
-/// Steps `world` `steps` times on a pool of `threads` threads, after `WARM_STEPS` untimed ones, and times it.
-pub fn measure(world: &mut World, threads: usize, steps: u64) -> Measurement {
+/// Steps `world` `steps` times on a pool of `threads` threads, after `WARM_STEPS` untimed ones, and times it; the
+/// error of a step that fails (a blow-up).
+pub fn measure(world: &mut World, threads: usize, steps: u64) -> Result<Measurement, WorldError> {
     let particles = world.bodies().particles().count();
     pool(threads).install(|| {
         for _ in 0..WARM_STEPS {
-            world.step().expect("no blow-up");
+            world.step()?;
         }
         let (mut contacts, mut box_pairs) = (0, 0);
         let cpu_before = process_cpu_seconds();
         let started = Instant::now();
         for _ in 0..steps {
-            world.step().expect("no blow-up");
+            world.step()?;
             contacts += world.stats().contacts as u64;
             box_pairs += world.stats().box_pairs as u64;
         }
         let seconds = started.elapsed().as_secs_f64();
         let cpu_seconds = process_cpu_seconds().zip(cpu_before).map_or(f64::NAN, |(after, before)| after - before);
         let (heap_bytes, body_heap_bytes) = (world.heap_bytes(), world.bodies().heap_bytes());
-        Measurement {
+        Ok(Measurement {
             particles,
             threads,
             steps,
@@ -112,7 +115,7 @@ pub fn measure(world: &mut World, threads: usize, steps: u64) -> Measurement {
             box_pairs,
             heap_bytes,
             body_heap_bytes,
-        }
+        })
     })
 }
 

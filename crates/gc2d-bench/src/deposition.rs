@@ -1,71 +1,71 @@
-//! A dense pile of the thesis's particles built by sequential deposition, for the `bench_pile` example.
+//! Sequential deposition: a dense, random, non-overlapping start for the polygon piles of the benchmarks.
+//!
+//! Particles are dropped one by one straight down onto the floor or the particles below (left to right, pass after
+//! pass, each pass starting at a random offset) and left `DEPOSITION_GAP` above their support. Nothing overlaps at
+//! the start; settling under gravity closes the gaps and loads the contacts, so the settling run sees no violent
+//! impacts. ../shared/bench/lammps/make_scenes.py builds the LAMMPS comparison's piles the same way.
 
-use crate::thesis_material::{DENSITY, SEMI_AXIS, SIZE_VARIATION, add_container, thesis_config, thesis_recipe};
 use gc2d_engine::World;
 use gc2d_geometry::{ConvexPolygon, DVec2, Pose};
-use rand::{Rng, SeedableRng};
+use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 /// Clearance left between a deposited particle and what it rests on, m.
 const DEPOSITION_GAP: f64 = 1e-6;
-/// Packing fraction assumed when sizing the box; sequential deposition packs somewhat looser.
-const ASSUMED_PACKING: f64 = 0.75;
 /// Orientations tried per deposited particle.
 const ORIENTATIONS: usize = 12;
 /// A new particle is tested against this many of the most recently deposited particles of every column it spans.
 const SUPPORT_CANDIDATES: usize = 12;
 
-/// The outline of a deposited pile.
+/// Where and how the particles are laid down.
 #[derive(Debug, Clone, Copy)]
-pub enum PileShape {
-    /// A box twice as wide as the pile is high: the dense pile of the throughput table.
-    TwiceAsWideAsHigh,
-    /// A layer of this depth (m) in a box as wide as it takes: the same local packing for every particle count.
-    Layer(f64),
+pub struct DepositionPlan {
+    /// Width of the floor, from x = 0, m.
+    pub width: f64,
+    /// Width of the columns that index the deposited particles, m: at least the largest particle's extent.
+    pub column_width: f64,
+    /// The orientations tried per particle are its drawn angle plus `ORIENTATIONS` even steps over this angle, rad
+    /// (a full turn for irregular polygons, a quarter turn for squares); the one that rests lowest is taken, which
+    /// lays particles on a flat side, as a settled pile would.
+    pub turn_span: f64,
 }
 
-/// A box of floor and two side walls filled with `count` particles by dropping them one by one straight down onto
-/// the floor or the particles below (left to right, pass after pass, each pass starting at a random offset),
-/// `DEPOSITION_GAP` above their support. Nothing overlaps at the start; settling under gravity closes the gaps and
-/// loads the contacts.
-pub fn deposited_pile(count: usize, shape: PileShape, seed: u64) -> World {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let recipe = thesis_recipe();
-    let shapes: Vec<(ConvexPolygon, f64)> =
-        (0..count).map(|_| recipe.draw(&mut rng).expect("the thesis recipe is valid")).collect();
-    let covered = shapes.iter().map(|(shape, _)| shape.area()).sum::<f64>() / ASSUMED_PACKING;
-    let (width, height) = match shape {
-        PileShape::TwiceAsWideAsHigh => ((2.0 * covered).sqrt(), (2.0 * covered).sqrt()),
-        PileShape::Layer(depth) => (covered / depth, 4.0 * depth),
-    };
-    let mut world = World::new(thesis_config(seed)).expect("the thesis parameters are valid");
-    add_container(&mut world, width, height);
-    let mut deposit = Deposition::new(width);
-    for (shape, angle) in &shapes {
-        let pose = deposit.place(shape, *angle, &mut rng);
-        world.add_particle(shape, pose, DENSITY, DVec2::ZERO, 0.0).expect("deposited particles have finite poses");
+/// Adds the particles `shapes` (each with its drawn angle) to `world` by sequential deposition on a floor from x = 0
+/// to x = `plan.width` with its top at y = 0, at rest, of area density `density`.
+pub fn deposit(
+    world: &mut World,
+    shapes: &[(ConvexPolygon, f64)],
+    plan: DepositionPlan,
+    density: f64,
+    rng: &mut ChaCha8Rng,
+) {
+    let mut deposition = Deposition::new(plan);
+    for (shape, angle) in shapes {
+        let pose = deposition.place(shape, *angle, rng);
+        world.add_particle(shape, pose, density, DVec2::ZERO, 0.0).expect("deposited particles have finite poses");
     }
-    world
 }
 
 /// The state of a sequential deposition: the particles placed so far, indexed by vertical columns.
 struct Deposition {
     width: f64,
     column_width: f64,
+    turn_span: f64,
     placed: Vec<Vec<DVec2>>,
     columns: Vec<Vec<usize>>,
     cursor: f64,
 }
 
 impl Deposition {
-    fn new(width: f64) -> Self {
-        let column_width = 2.0 * SEMI_AXIS * (1.0 + SIZE_VARIATION);
+    fn new(plan: DepositionPlan) -> Self {
+        let DepositionPlan { width, column_width, turn_span } = plan;
         let column_count = (width / column_width).ceil() as usize + 1;
-        Self { width, column_width, placed: Vec::new(), columns: vec![Vec::new(); column_count], cursor: f64::MAX }
+        let columns = vec![Vec::new(); column_count];
+        Self { width, column_width, turn_span, placed: Vec::new(), columns, cursor: f64::MAX }
     }
 
     /// Finds the pose of the next particle and records it: of `ORIENTATIONS` turns of the drawn orientation, the
-    /// one whose centroid comes to rest lowest (which lays particles on a flat side, as a settled pile would).
+    /// one whose centroid comes to rest lowest.
     fn place(&mut self, shape: &ConvexPolygon, angle: f64, rng: &mut ChaCha8Rng) -> Pose {
         let start_new_pass = self.cursor > self.width;
         if start_new_pass {
@@ -73,7 +73,7 @@ impl Deposition {
         }
         let mut best: Option<(Vec<DVec2>, Pose, f64)> = None;
         for turn in 0..ORIENTATIONS {
-            let angle = angle + std::f64::consts::TAU * turn as f64 / ORIENTATIONS as f64;
+            let angle = angle + self.turn_span * turn as f64 / ORIENTATIONS as f64;
             let Some((outline, pose)) = self.drop(shape, angle) else { continue };
             if best.as_ref().is_none_or(|(_, best_pose, _)| pose.position.y < best_pose.position.y) {
                 let right = x_extent(&outline).1;

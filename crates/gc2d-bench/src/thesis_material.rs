@@ -1,13 +1,13 @@
-//! The particles and material of the thesis's dip-pile ensemble (reference §8.3) and a walled box, shared by the
-//! `bench_pile` and `pile` examples and the `step_allocation` test.
+//! The particles and material of the thesis's dip-pile ensemble (reference §8.3): the dense 7-gon piles and layers of
+//! the benchmarks, the engine's `pile` example and its `step_allocation` test.
 //!
 //! Material: Δt = 2·10⁻⁶ s, E = 10⁷ N/m, γ = 0.75, μ = 0.6, area density 5000 kg/m², g = 9.81 m/s². Particles:
 //! 7-gons with corners at RAND1 positions on an ellipse whose semi-axes are drawn uniformly in 1.75 mm ± 25 %.
 
 use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{InteractionTable, MassModel, SafetyLimits, WallMotion, World, WorldConfig};
-use gc2d_geometry::{AngleMode, DVec2, Pose, Randomization, ShapeRecipe, rectangle};
+use gc2d_engine::{InteractionTable, MassModel, SafetyLimits, WorldConfig};
+use gc2d_geometry::{AngleMode, DVec2, Randomization, ShapeRecipe};
 
 /// Δt of the thesis's pile runs, s.
 pub const TIME_STEP: f64 = 2e-6;
@@ -50,19 +50,5 @@ pub fn thesis_recipe() -> ShapeRecipe {
         angle_mode: AngleMode::Rand1,
         rotation: std::f64::consts::PI,
         rotation_randomization: Randomization::Equal,
-    }
-}
-
-/// Thickness of the container walls, m.
-const WALL_THICKNESS: f64 = 0.01;
-
-/// Floor with its top at y = 0 between x = 0 and x = `width`, and side walls of height `height` on both sides.
-pub fn add_container(world: &mut World, width: f64, height: f64) {
-    let t = WALL_THICKNESS;
-    let floor = rectangle(width + 2.0 * t, t).expect("positive size");
-    world.add_wall(&floor, Pose::new(DVec2::new(0.5 * width, -0.5 * t), 0.0), DVec2::ZERO, WallMotion::Static);
-    let side = rectangle(t, height).expect("positive size");
-    for x in [-0.5 * t, width + 0.5 * t] {
-        world.add_wall(&side, Pose::new(DVec2::new(x, 0.5 * height), 0.0), DVec2::ZERO, WallMotion::Static);
     }
 }

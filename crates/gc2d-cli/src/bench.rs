@@ -1,0 +1,240 @@
+//! `gc2d-rs bench`: the standard piles (gc2d_bench::StandardPile) built, settled once and cached, then stepped on
+//! pools of the thread counts asked for; prints particle-steps per second, contacts per grain and memory per grain,
+//! so that anyone can measure gc2d-rs on their own machine (docs/performance.md).
+
+use crate::console;
+use crate::failure::CommandFailure;
+use gc2d_bench::timing::{load_average, measure, pool, table_header};
+use gc2d_bench::{Measurement, StandardPile};
+use gc2d_engine::World;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// Bumped whenever a standard pile or its settling changes, so that older cached states are not taken for the new.
+const PILES_VERSION: u32 = 1;
+/// Fewest timed steps of one measurement, whatever `--particle-steps` gives.
+const MIN_TIMED_STEPS: u64 = 20;
+/// Simulated time between two updates of the settling progress bar, as a fraction of the settling time.
+const SETTLE_CHUNKS: u32 = 200;
+
+/// The arguments of `gc2d-rs bench`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct BenchArgs {
+    /// The piles to measure: dense7 (the thesis's 7-gons, twice as wide as high), squares (the LAMMPS comparison's),
+    /// layer (7-gons 1 cm deep), disks.
+    #[arg(long, value_delimiter = ',', value_parser = parse_pile, default_value = "dense7,squares,layer,disks")]
+    pub pile: Vec<StandardPile>,
+    /// Particles per pile [default: dense7 2000,10000; squares 800,3200,12800; layer 1000,10000,100000; disks
+    /// 10000].
+    #[arg(long, value_delimiter = ',')]
+    pub size: Vec<usize>,
+    /// Thread counts to measure each pile on [default: 1, 2, 4, … up to the cores, and the cores].
+    #[arg(long, value_delimiter = ',')]
+    pub threads: Vec<usize>,
+    /// Particle-steps per measurement: the timed steps are this divided by the particles (at least 20).
+    #[arg(long, default_value_t = 20_000_000)]
+    pub particle_steps: u64,
+    /// Simulated time each pile settles before it is measured, s [default: the pile's own, e.g. 0.06 s for dense7].
+    #[arg(long)]
+    pub settle_time: Option<f64>,
+    /// Folder of the settled piles [default: $XDG_CACHE_HOME/gc2d-rs/bench, else ~/.cache/gc2d-rs/bench].
+    #[arg(long)]
+    pub cache: Option<PathBuf>,
+    /// Settle again even where a settled state is cached.
+    #[arg(long)]
+    pub no_cache: bool,
+    /// Also write the measurements as CSV (one row per pile, size and thread count).
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+    /// Hide the progress bars.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// One measurement with the pile it was made on: a row of the CSV.
+struct BenchRow {
+    pile: StandardPile,
+    measurement: Measurement,
+}
+
+fn parse_pile(name: &str) -> Result<StandardPile, String> {
+    StandardPile::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = StandardPile::ALL.iter().map(|p| p.name()).collect();
+        format!("no standard pile is called `{name}`; the piles are {}", names.join(", "))
+    })
+}
+
+/// Runs `gc2d-rs bench`; returns the exit code.
+pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
+    if let Some(zero) = args.size.iter().chain(&args.threads).find(|&&n| n == 0) {
+        return Err(CommandFailure::input(format!("--size and --threads take counts of at least 1, got {zero}")));
+    }
+    if args.particle_steps == 0 {
+        return Err(CommandFailure::input("--particle-steps must be at least 1"));
+    }
+    if let Some(t) = args.settle_time
+        && !(t.is_finite() && t >= 0.0)
+    {
+        return Err(CommandFailure::input(format!("--settle-time must be a time in seconds, at least 0; got {t}")));
+    }
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = if args.threads.is_empty() { default_threads(cores) } else { args.threads.clone() };
+    let cache = if args.no_cache { None } else { args.cache.clone().or_else(default_cache) };
+    let say = |text: &str| console::out(text).map_err(|e| CommandFailure::stdout(&e));
+    say(&machine_summary(cores))?;
+    if let Some(over) = threads.iter().find(|&&t| t > cores) {
+        console::err(&format!("note: {over} threads on {cores} cores: the threads share cores, so expect no speed-up"));
+    }
+    let mut rows = Vec::new();
+    for &pile in &args.pile {
+        let sizes = if args.size.is_empty() { pile.default_sizes().to_vec() } else { args.size.clone() };
+        let settle_time = args.settle_time.unwrap_or(pile.settle_time());
+        say(&format!("\n{} (settled {settle_time} s)\n\n{}", pile.name(), table_header("grain")))?;
+        for &particles in &sizes {
+            let mut world = settled(pile, particles, settle_time, cores, cache.as_deref(), args.quiet)?;
+            for &n in &threads {
+                let steps = (args.particle_steps / particles as u64).max(MIN_TIMED_STEPS);
+                let measurement = measure(&mut world, n, steps).map_err(|e| {
+                    CommandFailure::failed(format!("{} pile of {particles} blew up while measured: {e}", pile.name()))
+                })?;
+                say(&measurement.row())?;
+                rows.push(BenchRow { pile, measurement });
+            }
+        }
+    }
+    say(&format!("\nload average after: {}", load_average()))?;
+    if let Some(path) = &args.csv {
+        std::fs::write(path, csv(&rows))
+            .map_err(|e| CommandFailure::failed(format!("cannot write {}: {e}", path.display())))?;
+    }
+    Ok(0)
+}
+
+/// 1, 2, 4, … below `cores`, then `cores`.
+fn default_threads(cores: usize) -> Vec<usize> {
+    let mut threads: Vec<usize> = std::iter::successors(Some(1), |&n| Some(n * 2)).take_while(|&n| n < cores).collect();
+    threads.push(cores);
+    threads
+}
+
+/// `$XDG_CACHE_HOME/gc2d-rs/bench`, else `$HOME/.cache/gc2d-rs/bench`; `None` where neither is set.
+fn default_cache() -> Option<PathBuf> {
+    let base = std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cache")))?;
+    Some(base.join("gc2d-rs").join("bench"))
+}
+
+/// The program version, the machine and its load, for the head of the output.
+fn machine_summary(cores: usize) -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|info| {
+            info.lines()
+                .find_map(|l| l.strip_prefix("model name").map(|m| m.trim_start_matches([' ', '\t', ':']).to_string()))
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    format!(
+        "gc2d-rs {} bench on {cpu}, {cores} cores; load average before: {}",
+        env!("CARGO_PKG_VERSION"),
+        load_average()
+    )
+}
+
+/// The cached file of a settled pile.
+fn cache_file(cache: &Path, pile: StandardPile, particles: usize, settle_time: f64) -> PathBuf {
+    cache.join(format!("{}-{particles}-settled-{settle_time}s-v{PILES_VERSION}.ckpt", pile.name()))
+}
+
+/// The pile of `particles` settled for `settle_time` on `threads` threads: read from the cache where it holds one
+/// that this program can load, else built, settled and written there.
+fn settled(
+    pile: StandardPile,
+    particles: usize,
+    settle_time: f64,
+    threads: usize,
+    cache: Option<&Path>,
+    quiet: bool,
+) -> Result<World, CommandFailure> {
+    let file = cache.map(|dir| cache_file(dir, pile, particles, settle_time));
+    if let Some(file) = &file
+        && file.exists()
+    {
+        match World::load_checkpoint_file(file) {
+            Ok(world) => {
+                console::err(&format!("{} {particles}: settled state from {}", pile.name(), file.display()));
+                return Ok(world);
+            }
+            Err(e) => console::err(&format!("{}: {e}; settling again", file.display())),
+        }
+    }
+    let started = Instant::now();
+    let mut world = pile.build(particles);
+    let bar = settling_bar(pile, particles, quiet);
+    let chunk = settle_time / f64::from(SETTLE_CHUNKS);
+    let result = pool(threads).install(|| {
+        for k in 1..=SETTLE_CHUNKS {
+            world.run_until(chunk * f64::from(k))?;
+            bar.set_position(u64::from(k));
+        }
+        Ok::<(), gc2d_engine::WorldError>(())
+    });
+    bar.finish_and_clear();
+    result.map_err(|e| {
+        CommandFailure::failed(format!("{} pile of {particles} blew up while settling: {e}", pile.name()))
+    })?;
+    console::err(&format!(
+        "{} {particles}: built and settled {settle_time} s ({} steps) in {:.1} s on {threads} threads",
+        pile.name(),
+        world.steps(),
+        started.elapsed().as_secs_f64()
+    ));
+    if let Some(file) = &file {
+        let saved = std::fs::create_dir_all(file.parent().unwrap_or(Path::new(".")))
+            .map_err(|e| e.to_string())
+            .and_then(|()| world.save_checkpoint_file(file).map_err(|e| e.to_string()));
+        if let Err(e) = saved {
+            console::err(&format!("note: cannot cache the settled pile in {}: {e}", file.display()));
+        }
+    }
+    Ok(world)
+}
+
+/// The progress bar of a settling run, hidden with `quiet` or when stderr is not a terminal.
+fn settling_bar(pile: StandardPile, particles: usize, quiet: bool) -> ProgressBar {
+    let target = if quiet { ProgressDrawTarget::hidden() } else { ProgressDrawTarget::stderr() };
+    let bar = ProgressBar::with_draw_target(Some(u64::from(SETTLE_CHUNKS)), target);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:32.cyan/blue} {percent:>3}%  {msg}  ETA {eta}")
+            .expect("the template is a valid indicatif template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(format!("settling {} {particles}", pile.name()));
+    bar.enable_steady_tick(Duration::from_millis(500));
+    bar
+}
+
+/// The measurements as CSV, one row per pile, size and thread count.
+fn csv(rows: &[BenchRow]) -> String {
+    let mut out = String::from(
+        "pile,particles,threads,steps,wall_s,cpu_s,particle_steps_per_s,contacts_per_particle,heap_bytes_per_particle\n",
+    );
+    for BenchRow { pile, measurement: m } in rows {
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{},{},{}",
+            pile.name(),
+            m.particles,
+            m.threads,
+            m.steps,
+            m.seconds,
+            m.cpu_seconds,
+            m.particle_steps_per_second(),
+            m.contacts_per_particle(),
+            m.heap_bytes as f64 / m.particles as f64
+        );
+    }
+    out
+}

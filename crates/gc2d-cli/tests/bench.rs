@@ -1,0 +1,103 @@
+//! `gc2d-rs bench` (issue 18 item 6): the table and CSV of every pile, size and thread count, the cache of settled
+//! piles (a cached state measures exactly as the freshly settled one did), and refusals of bad arguments.
+
+use assert_cmd::Command;
+use std::path::Path;
+
+/// One row of the bench CSV.
+#[derive(Debug, PartialEq)]
+struct Row {
+    pile: String,
+    particles: usize,
+    threads: usize,
+    steps: u64,
+    particle_steps_per_s: f64,
+    contacts_per_particle: f64,
+    heap_bytes_per_particle: f64,
+}
+
+/// Runs a small bench (two piles of 60 grains, settled 2 ms, 1 and 2 threads) with its cache in `cache`; returns
+/// stdout, stderr and the CSV's rows.
+fn small_bench(cache: &Path, csv: &Path) -> (String, String, Vec<Row>) {
+    let output = Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .args(["bench", "--pile", "dense7,disks", "--size", "60", "--threads", "1,2", "--particle-steps", "3000"])
+        .args(["--settle-time", "0.002", "--quiet", "--cache"])
+        .arg(cache)
+        .arg("--csv")
+        .arg(csv)
+        .output()
+        .unwrap();
+    let (stdout, stderr) = (String::from_utf8(output.stdout).unwrap(), String::from_utf8(output.stderr).unwrap());
+    assert!(output.status.success(), "{stdout}\n{stderr}");
+    let text = std::fs::read_to_string(csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some(
+            "pile,particles,threads,steps,wall_s,cpu_s,particle_steps_per_s,contacts_per_particle,\
+             heap_bytes_per_particle"
+        )
+    );
+    let rows = lines
+        .map(|line| {
+            let f: Vec<&str> = line.split(',').collect();
+            Row {
+                pile: f[0].to_string(),
+                particles: f[1].parse().unwrap(),
+                threads: f[2].parse().unwrap(),
+                steps: f[3].parse().unwrap(),
+                particle_steps_per_s: f[6].parse().unwrap(),
+                contacts_per_particle: f[7].parse().unwrap(),
+                heap_bytes_per_particle: f[8].parse().unwrap(),
+            }
+        })
+        .collect();
+    (stdout, stderr, rows)
+}
+
+#[test]
+fn bench_measures_every_pile_and_thread_count_and_a_cached_pile_measures_as_the_fresh_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let cache = dir.path().join("cache");
+    let (stdout, stderr, fresh) = small_bench(&cache, &dir.path().join("fresh.csv"));
+    assert!(stdout.contains("dense7 (settled 0.002 s)") && stdout.contains("disks (settled 0.002 s)"), "{stdout}");
+    assert_eq!(stdout.lines().filter(|l| l.starts_with("|      60 |")).count(), 4, "{stdout}");
+    assert!(stderr.contains("dense7 60: built and settled 0.002 s (1000 steps)"), "{stderr}");
+    let order: Vec<(&str, usize)> = fresh.iter().map(|r| (r.pile.as_str(), r.threads)).collect();
+    assert_eq!(order, [("dense7", 1), ("dense7", 2), ("disks", 1), ("disks", 2)]);
+    for row in &fresh {
+        assert_eq!((row.particles, row.steps), (60, 50), "3000 particle-steps of 60 grains: {row:?}");
+        assert!(row.particle_steps_per_s > 0.0 && row.heap_bytes_per_particle > 100.0, "{row:?}");
+    }
+    // After 2 ms the 1 µm gaps of the deposition have closed: the grains rest on the floor and on each other.
+    assert!(fresh[0].contacts_per_particle > 0.3, "{:?}", fresh[0]);
+    assert!(cache.join("dense7-60-settled-0.002s-v1.ckpt").is_file());
+
+    let (_, stderr, cached) = small_bench(&cache, &dir.path().join("cached.csv"));
+    assert!(stderr.contains("dense7 60: settled state from"), "{stderr}");
+    assert!(!stderr.contains("built and settled"), "{stderr}");
+    for (fresh, cached) in fresh.iter().zip(&cached) {
+        assert_eq!(
+            fresh.contacts_per_particle.to_bits(),
+            cached.contacts_per_particle.to_bits(),
+            "{fresh:?} {cached:?}"
+        );
+    }
+}
+
+#[test]
+fn bench_refuses_unknown_piles_and_zero_counts() {
+    let refusal = |args: &[&str]| {
+        let output = Command::cargo_bin("gc2d-rs").unwrap().arg("bench").args(args).output().unwrap();
+        assert_eq!(output.status.code(), Some(2), "{args:?}");
+        String::from_utf8(output.stderr).unwrap()
+    };
+    let unknown = refusal(&["--pile", "sand"]);
+    assert!(
+        unknown.contains("no standard pile is called `sand`; the piles are dense7, squares, layer, disks"),
+        "{unknown}"
+    );
+    assert!(refusal(&["--threads", "1,0"]).contains("at least 1, got 0"));
+    assert!(refusal(&["--settle-time=-1"]).contains("--settle-time must be a time in seconds"));
+}
