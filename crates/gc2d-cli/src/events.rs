@@ -2,10 +2,12 @@
 //!
 //! Each row is an episode from its first touching step to its first step apart (docs/model.md, "Contact events"):
 //! the two bodies and their kinds and materials, the impact speeds at first touch, the largest overlap, the energy
-//! dissipated, the impulse on body a, against a wall turning about a pivot the angular impulse it took, and the contact
-//! point at first touch (where the collision happened). Episodes still open when the run stops are in the final
+//! dissipated, the impulse on body a, against a wall turning about a pivot the angular impulse it took, the contact
+//! point at first touch (where the collision happened), and the scene's names of the two bodies (`walls[2]`,
+//! `mill.balls #4`, `sources[0] #17`). Episodes still open when the run stops are in the final
 //! checkpoint, not in the file; a resumed run writes them when they end.
 
+use crate::object_names::ObjectNames;
 use crate::resumed_csv::continue_csv;
 use crate::runner::FrameSink;
 use gc2d_analysis::particle_state::csv::quoted;
@@ -15,7 +17,7 @@ use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
 /// Column names of `events.csv`, in order.
-pub const EVENT_COLUMNS: [&str; 18] = [
+pub const EVENT_COLUMNS: [&str; 20] = [
     "begin_time_s",
     "end_time_s",
     "a",
@@ -34,6 +36,8 @@ pub const EVENT_COLUMNS: [&str; 18] = [
     "duration_s",
     "begin_x_m",
     "begin_y_m",
+    "object_a",
+    "object_b",
 ];
 
 /// Appends the finished episodes of every step to `events.csv`; as a frame sink it flushes on the frame cadence.
@@ -41,17 +45,20 @@ pub struct EventsWriter {
     file: BufWriter<File>,
     /// The scene's material names, by material id.
     materials: Vec<String>,
+    /// The scene's names of the bodies.
+    objects: ObjectNames,
     /// Simulated time between flushes, s.
     flush_interval: f64,
 }
 
 impl EventsWriter {
-    /// Creates `path` (truncating it) with the header line; `materials` names the material ids.
-    pub fn create(path: &Path, materials: Vec<String>, flush_interval: f64) -> io::Result<Self> {
+    /// Creates `path` (truncating it) with the header line; `materials` names the material ids, `objects` the
+    /// bodies.
+    pub fn create(path: &Path, materials: Vec<String>, objects: ObjectNames, flush_interval: f64) -> io::Result<Self> {
         let mut file = BufWriter::new(File::create(path)?);
         writeln!(file, "{}", EVENT_COLUMNS.join(","))?;
         file.flush()?;
-        Ok(Self { file, materials, flush_interval })
+        Ok(Self { file, materials, objects, flush_interval })
     }
 
     /// Continues `path` for a run resumed at `resumed_at`: episodes that ended after it (written by the earlier run
@@ -59,12 +66,13 @@ impl EventsWriter {
     pub fn continue_at(
         path: &Path,
         materials: Vec<String>,
+        objects: ObjectNames,
         flush_interval: f64,
         resumed_at: f64,
         slack: f64,
     ) -> io::Result<Self> {
         let file = continue_csv(path, &EVENT_COLUMNS, 1, "events", resumed_at, slack)?;
-        Ok(Self { file: BufWriter::new(file), materials, flush_interval })
+        Ok(Self { file: BufWriter::new(file), materials, objects, flush_interval })
     }
 
     fn write_row(&mut self, world: &World, event: &ContactEvent) -> io::Result<()> {
@@ -74,7 +82,7 @@ impl EventsWriter {
         let angular = event.wall_angular_impulse.map_or(String::new(), |l| format!("{l:e}"));
         writeln!(
             self.file,
-            "{},{},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e},{:e}",
+            "{},{},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e},{:e},{},{}",
             e.begin_time,
             event.time,
             event.a.0,
@@ -93,6 +101,8 @@ impl EventsWriter {
             event.time - e.begin_time,
             e.begin_point.x,
             e.begin_point.y,
+            quoted(&self.objects.name(world, event.a)),
+            quoted(&self.objects.name(world, event.b)),
         )
     }
 }

@@ -10,6 +10,7 @@ pub mod export;
 pub mod failure;
 pub mod import;
 pub mod live;
+pub mod object_names;
 pub mod outputs;
 pub mod parquet_table;
 pub mod resume;

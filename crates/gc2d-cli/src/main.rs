@@ -13,6 +13,7 @@ use gc2d_cli::events::EventsWriter;
 use gc2d_cli::export::ExportFormat;
 use gc2d_cli::failure::CommandFailure;
 use gc2d_cli::live::LiveSink;
+use gc2d_cli::object_names::ObjectNames;
 use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_scene_copy};
 use gc2d_cli::resume::{ResumePoint, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
@@ -440,7 +441,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         run_to(&mut world, end_time, &mut series, frame_interval, &mut sinks, &stop, !args.quiet, earlier_chatter)
     });
     if let RunStatus::Failed(message) = &mut status {
-        message.push_str(&body_names(&scene, &failed_bodies));
+        message.push_str(&body_names(&scene, &world, &failed_bodies));
     }
     drop(sinks);
     if let Some(l) = live {
@@ -514,30 +515,25 @@ fn start_events(
 ) -> Result<EventsWriter, CommandFailure> {
     world.record_contact_events();
     let path = out.join("events.csv");
-    let names = scene.material_names();
+    let (materials, objects) = (scene.material_names(), ObjectNames::of_scene(scene));
     let writer = if resumed && path.exists() {
-        EventsWriter::continue_at(&path, names, flush_interval, world.time(), 0.5 * world.time_step())
+        EventsWriter::continue_at(&path, materials, objects, flush_interval, world.time(), 0.5 * world.time_step())
     } else {
-        EventsWriter::create(&path, names, flush_interval)
+        EventsWriter::create(&path, materials, objects, flush_interval)
     };
     writer.map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", path.display())))
 }
 
 /// The scene's names of `bodies` (ids an engine error named), as a sentence to append to its message: `walls[0]`,
-/// `blocks[1] #17`, or a particle a source or inlet inserted; empty when there are none.
-fn body_names(scene: &Scene, bodies: &[u32]) -> String {
+/// `blocks[1] #17`, `sources[0] #5` (the source's particle after 5 others); empty when there are none.
+fn body_names(scene: &Scene, world: &World, bodies: &[u32]) -> String {
     if bodies.is_empty() {
         return String::new();
     }
-    let origins = scene.body_origins().unwrap_or_default();
-    let names: Vec<String> = bodies
-        .iter()
-        .map(|&id| match origins.get(id as usize) {
-            Some(origin) => format!("body {id} is `{origin}`"),
-            None => format!("body {id} was inserted during the run by a source or an inlet"),
-        })
-        .collect();
-    format!(" ({})", names.join(", "))
+    let names = ObjectNames::of_scene(scene);
+    let named: Vec<String> =
+        bodies.iter().map(|&id| format!("body {id} is `{}`", names.name(world, gc2d_engine::BodyId(id)))).collect();
+    format!(" ({})", named.join(", "))
 }
 
 /// Opens `transits.csv` (continued on a resumed run that has one).

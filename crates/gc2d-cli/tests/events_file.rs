@@ -1,5 +1,5 @@
 //! `gc2d-rs run --events`: every finished contact episode in `events.csv`, the same for any thread count and for a
-//! run stopped after a checkpoint and resumed from it.
+//! run stopped after a checkpoint and resumed from it, the bodies named as the scene names them (issue 19 item 5).
 
 use assert_cmd::Command;
 use std::path::{Path, PathBuf};
@@ -45,6 +45,14 @@ fn episodes_are_written_identically_for_any_thread_count_and_across_a_resume() {
     }
     assert!(rows.iter().any(|r| r[kind_a] == "wall"), "balls meet the chamber and the rotor");
     assert!(rows.iter().any(|r| r[kind_a] == "particle"), "balls meet each other");
+    let (kind_b, object_a, object_b) = (column("kind_b"), column("object_a"), column("object_b"));
+    for row in &rows {
+        for (kind, object) in [(row[kind_a], row[object_a]), (row[kind_b], row[object_b])] {
+            let named =
+                if kind == "particle" { object.starts_with("mill.balls #") } else { object.starts_with("mill.") };
+            assert!(named, "a {kind} named `{object}`");
+        }
+    }
 
     let two = tempfile::tempdir().unwrap();
     run(two.path(), "0.004", &["--threads", "2"]);
@@ -59,4 +67,45 @@ fn episodes_are_written_identically_for_any_thread_count_and_across_a_resume() {
         .assert()
         .success();
     assert!(events(split.path()) == text, "events differ across a resume");
+}
+
+/// Disks dropped by a source onto a floor: their episodes name them by the source and their place in its order.
+#[test]
+fn particles_a_source_inserted_are_named_by_the_source() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("pour.ron");
+    std::fs::write(
+        &scene,
+        "Scene(
+            run: (end_time_s: 0.12),
+            walls: [Wall(shape: Rectangle(width_m: 0.2, height_m: 0.01), position_m: (0, -0.005))],
+            sources: [(position_m: (0, 0.02), width_m: 0.1, window_s: (0, 0.05), interval_s: 0.01,
+                       shape: (semi_axes_m: (0.003, 0.003), disk: true))],
+        )",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .args(["run", scene.to_str().unwrap(), "--quiet", "--events", "--out"])
+        .arg(&out)
+        .assert()
+        .success();
+    let text = events(&out);
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (a, b, object_a, object_b) = (column("a"), column("b"), column("object_a"), column("object_b"));
+    let mut named = std::collections::BTreeMap::new();
+    for line in lines {
+        let row: Vec<&str> = line.split(',').collect();
+        named.insert(row[a].parse::<u32>().unwrap(), row[object_a].to_string());
+        named.insert(row[b].parse::<u32>().unwrap(), row[object_b].to_string());
+    }
+    // The floor is body 0; the source's disks are bodies 1, 2, … in the order it inserted them (5 insertions, at
+    // 0, 0.01, …, 0.04 s), and every one lands on the floor.
+    let expected: Vec<(u32, String)> = std::iter::once((0, "walls[0]".to_string()))
+        .chain((0..5).map(|k| (k + 1, format!("sources[0] #{k}"))))
+        .collect();
+    assert_eq!(named.into_iter().collect::<Vec<_>>(), expected);
 }

@@ -11,6 +11,7 @@ use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
 use crate::inlets::{Inlet, InletState};
+use crate::insertions::{Inserter, Insertion, InsertionLog};
 use crate::integrator::{BodyIntegrator, GearState, Integrator, IntegratorError, TimeStep};
 use crate::interactions::{InteractionError, InteractionTable, MaterialId};
 use crate::ledger::EnergyLedger;
@@ -224,6 +225,8 @@ pub struct World {
     outlets: Vec<OutletState>,
     /// Inlet entries and outlet passages, in Worlds with inlets or outlets.
     transits: TransitLog,
+    /// Which source or inlet inserted each particle added during the run.
+    insertions: InsertionLog,
     /// Particle centres at the start of the step, for the outlets' crossing test; refilled every step, so not saved.
     #[serde(skip)]
     positions_before_step: Vec<DVec2>,
@@ -268,6 +271,7 @@ impl World {
             inlets: Vec::new(),
             outlets: Vec::new(),
             transits: TransitLog::default(),
+            insertions: InsertionLog::default(),
             positions_before_step: Vec::new(),
             ledger: EnergyLedger::default(),
             rotor_work: RotorWork::default(),
@@ -420,6 +424,12 @@ impl World {
     /// The particles that outlets removed on the last step, with how they came in (empty without outlets).
     pub fn transits(&self) -> &[Transit] {
         self.transits.last_step()
+    }
+
+    /// Which source or inlet inserted particle `body` during the run, and after how many others of its own; `None`
+    /// for a body of the start or one added by hand.
+    pub fn insertion(&self, body: BodyId) -> Option<Insertion> {
+        self.insertions.of(body)
     }
 
     /// How particle `body` came in, if it came through an inlet and is still inside.
@@ -662,6 +672,7 @@ impl World {
             + crate::bodies::vec_bytes(&self.outlets)
             + crate::bodies::vec_bytes(&self.positions_before_step)
             + self.transits.heap_bytes()
+            + self.insertions.heap_bytes()
     }
 
     /// Every pair of bodies whose boxes touch, with its contact record (`a < b`).
@@ -1045,6 +1056,7 @@ impl World {
                     break;
                 };
                 self.transits.entered(id, i, self.time);
+                self.insertions.record(id, Inserter::Inlet(i as u32));
                 self.inlets[i].inserted();
                 self.stats.injected += 1;
                 self.check_added_time_step(id)?;
@@ -1089,6 +1101,7 @@ impl World {
                 let source = self.sources[s].source.clone();
                 match self.insert_from_source(&source) {
                     Some(id) => {
+                        self.insertions.record(id, Inserter::Source(s as u32));
                         self.stats.inserted += 1;
                         self.check_added_time_step(id)?;
                     }

@@ -348,7 +348,7 @@ fn checkpoint_layout_is_pinned() {
     run(&mut world, 1);
     let payload = checkpoint_bytes(&world).len() - payload_offset();
     assert_eq!(
-        payload, 20525,
+        payload, 20531,
         "the checkpoint layout changed: bump CHECKPOINT_FORMAT_VERSION (now {CHECKPOINT_FORMAT_VERSION}) and pin the \
          new payload length"
     );

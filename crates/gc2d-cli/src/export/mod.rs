@@ -5,6 +5,7 @@
 pub mod rows;
 pub mod vtk;
 
+use crate::object_names::ObjectNames;
 use crate::parquet_table::{NamedColumn, write_parquet};
 use gc2d_analysis::particle_state::csv::quoted;
 use gc2d_engine::World;
@@ -113,8 +114,8 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     // The scene as run names the materials and the bodies' origins; without it the names are left empty.
     let scene = Scene::from_path(run.join("scene.ron")).ok();
     let materials = scene.as_ref().map(Scene::material_names).unwrap_or_default();
-    let origins = scene.as_ref().and_then(|s| s.body_origins().ok());
-    let particles = particle_rows(&world, &materials, origins.as_deref());
+    let names = scene.as_ref().and_then(|s| s.body_origins().ok()).map(ObjectNames::from_origins);
+    let particles = particle_rows(&world, &materials, names.as_ref());
     let contacts = contact_rows(&world);
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     let mut files = Vec::new();

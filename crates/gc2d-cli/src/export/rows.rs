@@ -1,6 +1,7 @@
 //! The exported tables' rows: one per particle (the dumps' [`ParticleState`] plus where it came from and its outline's
 //! corner count) and one per touching pair of bodies (point, normal, normal and tangential force, overlap).
 
+use crate::object_names::ObjectNames;
 use gc2d_analysis::{ParticleState, particle_states};
 use gc2d_engine::{ContactModel, World};
 use gc2d_geometry::DVec2;
@@ -46,24 +47,15 @@ pub struct ContactRow {
     pub law: &'static str,
 }
 
-/// The particle rows of `world`; `materials` names the material ids, `origins` the scene entries of the bodies
-/// built from the scene (by id; ids beyond it were inserted during the run).
-pub fn particle_rows(world: &World, materials: &[String], origins: Option<&[String]>) -> Vec<ParticleRow> {
+/// The particle rows of `world`; `materials` names the material ids, `names` the bodies (none: the `origin` column
+/// is left empty).
+pub fn particle_rows(world: &World, materials: &[String], names: Option<&ObjectNames>) -> Vec<ParticleRow> {
     let bodies = world.bodies();
     particle_states(world, materials)
         .into_iter()
         .map(|state| {
             let i = state.id as usize;
-            let id = gc2d_engine::BodyId(state.id);
-            let origin = match origins {
-                Some(names) if i < names.len() => names[i].clone(),
-                Some(_) => match world.inlet_entry(id) {
-                    Some(entry) => format!("inlets[{}]", entry.inlet),
-                    // Inlet particles still inside keep their entry, so the others came from a source.
-                    None => "sources".into(),
-                },
-                None => String::new(),
-            };
+            let origin = names.map_or_else(String::new, |names| names.name(world, gc2d_engine::BodyId(state.id)));
             let disk = bodies.shape[i] == gc2d_engine::ShapeKind::Disk;
             let corners = if disk { 0 } else { bodies.vertices[i].len as usize };
             let radius_m = if disk { bodies.radius[i] } else { (bodies.area[i] / std::f64::consts::PI).sqrt() };
