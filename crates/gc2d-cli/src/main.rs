@@ -264,7 +264,7 @@ fn render(error: gc2d_scene::SceneError) -> String {
 fn load(path: &Path) -> Result<Scene, CommandFailure> {
     let scene = Scene::from_path(path).map_err(|e| CommandFailure::input(render(e)))?;
     for warning in scene.inlet_warnings() {
-        console::err(&format!("warning: {}: {warning}", path.display()));
+        console::err(&format!("warning: {warning}"));
     }
     Ok(scene)
 }

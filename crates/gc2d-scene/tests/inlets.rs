@@ -79,7 +79,10 @@ fn a_slow_inlet_is_warned_about_and_still_runs() {
     let scene = Scene::from_str(&scene_text(&slow), "slow.ron").unwrap();
     let warnings = scene.inlet_warnings();
     assert_eq!(warnings.len(), 1);
-    assert!(warnings[0].starts_with("inlets[0].velocity_m_s") && warnings[0].contains("0.2 m/s"), "{warnings:?}");
+    let field = scene_text(&slow).lines().position(|l| l.contains("velocity_m_s: (3.0, 0.1)")).unwrap() + 1;
+    let place = format!("slow.ron:{field}:");
+    assert!(warnings[0].starts_with(&place), "{warnings:?} should start with {place}");
+    assert!(warnings[0].contains(": inlets[0].velocity_m_s: ") && warnings[0].contains("0.2 m/s"), "{warnings:?}");
     assert!(scene.build().is_ok());
 }
 

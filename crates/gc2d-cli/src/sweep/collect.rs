@@ -7,6 +7,7 @@ use super::scenes::PointScene;
 use super::spec::{SEED, Sweep};
 use super::state::outcome;
 use crate::failure::CommandFailure;
+use gc2d_analysis::particle_state::csv::quoted;
 use gc2d_analysis::{MillOptions, analyze_mill};
 use serde_json::Value;
 use std::collections::HashMap;
@@ -186,13 +187,13 @@ pub fn write_csv(table: &Table, path: &Path) -> Result<(), CommandFailure> {
         .chain(table.parameters.iter().cloned())
         .chain([SEED.to_owned(), "outcome".to_owned()])
         .chain(table.numbers.iter().cloned())
-        .map(|h| csv_field(&h))
+        .map(|h| quoted(&h).into_owned())
         .collect();
     text.push_str(&header.join(","));
     text.push('\n');
     for row in &table.rows {
-        let mut fields = vec![csv_field(&row.point)];
-        fields.extend(row.parameters.iter().map(|v| csv_field(v.trim_matches('"'))));
+        let mut fields = vec![quoted(&row.point).into_owned()];
+        fields.extend(row.parameters.iter().map(|v| quoted(v.trim_matches('"')).into_owned()));
         fields.push(row.seed.to_string());
         fields.push(row.outcome.clone().unwrap_or_default());
         fields.extend(table.numbers.iter().map(|n| row.numbers.get(n).map_or(String::new(), |&x| number(x))));
@@ -211,11 +212,6 @@ pub fn number(x: f64) -> String {
     } else {
         format!("{x:e}")
     }
-}
-
-/// A CSV field, quoted when it holds a comma, a quote or a line break.
-fn csv_field(text: &str) -> String {
-    if text.contains([',', '"', '\n']) { format!("\"{}\"", text.replace('"', "\"\"")) } else { text.to_owned() }
 }
 
 #[cfg(test)]
@@ -264,12 +260,5 @@ mod tests {
         assert_eq!(array_family("mill.classes[ball–hub].n"), None);
         assert_eq!(array_family("mill.classes[ball–hub]"), None);
         assert_eq!(array_family("time_s"), None);
-    }
-
-    #[test]
-    fn csv_fields_are_quoted_when_needed() {
-        assert_eq!(csv_field("a,b"), "\"a,b\"");
-        assert_eq!(csv_field("say \"x\""), "\"say \"\"x\"\"\"");
-        assert_eq!(csv_field("plain"), "plain");
     }
 }

@@ -148,10 +148,22 @@ pub(crate) fn planned_insertions(inlet: &Inlet, end_time: f64) -> f64 {
 }
 
 impl Scene {
+    /// `path` prefixed with the file, line and column of its value where the scene was read from a text that holds
+    /// it (`feed.ron:12:22: inlets[0].velocity_m_s`), else `path` alone.
+    fn located_field(&self, path: &str) -> String {
+        let place = self.source.as_ref().and_then(|source| {
+            let (line, column) = source.line_column(source.span_of(path)?.start);
+            Some(format!("{}:{line}:{column}: ", source.name()))
+        });
+        format!("{}{path}", place.unwrap_or_default())
+    }
+
     /// Warnings about the scene's inlets that do not stop it (feedpipe.md §2.12): an inlet whose start speed across
     /// the segment is below 2R·rate (R the recipe's nominal radius: a disk's radius, a polygon's larger semi-axis)
     /// lets a particle move less than one diameter before the next appears, so that particles may pile up at the
-    /// inlet and insertions be postponed. Each names the inlet's field; empty for a scene without such an inlet.
+    /// inlet and insertions be postponed. Each names the file, line and column of the inlet's field where the scene
+    /// was read from a text (`feed.ron:12:22: inlets[0].velocity_m_s: …`), else the field alone; empty for a scene
+    /// without such an inlet.
     pub fn inlet_warnings(&self) -> Vec<String> {
         self.inlets
             .iter()
@@ -165,8 +177,9 @@ impl Scene {
                 let needed = 2.0 * radius * inlet.rate_per_s;
                 (normal_speed < needed).then(|| {
                     format!(
-                        "inlets[{i}].velocity_m_s: the speed into the domain {} m/s is below 2R·rate = {} m/s: \
-                         particles may pile up at the inlet (feedpipe.md §2.12)",
+                        "{}: the speed into the domain {} m/s is below 2R·rate = {} m/s: particles may pile up at \
+                         the inlet (feedpipe.md §2.12)",
+                        self.located_field(&format!("inlets[{i}].velocity_m_s")),
                         number(normal_speed),
                         number(needed)
                     )
