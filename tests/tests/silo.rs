@@ -169,6 +169,30 @@ fn ci_silo() {
     assert!((m.support_over_weight - 1.0).abs() < 0.02, "support / W = {}", m.support_over_weight);
 }
 
+/// Issue 19 item 6, the gentle-fill experiment: does the fill's impact speed make the column denser than the thesis's?
+/// The CI column filled gently (`silo_gentle.ron`: four narrow sources each drop a grain 1.5 cm above the grains
+/// under it every 80 ms, landing at about 0.6 m/s) against the same column filled from its line at 41 cm (`silo.ron`,
+/// up to 2.8 m/s). Asserted for seed 2: both at rest with every grain in; the gentle column is looser by at least
+/// 0.01 (measured 0.8177 against 0.8313; over seeds 2–6 and 2–5 the means are 0.827 and 0.812, docs/validation.md),
+/// a fifth of the thesis silo's excess of 0.07, so the fill is not the main cause. About 7 minutes on two cores;
+/// with `GC2D_REGRESSION_RUN_DIR` the finished runs `silo/` and `silo_gentle/` of `gc2d-rs run` are read instead.
+#[test]
+#[ignore = "an experiment: about 7 minutes"]
+fn gentle_fill_packs_looser_but_not_as_loose_as_the_thesis() {
+    let (fast_world, fast_time) = run_or_load_scene("silo.ron");
+    let (gentle_world, gentle_time) = run_or_load_scene("silo_gentle.ron");
+    let (fast, gentle) = (measure(&fast_world), measure(&gentle_world));
+    print("silo", &fast, fast_time.as_secs_f64());
+    print("silo_gentle", &gentle, gentle_time.as_secs_f64());
+    for m in [&fast, &gentle] {
+        assert!(m.particles > 350 && m.removed == 0, "{} grains filled in, {} lost", m.particles, m.removed);
+        assert!(m.kinetic_ratio < 1e-3, "not at rest: KE/(M g d) = {:.3e}", m.kinetic_ratio);
+    }
+    let (fast_rho, gentle_rho) = (fast.report.packing_fraction, gentle.report.packing_fraction);
+    assert!(gentle_rho < fast_rho - 0.01, "gentle fill ρ_rel = {gentle_rho}, fast fill {fast_rho}");
+    assert!(gentle_rho > 0.78 + 0.02, "the gentle fill alone reaches the thesis's ρ_rel: {gentle_rho}");
+}
+
 /// The thesis-sized column (§7.1): 10,000 particles of r = 1 mm; k = 0.64 ± 0.19, ρ_rel = 0.78 ± 0.03,
 /// μ_j = 0.33 ± 0.1, saturation and the force balance within 2 %. About 6.6 hours of wall time on this two-core machine.
 /// Measured (seed 2): k = 0.573 and μ_j = 0.350 meet the thesis's; ρ_rel = 0.853 and a 46 % σ_xx variation over the
