@@ -173,7 +173,7 @@ fn ci_silo() {
 /// The CI column filled gently (`silo_gentle.ron`: four narrow sources each drop a grain 1.5 cm above the grains
 /// under it every 80 ms, landing at about 0.6 m/s) against the same column filled from its line at 41 cm (`silo.ron`,
 /// up to 2.8 m/s). Asserted for seed 2: both at rest with every grain in; the gentle column is looser by at least
-/// 0.01 (measured 0.8177 against 0.8313; over seeds 2–6 and 2–5 the means are 0.827 and 0.812, docs/validation.md),
+/// 0.01 (measured 0.8177 against 0.8313; over seeds 2–6 the means are 0.827 and 0.811, docs/validation.md),
 /// a fifth of the thesis silo's excess of 0.07, so the fill is not the main cause. About 7 minutes on two cores;
 /// with `GC2D_REGRESSION_RUN_DIR` the finished runs `silo/` and `silo_gentle/` of `gc2d-rs run` are read instead.
 #[test]
