@@ -4,7 +4,7 @@
 //!
 //! Body ids only grow and insertions take the next id, so the log is run-length encoded: consecutive ids from the
 //! same inserter share one run. A scene without sources or inlets keeps an empty log; a source inserting one particle
-//! at a time between other insertions costs 16 bytes per run.
+//! at a time between other insertions costs 20 bytes per run.
 
 use crate::BodyId;
 use serde::{Deserialize, Serialize};
