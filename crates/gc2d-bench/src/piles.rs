@@ -1,12 +1,8 @@
 //! The standard benchmark piles: how each is built and how long it settles before it is measured.
 
 use crate::deposition::{DepositionPlan, deposit};
-use crate::{disk_material, square_material, thesis_material};
-use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{
-    BodyShape, Integrator, InteractionTable, MassModel, MaterialId, MaterialPair, SafetyLimits, WallMotion, World,
-    WorldConfig,
-};
+use crate::{benchmark_config, disk_material, square_material, thesis_material};
+use gc2d_engine::{BodyShape, InteractionTable, MassModel, MaterialId, MaterialPair, WallMotion, World};
 use gc2d_geometry::{ConvexPolygon, DVec2, Pose, rectangle, square};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -149,18 +145,9 @@ fn square_pile(count: usize, seed: u64) -> World {
 fn disk_pile(count: usize, seed: u64) -> World {
     use disk_material::{ASSUMED_PACKING, DENSITY, LATTICE_GAP, RADIUS, SIZE_VARIATION, contact_model, time_step};
     let model = contact_model();
-    let config = WorldConfig {
-        time_step: time_step(&model),
-        integrator: Integrator::default(),
-        interactions: InteractionTable::new(1, &[MaterialPair { a: MaterialId(0), b: MaterialId(0), model }])
-            .expect("a complete table"),
-        mass_model: MassModel::SphereEquivalent,
-        gravity: GravitySchedule::constant(9.81),
-        heating: None,
-        safety: SafetyLimits::default(),
-        domain: None,
-        seed,
-    };
+    let interactions = InteractionTable::new(1, &[MaterialPair { a: MaterialId(0), b: MaterialId(0), model }])
+        .expect("a complete table");
+    let config = benchmark_config(time_step(&model), interactions, MassModel::SphereEquivalent, 9.81, seed);
     let mut world = World::new(config).expect("valid configuration");
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let radii: Vec<f64> =

@@ -2,9 +2,8 @@
 //! "What is compared"): squares of side 4.5 mm at 5000 kg/m², the overlap-area law with E = 2.5·10⁶ N/m, γ = 0.05,
 //! μ = 0.3, g = 10 m/s², Δt = 3·10⁻⁶ s.
 
-use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
-use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{InteractionTable, MassModel, SafetyLimits, WorldConfig};
+use crate::{benchmark_config, overlap_area_law};
+use gc2d_engine::{MassModel, WorldConfig};
 
 /// Side of the squares, m (LAMMPS: core side 4 plus a rounding of 0.25 on each side, with L0 = 1 mm).
 pub const SIDE: f64 = 4.5e-3;
@@ -15,22 +14,8 @@ pub const TIME_STEP: f64 = 3e-6;
 
 /// The World configuration of the squares benchmark.
 pub fn square_config(seed: u64) -> WorldConfig {
-    WorldConfig {
-        time_step: TIME_STEP,
-        integrator: Default::default(),
-        interactions: InteractionTable::uniform(ContactLaw {
-            elastic: NormalElastic::thesis(2.5e6),
-            damping: Some(NormalDamping { gamma: 0.05 }),
-            friction: Some(CundallStrack { mu: 0.3 }),
-            cohesion: None,
-        }),
-        mass_model: MassModel::PerUnitThickness,
-        gravity: GravitySchedule::constant(10.0),
-        heating: None,
-        safety: SafetyLimits::default(),
-        domain: None,
-        seed,
-    }
+    let interactions = overlap_area_law(2.5e6, 0.05, 0.3);
+    benchmark_config(TIME_STEP, interactions, MassModel::PerUnitThickness, 10.0, seed)
 }
 
 /// Width of the box for `count` squares, m: the LAMMPS example's replicated box, 12·sqrt(N/2) mm.

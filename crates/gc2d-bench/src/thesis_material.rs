@@ -4,9 +4,8 @@
 //! Material: Δt = 2·10⁻⁶ s, E = 10⁷ N/m, γ = 0.75, μ = 0.6, area density 5000 kg/m², g = 9.81 m/s². Particles:
 //! 7-gons with corners at RAND1 positions on an ellipse whose semi-axes are drawn uniformly in 1.75 mm ± 25 %.
 
-use gc2d_contact::{ContactLaw, CundallStrack, NormalDamping, NormalElastic};
-use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{InteractionTable, MassModel, SafetyLimits, WorldConfig};
+use crate::{benchmark_config, overlap_area_law};
+use gc2d_engine::{MassModel, WorldConfig};
 use gc2d_geometry::{AngleMode, DVec2, Randomization, ShapeRecipe};
 
 /// Δt of the thesis's pile runs, s.
@@ -20,22 +19,8 @@ pub const SIZE_VARIATION: f64 = 0.25;
 
 /// The World configuration of the thesis's pile runs.
 pub fn thesis_config(seed: u64) -> WorldConfig {
-    WorldConfig {
-        time_step: TIME_STEP,
-        integrator: Default::default(),
-        interactions: InteractionTable::uniform(ContactLaw {
-            elastic: NormalElastic::thesis(1e7),
-            damping: Some(NormalDamping { gamma: 0.75 }),
-            friction: Some(CundallStrack { mu: 0.6 }),
-            cohesion: None,
-        }),
-        mass_model: MassModel::PerUnitThickness,
-        gravity: GravitySchedule::constant(9.81),
-        heating: None,
-        safety: SafetyLimits::default(),
-        domain: None,
-        seed,
-    }
+    let interactions = overlap_area_law(1e7, 0.75, 0.6);
+    benchmark_config(TIME_STEP, interactions, MassModel::PerUnitThickness, 9.81, seed)
 }
 
 /// RAND1 7-gons, semi-axes 1.75 mm ± 25 % (each axis drawn uniformly), uniformly random orientation.
