@@ -4,13 +4,14 @@
 
 use crate::console;
 use crate::failure::CommandFailure;
+use crate::runner::simulation_bar;
 use gc2d_bench::timing::{load_average, measure, pool, table_header};
 use gc2d_bench::{Measurement, StandardPile};
 use gc2d_engine::World;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::ProgressBar;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 /// Bumped whenever a standard pile or its settling changes, so that older cached states are not taken for the new.
 const PILES_VERSION: u32 = 1;
@@ -202,17 +203,10 @@ fn settled(
     Ok(world)
 }
 
-/// The progress bar of a settling run, hidden with `quiet` or when stderr is not a terminal.
+/// The progress bar of a settling run, hidden with `quiet`.
 fn settling_bar(pile: StandardPile, particles: usize, quiet: bool) -> ProgressBar {
-    let target = if quiet { ProgressDrawTarget::hidden() } else { ProgressDrawTarget::stderr() };
-    let bar = ProgressBar::with_draw_target(Some(u64::from(SETTLE_CHUNKS)), target);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:32.cyan/blue} {percent:>3}%  {msg}  ETA {eta}")
-            .expect("the template is a valid indicatif template")
-            .progress_chars("=> "),
-    );
+    let bar = simulation_bar(u64::from(SETTLE_CHUNKS), !quiet);
     bar.set_message(format!("settling {} {particles}", pile.name()));
-    bar.enable_steady_tick(Duration::from_millis(500));
     bar
 }
 

@@ -157,20 +157,27 @@ struct Progress {
     start_steps: u64,
 }
 
+/// The progress bar of a stretch of simulation `length` units long (a run's microseconds, a settling's chunks), on
+/// stderr when `visible`: the one look of every simulation bar of the program.
+pub fn simulation_bar(length: u64, visible: bool) -> ProgressBar {
+    let target = if visible { ProgressDrawTarget::stderr() } else { ProgressDrawTarget::hidden() };
+    let bar = ProgressBar::with_draw_target(Some(length), target);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:32.cyan/blue} {percent:>3}%  {msg}  ETA {eta}")
+            .expect("the template is a valid indicatif template")
+            .progress_chars("=> "),
+    );
+    bar.enable_steady_tick(Duration::from_millis(500));
+    bar
+}
+
 impl Progress {
     /// Steps between two updates of the bar (it redraws at most a few times a second anyway).
     const EVERY: u64 = 256;
 
     fn new(world: &World, end_time: f64, visible: bool) -> Self {
         let total_us = ((end_time - world.time()).max(0.0) * 1e6).round() as u64;
-        let target = if visible { ProgressDrawTarget::stderr() } else { ProgressDrawTarget::hidden() };
-        let bar = ProgressBar::with_draw_target(Some(total_us), target);
-        bar.set_style(
-            ProgressStyle::with_template("{bar:32.cyan/blue} {percent:>3}%  {msg}  ETA {eta}")
-                .expect("the template is a valid indicatif template")
-                .progress_chars("=> "),
-        );
-        bar.enable_steady_tick(Duration::from_millis(500));
+        let bar = simulation_bar(total_us, visible);
         Self { bar, start_time: world.time(), started: Instant::now(), start_steps: world.steps() }
     }
 
