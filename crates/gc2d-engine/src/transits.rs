@@ -67,11 +67,6 @@ impl TransitLog {
         self.entries.remove(&body.0);
     }
 
-    /// The entry of a particle still inside, if it came through an inlet.
-    pub fn entry(&self, body: BodyId) -> Option<InletEntry> {
-        self.entries.get(&body.0).copied()
-    }
-
     /// The passages of the last step.
     pub fn last_step(&self) -> &[Transit] {
         &self.last_step

@@ -22,7 +22,7 @@ use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
 use crate::shape::{BodyShape, MassModel, shape_view};
 use crate::sources::{DropHeight, DropSource, PLACEMENT_ATTEMPTS, SourceState};
-use crate::transits::{InletEntry, Transit, TransitLog};
+use crate::transits::{Transit, TransitLog};
 use gc2d_geometry::{Aabb, DVec2, Pose, ShapeView, area_contact};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -430,11 +430,6 @@ impl World {
     /// for a body of the start or one added by hand.
     pub fn insertion(&self, body: BodyId) -> Option<Insertion> {
         self.insertions.of(body)
-    }
-
-    /// How particle `body` came in, if it came through an inlet and is still inside.
-    pub fn inlet_entry(&self, body: BodyId) -> Option<InletEntry> {
-        self.transits.entry(body)
     }
 
     /// The fluid the particles move in, if the World has one (for recordings and analyses that sample its field).
