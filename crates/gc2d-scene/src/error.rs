@@ -202,10 +202,7 @@ impl SceneError {
     /// Points the error at a byte span of `source` (`None`: the file is still named, without a position).
     pub(crate) fn at_span(mut self, source: &Arc<SourceText>, span: Option<Range<usize>>) -> Self {
         let details = &mut self.0;
-        details.location = span.as_ref().map(|span| {
-            let (line, column) = source.line_column(span.start);
-            Location { file: source.name().to_owned(), line, column }
-        });
+        details.location = span.as_ref().map(|span| source.location(span.start));
         details.span = span;
         details.source = Some(Arc::clone(source));
         details.related = std::mem::take(&mut details.related).into_iter().map(|e| e.located(Some(source))).collect();

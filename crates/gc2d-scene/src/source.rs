@@ -1,6 +1,7 @@
 //! The text a scene was loaded from: its name (the file path), the text itself, and the index of where each field's
 //! value sits, so that errors found at any stage can point into the file.
 
+use crate::error::Location;
 use crate::spans::SpanIndex;
 use miette::NamedSource;
 use std::fmt;
@@ -70,6 +71,12 @@ impl SourceText {
             .char_indices()
             .nth(column.saturating_sub(1))
             .map_or(offset + line_end, |(i, _)| offset + i)
+    }
+
+    /// The file, line and column of a byte offset, as errors and warnings give them.
+    pub fn location(&self, offset: usize) -> Location {
+        let (line, column) = self.line_column(offset);
+        Location { file: self.name.clone(), line, column }
     }
 
     /// The 1-based line and column (in characters) of a byte offset.

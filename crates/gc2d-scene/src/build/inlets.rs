@@ -151,10 +151,8 @@ impl Scene {
     /// `path` prefixed with the file, line and column of its value where the scene was read from a text that holds
     /// it (`feed.ron:12:22: inlets[0].velocity_m_s`), else `path` alone.
     fn located_field(&self, path: &str) -> String {
-        let place = self.source.as_ref().and_then(|source| {
-            let (line, column) = source.line_column(source.span_of(path)?.start);
-            Some(format!("{}:{line}:{column}: ", source.name()))
-        });
+        let place =
+            self.source.as_ref().and_then(|source| Some(format!("{}: ", source.location(source.span_of(path)?.start))));
         format!("{}{path}", place.unwrap_or_default())
     }
 
