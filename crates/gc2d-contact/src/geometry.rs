@@ -19,12 +19,21 @@ pub struct ContactGeometry {
     pub arm_i: DVec2,
     /// r_j = s − x_j: from j's centre of mass (for a wall: its reference point) to the contact point, m.
     pub arm_j: DVec2,
+    /// Where the overlap's centroid projects on the contact line, measured from s along the tangent, m; 0 where it is
+    /// not computed. Read only by the [`Winkler`](crate::AreaFormulation::Winkler) formulation.
+    pub centroid_offset: f64,
 }
 
 impl ContactGeometry {
     /// A pair that does not overlap. Evaluating it ends a contact that was active.
-    pub const SEPARATED: Self =
-        Self { area: 0.0, normal: DVec2::Y, chord_length: 0.0, arm_i: DVec2::ZERO, arm_j: DVec2::ZERO };
+    pub const SEPARATED: Self = Self {
+        area: 0.0,
+        normal: DVec2::Y,
+        chord_length: 0.0,
+        arm_i: DVec2::ZERO,
+        arm_j: DVec2::ZERO,
+        centroid_offset: 0.0,
+    };
 
     /// Unit tangent n∥: the normal turned counter-clockwise by 90°, (−n_y, n_x).
     #[inline]
@@ -42,5 +51,6 @@ impl ContactGeometry {
             && self.normal.is_finite()
             && self.arm_i.is_finite()
             && self.arm_j.is_finite()
+            && self.centroid_offset.is_finite()
     }
 }

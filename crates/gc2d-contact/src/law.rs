@@ -2,7 +2,7 @@
 
 use crate::{
     AreaFormulation, BodyMotion, Cohesion, ContactConstants, ContactGeometry, ContactState, CundallStrack, EnergyTerms,
-    NormalDamping, NormalElastic, TangentialStep, reciprocal_or_zero,
+    NormalDamping, NormalElastic, TangentialStep, reciprocal_or_zero, rocking::RockingMoments,
 };
 use gc2d_geometry::{DVec2, cross};
 use serde::{Deserialize, Serialize};
@@ -147,12 +147,21 @@ impl ContactLaw {
 
         let normal_force = elastic + damping - cohesion;
         let force = normal_force * geometry.normal + tangential.force * tangent;
-        // The thesis law books its work by the trapezoid rule; the conservative one stores its potential W(A).
+        let rocking = RockingMoments::of(
+            self,
+            &constants,
+            geometry,
+            elastic,
+            body_i.angular_velocity - body_j.angular_velocity,
+            dt,
+        );
+        // The thesis and Winkler laws book their work by the trapezoid rule (Winkler's with the work against its
+        // couple); the conservative one stores its potential W(A).
         let (normal_elastic_change, normal_energy) = match self.elastic.formulation {
-            AreaFormulation::Thesis => {
+            AreaFormulation::Thesis | AreaFormulation::Winkler => {
                 let previous_elastic =
                     self.elastic.force(previous.previous_area, previous.previous_chord, constants.length);
-                let change = 0.5 * (previous_elastic + elastic) * approach;
+                let change = 0.5 * (previous_elastic + elastic) * approach + rocking.elastic_work;
                 (change, previous.normal_energy + change)
             }
             AreaFormulation::Conservative => {
@@ -162,15 +171,15 @@ impl ContactLaw {
         };
         ContactResponse {
             force_on_i: force,
-            torque_on_i: cross(geometry.arm_i, force),
-            torque_on_j: -cross(geometry.arm_j, force),
+            torque_on_i: cross(geometry.arm_i, force) + rocking.torque_on_i,
+            torque_on_j: -cross(geometry.arm_j, force) - rocking.torque_on_i,
             normal_force,
             tangential_force: tangential.force,
             energy: EnergyTerms {
                 normal_elastic_change,
                 spring_change: tangential.spring_energy_change,
                 cohesion_change: self.cohesion.map_or(0.0, |c| c.energy(area_change)),
-                normal_damping: damping * approach,
+                normal_damping: damping * approach + rocking.damping_dissipation,
                 tangential_damping: tangential.damping_dissipation,
                 sliding: tangential.sliding_dissipation,
                 opening_residual: 0.0,
@@ -195,7 +204,7 @@ impl ContactLaw {
             return ContactResponse::default();
         };
         let normal_left = match self.elastic.formulation {
-            AreaFormulation::Thesis => {
+            AreaFormulation::Thesis | AreaFormulation::Winkler => {
                 let previous_elastic =
                     self.elastic.force(previous.previous_area, previous.previous_chord, constants.length);
                 let last_approach = -previous.previous_area * reciprocal_or_zero(previous.previous_chord);

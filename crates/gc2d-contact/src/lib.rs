@@ -22,6 +22,7 @@ pub mod geometry;
 pub mod law;
 pub mod normal;
 pub mod penetration;
+mod rocking;
 pub mod state;
 pub mod tangential;
 

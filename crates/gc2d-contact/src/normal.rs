@@ -28,6 +28,14 @@ pub enum AreaFormulation {
     /// theory): F⊥ = W′(A)·c = (E·A/l)·(c/l), since ∂A/∂h = c. With the force at the chord midpoint the torques are
     /// exact too, so an elastic contact returns all the energy it stored.
     Conservative,
+    /// The overlap as a bed of springs and dashpots along the chord (a Winkler foundation; docs/model.md, "Rocking
+    /// of flat contacts"): gc2d's F⊥ = E·A/l, applied at the overlap centroid projected on the chord instead of the
+    /// chord midpoint, plus a dashpot couple. Against a flat face this is the exact gradient of the potential
+    /// (E/2l)·∫δ² ds of the local overlap depth δ along the chord, so a tilted face meets the restoring moment
+    /// E·c³·θ/(12 l) and elastic impacts on walls keep their energy; the dashpots make rocking decay, so blocks rest
+    /// on slopes below the friction angle. The centroid is exact for polygon–polygon pairs; pairs with a curved
+    /// outline keep the chord midpoint and get the couple only.
+    Winkler,
 }
 
 impl NormalElastic {
@@ -42,11 +50,11 @@ impl NormalElastic {
     }
 
     /// The elastic normal force in N (repulsive, ≥ 0) for overlap area `area`, chord length `chord` and
-    /// characteristic length `length`: E·A/l (thesis) or E·A·c/l² (conservative).
+    /// characteristic length `length`: E·A/l (thesis, Winkler) or E·A·c/l² (conservative).
     #[inline]
     pub fn force(&self, area: f64, chord: f64, length: f64) -> f64 {
         match self.formulation {
-            AreaFormulation::Thesis => self.e_modulus * area / length,
+            AreaFormulation::Thesis | AreaFormulation::Winkler => self.e_modulus * area / length,
             AreaFormulation::Conservative => self.e_modulus * area * chord / (length * length),
         }
     }

@@ -8,11 +8,12 @@ use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::interactions::{ContactModel, InteractionTable};
 use crate::shape::ShapeKind;
 use gc2d_contact::{
-    BodyMotion, ContactLaw, ContactState, EnergyTerms, PairProperties, PenetrationGeometry, PenetrationLaw,
-    PenetrationState, reciprocal_or_zero,
+    AreaFormulation, BodyMotion, ContactLaw, ContactState, EnergyTerms, PairProperties, PenetrationGeometry,
+    PenetrationLaw, PenetrationState, reciprocal_or_zero,
 };
 use gc2d_geometry::{
-    AreaContact, DVec2, FeaturePair, ShapeView, area_contact, closest_features, contact_geometry, penetration,
+    AreaContact, DVec2, FeaturePair, ShapeView, area_contact, closest_features, contact_geometry,
+    contact_geometry_with_centroid, penetration,
 };
 use serde::{Deserialize, Serialize};
 
@@ -90,22 +91,32 @@ pub struct PairContact {
     pub earlier_forces: [DVec2; 2],
 }
 
-/// The overlap of polygons `i` and `j` this step, or `None` (the polygon–polygon path of the overlap-area law).
+/// The overlap of polygons `i` and `j` this step, or `None` (the polygon–polygon path of the overlap-area law), with
+/// the overlap centroid when `with_centroid` (the Winkler formulation; the others spend nothing on it).
 ///
 /// A pair that touched in the last step almost always still touches, so the overlap computation itself decides; a
 /// closest-feature query first would only repeat its answer. Every other pair (approaching, or just separated) asks
 /// the warm-started closest-feature walk first (reference §4.3), which settles the common "apart" case without
 /// building an overlap polygon, and keeps the warm start fresh for the step the pair comes into contact.
 #[inline]
-fn polygon_overlap(vertices_i: &[DVec2], vertices_j: &[DVec2], contact: &mut PairContact) -> Option<AreaContact> {
+fn polygon_overlap(
+    vertices_i: &[DVec2],
+    vertices_j: &[DVec2],
+    with_centroid: bool,
+    contact: &mut PairContact,
+) -> Option<AreaContact> {
+    let overlap = |a: &[DVec2], b: &[DVec2]| {
+        if with_centroid { contact_geometry_with_centroid(a, b) } else { contact_geometry(a, b) }
+    };
     let as_area_contact = |g: gc2d_geometry::ContactGeometry| AreaContact {
         area: g.area,
         chord_length: g.chord_length,
         point: g.point,
         normal: g.normal,
+        centroid: g.centroid,
     };
     if contact.touching
-        && let Some(overlap) = contact_geometry(vertices_i, vertices_j)
+        && let Some(overlap) = overlap(vertices_i, vertices_j)
     {
         contact.passes = 0;
         return Some(as_area_contact(overlap));
@@ -116,7 +127,7 @@ fn polygon_overlap(vertices_i: &[DVec2], vertices_j: &[DVec2], contact: &mut Pai
     if separation.distance > 0.0 || contact.touching {
         None
     } else {
-        contact_geometry(vertices_i, vertices_j).map(as_area_contact)
+        overlap(vertices_i, vertices_j).map(as_area_contact)
     }
 }
 
@@ -222,8 +233,9 @@ impl PairContext<'_> {
         let bodies = self.bodies;
         let both_polygons =
             bodies.shape[i.index()] == ShapeKind::Polygon && bodies.shape[j.index()] == ShapeKind::Polygon;
+        let with_centroid = law.elastic.formulation == AreaFormulation::Winkler;
         let overlap = if both_polygons {
-            polygon_overlap(bodies.world_vertices_of(i), bodies.world_vertices_of(j), contact)
+            polygon_overlap(bodies.world_vertices_of(i), bodies.world_vertices_of(j), with_centroid, contact)
         } else {
             area_contact(bodies.shape_view(i), bodies.shape_view(j))
         };
@@ -234,6 +246,7 @@ impl PairContext<'_> {
             chord_length: g.chord_length,
             arm_i: g.point - position_i,
             arm_j: g.point - position_j,
+            centroid_offset: g.centroid.map_or(0.0, |centroid| (centroid - g.point).dot(g.normal.perp())),
         });
         let (motion_i, motion_j) = (self.motion(i), self.motion(j));
         let response = law.evaluate(&geometry, &motion_i, &motion_j, &contact.state.overlap_area(), self.dt);

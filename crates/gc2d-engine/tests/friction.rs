@@ -12,7 +12,8 @@ use gc2d_geometry::{DVec2, Pose, rectangle};
 /// The incline's block: a flat 40 mm × 4 mm rectangle, ρ = 5000 kg/m² (m = 0.8 kg). Flat because the contact law
 /// puts the whole normal force at the chord midpoint: a block can only carry the tipping moment of friction,
 /// m·g·sin Θ·h/2, by lifting a corner, and for tan Θ·h/w above ≈ 0.08 that corner contact rocks and the block walks
-/// down the slope (docs/model.md, "Validation of the engine").
+/// down the slope under the thesis law these tests check (docs/model.md, "Validation of the engine"; the Winkler
+/// formulation, which holds square and tall blocks, is tested in `crates/gc2d-scene/tests/incline_rest.rs`).
 const INCLINE_BLOCK: DVec2 = DVec2::new(0.04, 0.004);
 /// Δt of the incline runs. The corner contact of this flat block is a stiff rocking mode: at 10 µs (0.4 of the §3.6
 /// bound of 25 µs) it oscillates at the Nyquist frequency and the block slides; 2.5 µs is stable.

@@ -57,6 +57,9 @@ pub struct ContactGeometry {
     pub chord_length: f64,
     /// How c1 and c2 were found.
     pub kind: ContactKind,
+    /// Area centroid of the overlap polygon, m: computed by [`contact_geometry_with_centroid`] for the overlap-centroid
+    /// force point, `None` from [`contact_geometry`] (which spends nothing on it).
+    pub centroid: Option<DVec2>,
 }
 
 /// The intersection polygon of two convex polygons, counter-clockwise, in a fixed buffer (no heap).
@@ -96,11 +99,21 @@ impl Default for OverlapPolygon {
 /// Returns `None` when the interiors do not overlap (A = 0, including mere touching) or the input is out of range.
 /// Never allocates, never panics, never returns NaN for finite input.
 pub fn contact_geometry(a: &[DVec2], b: &[DVec2]) -> Option<ContactGeometry> {
+    contact_with_centroid_if(a, b, false)
+}
+
+/// [`contact_geometry`] with the overlap polygon's area centroid in [`ContactGeometry::centroid`] (bitwise the same
+/// other fields), for laws that apply the elastic force at the centroid (docs/model.md, "Rocking of flat contacts").
+pub fn contact_geometry_with_centroid(a: &[DVec2], b: &[DVec2]) -> Option<ContactGeometry> {
+    contact_with_centroid_if(a, b, true)
+}
+
+fn contact_with_centroid_if(a: &[DVec2], b: &[DVec2], with_centroid: bool) -> Option<ContactGeometry> {
     match checked_total_vertices(a, b)? {
-        0..=16 => contact_with_capacity::<16>(a, b),
-        17..=32 => contact_with_capacity::<32>(a, b),
-        33..=64 => contact_with_capacity::<64>(a, b),
-        _ => contact_with_capacity::<128>(a, b),
+        0..=16 => contact_with_capacity::<16>(a, b, with_centroid),
+        17..=32 => contact_with_capacity::<32>(a, b, with_centroid),
+        33..=64 => contact_with_capacity::<64>(a, b, with_centroid),
+        _ => contact_with_capacity::<128>(a, b, with_centroid),
     }
 }
 
@@ -138,7 +151,7 @@ fn overlap_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2], out: &mut O
     }
 }
 
-fn contact_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2]) -> Option<ContactGeometry> {
+fn contact_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2], with_centroid: bool) -> Option<ContactGeometry> {
     let (mut first, mut second) = (Ring::<CAP>::new(), Ring::<CAP>::new());
     let ring = clip::clip(a, b, &mut first, &mut second)?;
     let area = 0.5 * ring.twice_area();
@@ -146,7 +159,8 @@ fn contact_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2]) -> Option<C
     if !area.is_finite() || area <= 0.0 {
         return None;
     }
-    Some(contact_from_overlap(ring.vertices(), area, a, b))
+    let contact = contact_from_overlap(ring.vertices(), area, a, b);
+    Some(ContactGeometry { centroid: with_centroid.then(|| ring_centroid(ring.vertices())), ..contact })
 }
 
 /// The chord rules of `docs/model.md`, applied to the labelled overlap polygon.
@@ -185,7 +199,16 @@ fn contact_from_overlap(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]
     };
     let chord = c2 - c1;
     let chord_length = chord.length();
-    ContactGeometry { area, c1, c2, point: 0.5 * (c1 + c2), normal: chord.perp() / chord_length, chord_length, kind }
+    ContactGeometry {
+        area,
+        c1,
+        c2,
+        point: 0.5 * (c1 + c2),
+        normal: chord.perp() / chord_length,
+        chord_length,
+        kind,
+        centroid: None,
+    }
 }
 
 /// The runs of consecutive edges of a cyclic ring for which `on_a` holds: how many, and when there is exactly one,
@@ -296,26 +319,29 @@ fn contained_contact(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -
         normal,
         chord_length: high - low,
         kind: ContactKind::Contained,
+        centroid: None,
     }
 }
 
-/// Area centroid of the overlap polygon.
+/// Area centroid of the overlap polygon: [`centroid`] of its points, read in place.
 fn ring_centroid(ring: &[RingVertex]) -> DVec2 {
-    let mut points = [DVec2::ZERO; 2 * MAX_VERTICES];
-    for (slot, vertex) in points.iter_mut().zip(ring) {
-        *slot = vertex.point;
-    }
-    centroid(&points[..ring.len()])
+    polygon_centroid(ring.len(), |k| ring[k].point)
 }
 
 /// Area centroid of a counter-clockwise polygon (vertex mean for a degenerate one), summed relative to its first
 /// vertex for precision.
 pub(crate) fn centroid(points: &[DVec2]) -> DVec2 {
-    let origin = points[0];
+    polygon_centroid(points.len(), |k| points[k])
+}
+
+/// Area centroid of the counter-clockwise polygon of `len` (≥ 1) vertices `vertex(0..len)`.
+#[inline]
+fn polygon_centroid(len: usize, vertex: impl Fn(usize) -> DVec2) -> DVec2 {
+    let origin = vertex(0);
     let mut twice_area = 0.0;
     let mut weighted = DVec2::ZERO;
-    for k in 1..points.len() - 1 {
-        let (p, q) = (points[k] - origin, points[k + 1] - origin);
+    for k in 1..len.saturating_sub(1) {
+        let (p, q) = (vertex(k) - origin, vertex(k + 1) - origin);
         let c = cross(p, q);
         twice_area += c;
         weighted += (p + q) * c;
@@ -323,7 +349,7 @@ pub(crate) fn centroid(points: &[DVec2]) -> DVec2 {
     if twice_area > 0.0 {
         origin + weighted / (3.0 * twice_area)
     } else {
-        points.iter().sum::<DVec2>() / points.len() as f64
+        (0..len).map(&vertex).sum::<DVec2>() / len as f64
     }
 }
 

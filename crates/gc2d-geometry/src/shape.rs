@@ -76,6 +76,9 @@ pub struct AreaContact {
     pub point: DVec2,
     /// Unit vector perpendicular to the chord, from j towards i: the repulsive force on i is along +normal.
     pub normal: DVec2,
+    /// Area centroid of the overlap, m, where it was asked for and is computed: polygon–polygon pairs through
+    /// [`contact_geometry_with_centroid`](crate::contact_geometry_with_centroid). `None` otherwise.
+    pub centroid: Option<DVec2>,
 }
 
 /// What penetration laws (linear spring, Hertz) need.

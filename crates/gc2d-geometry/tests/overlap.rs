@@ -2,7 +2,8 @@
 
 use approx::assert_relative_eq;
 use gc2d_geometry::{
-    ContactGeometry, ContactKind, ConvexPolygon, DVec2, OverlapPolygon, Pose, contact_geometry, cross, overlap_polygon,
+    ContactGeometry, ContactKind, ConvexPolygon, DVec2, OverlapPolygon, Pose, contact_geometry,
+    contact_geometry_with_centroid, cross, overlap_polygon,
 };
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -179,6 +180,30 @@ proptest! {
             prop_assert!((d.c1 - c.c2).length() <= 1e-12 * size && (d.c2 - c.c1).length() <= 1e-12 * size);
             prop_assert!((d.normal + c.normal).length() <= 1e-9);
         }
+    }
+
+    /// `contact_geometry_with_centroid` adds the overlap's area centroid, against the centroid of parry2d's
+    /// intersection polygon, and leaves every other field bitwise as `contact_geometry` gives it.
+    #[test]
+    fn the_overlap_centroid_agrees_with_parry(a in convex_polygon(1.75e-3), b in convex_polygon(1.75e-3)) {
+        let Some(plain) = contact_geometry(&a, &b) else { return Ok(()) };
+        let with = contact_geometry_with_centroid(&a, &b).unwrap();
+        prop_assert_eq!(ContactGeometry { centroid: None, ..with }, plain);
+        let mut points = Vec::new();
+        parry2d_f64::transformation::convex_polygons_intersection_points(&a, &b, &mut points);
+        let origin = points[0];
+        let (mut twice_area, mut weighted) = (0.0, DVec2::ZERO);
+        for w in points[1..].windows(2) {
+            let (p, q) = (w[0] - origin, w[1] - origin);
+            twice_area += cross(p, q);
+            weighted += (p + q) * cross(p, q);
+        }
+        // parry's polygon may run clockwise; the centroid is the same either way.
+        let reference = origin + weighted / (3.0 * twice_area);
+        prop_assert!(
+            (with.centroid.unwrap() - reference).length() <= 1e-6 * plain.area.sqrt() + 1e-12 * 1.75e-3,
+            "{:?} vs parry {reference}", with.centroid
+        );
     }
 
     /// The normal is the direction of −∂A/∂x_a and the chord length its magnitude (the overlap shrinks fastest

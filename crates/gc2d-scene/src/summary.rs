@@ -22,8 +22,10 @@ fn describe(model: &ContactModel) -> String {
     match model {
         ContactModel::OverlapArea(law) => {
             let mut text = format!("overlap area, E = {:e} N/m", law.elastic.e_modulus);
-            if law.elastic.formulation == gc2d_contact::AreaFormulation::Conservative {
-                text += ", conservative";
+            match law.elastic.formulation {
+                gc2d_contact::AreaFormulation::Thesis => {}
+                gc2d_contact::AreaFormulation::Conservative => text += ", conservative",
+                gc2d_contact::AreaFormulation::Winkler => text += ", Winkler",
             }
             if let Some(damping) = law.damping {
                 text += &format!(", γ = {}", number(damping.gamma));

@@ -16,7 +16,14 @@ fn plate_on_wall(h: f64) -> ContactGeometry {
     if h <= 0.0 {
         return ContactGeometry::SEPARATED;
     }
-    ContactGeometry { area: CHORD * h, normal: DVec2::Y, chord_length: CHORD, arm_i: ARM, arm_j: DVec2::ZERO }
+    ContactGeometry {
+        area: CHORD * h,
+        normal: DVec2::Y,
+        chord_length: CHORD,
+        arm_i: ARM,
+        arm_j: DVec2::ZERO,
+        centroid_offset: 0.0,
+    }
 }
 
 fn plate(velocity: DVec2, angular_velocity: f64) -> BodyMotion {
@@ -69,6 +76,7 @@ fn torques_are_arm_cross_force_on_both_bodies() {
         chord_length: CHORD,
         arm_i: DVec2::new(-0.3e-3, -0.9e-3),
         arm_j: DVec2::new(0.5e-3, 1.1e-3),
+        centroid_offset: 0.0,
     };
     let body_i = plate(DVec2::new(0.01, -0.02), 3.0);
     let body_j = plate(DVec2::new(-0.01, 0.0), -1.0);

@@ -221,7 +221,13 @@ pub(crate) fn area_contact_from_crossings<'a>(
         Some((c1, c2)) => {
             let chord = c2 - c1;
             let chord_length = chord.length();
-            AreaContact { area, chord_length, point: 0.5 * (c1 + c2), normal: chord.perp() / chord_length }
+            AreaContact {
+                area,
+                chord_length,
+                point: 0.5 * (c1 + c2),
+                normal: chord.perp() / chord_length,
+                centroid: None,
+            }
         }
         None => {
             let (away, inner) = fallback();
@@ -231,7 +237,7 @@ pub(crate) fn area_contact_from_crossings<'a>(
             let tangent = DVec2::new(normal.y, -normal.x);
             let (center, low, high) = inner.chord_through_centre(tangent);
             let (c1, c2) = (center + low * tangent, center + high * tangent);
-            AreaContact { area, chord_length: high - low, point: 0.5 * (c1 + c2), normal }
+            AreaContact { area, chord_length: high - low, point: 0.5 * (c1 + c2), normal, centroid: None }
         }
     };
     (contact.normal.is_finite() && contact.point.is_finite() && contact.chord_length > 0.0).then_some(contact)

@@ -13,6 +13,7 @@ pub(crate) fn area_contact(a: &[DVec2], b: &[DVec2]) -> Option<AreaContact> {
         chord_length: g.chord_length,
         point: g.point,
         normal: g.normal,
+        centroid: g.centroid,
     })
 }
 

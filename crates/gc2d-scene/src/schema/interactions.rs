@@ -35,8 +35,10 @@ pub enum InteractionLaw {
         /// Cohesion k_coh, N/m. Default: mixed.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         cohesion_n_m: Option<f64>,
-        /// The elastic force law: `Thesis` (gc2d's F⊥ = E·A/l) or `Conservative` (the exact gradient of the
-        /// potential E·A²/(2l²), which keeps the energy of elastic collisions). Default: `Thesis`.
+        /// The elastic force law: `Thesis` (gc2d's F⊥ = E·A/l at the chord midpoint), `Conservative` (the exact
+        /// gradient of the potential E·A²/(2l²), which keeps the energy of elastic collisions) or `Winkler` (E·A/l at
+        /// the overlap centroid with dashpots along the chord: flat contacts resist rocking, so blocks rest on slopes
+        /// below the friction angle). Default: `Thesis`.
         #[serde(default, skip_serializing_if = "is_thesis")]
         formulation: AreaFormulation,
     },
