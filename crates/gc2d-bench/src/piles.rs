@@ -84,12 +84,14 @@ impl StandardPile {
     /// nothing overlapping; its random draws seeded with [`seed`](Self::seed).
     pub fn build(self, particles: usize) -> World {
         let seed = self.seed();
-        match self {
+        let mut world = match self {
             Self::Dense7gons => thesis_pile(particles, None, seed),
             Self::Layer => thesis_pile(particles, Some(LAYER_DEPTH), seed),
             Self::Squares => square_pile(particles, seed),
             Self::Disks => disk_pile(particles, seed),
-        }
+        };
+        world.shrink_to_fit();
+        world
     }
 }
 

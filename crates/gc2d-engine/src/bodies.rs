@@ -152,6 +152,34 @@ impl Bodies {
         id
     }
 
+    /// Gives back the spare room of every column (a `Vec` grows by doubling, so up to half of a column can be
+    /// unused); the values stay as they are.
+    pub fn shrink_to_fit(&mut self) {
+        self.kind.shrink_to_fit();
+        self.alive.shrink_to_fit();
+        self.shape.shrink_to_fit();
+        self.radius.shrink_to_fit();
+        self.material.shrink_to_fit();
+        self.reach.shrink_to_fit();
+        self.vertices.shrink_to_fit();
+        self.body_vertices.shrink_to_fit();
+        self.world_vertices.shrink_to_fit();
+        self.pose.shrink_to_fit();
+        self.velocity.shrink_to_fit();
+        self.angular_velocity.shrink_to_fit();
+        self.gear.shrink_to_fit();
+        self.mass.shrink_to_fit();
+        self.inertia.shrink_to_fit();
+        self.inverse_mass.shrink_to_fit();
+        self.inverse_inertia.shrink_to_fit();
+        self.area.shrink_to_fit();
+        self.inscribed_radius.shrink_to_fit();
+        self.surface_velocity.shrink_to_fit();
+        self.aabb.shrink_to_fit();
+        self.force.shrink_to_fit();
+        self.torque.shrink_to_fit();
+    }
+
     /// Heap memory held by the columns, in bytes, counted from their capacities (not their lengths), so it is what
     /// the store really occupies, spare room of the growing `Vec`s included.
     pub fn heap_bytes(&self) -> usize {

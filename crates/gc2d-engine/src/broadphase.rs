@@ -307,6 +307,14 @@ impl<T: Default> SortAndSweep<T> {
         &self.stats
     }
 
+    /// Gives back the spare room of the sorted axes, the boxes and flags, and the pair list's entries. The scratch
+    /// buffers keep theirs, which the next update would otherwise allocate again.
+    pub fn shrink_to_fit(&mut self) {
+        self.axes.iter_mut().for_each(Vec::shrink_to_fit);
+        self.bodies.shrink_to_fit();
+        self.pairs.shrink_to_fit();
+    }
+
     /// Heap memory held by the broadphase, in bytes, counted from the capacities of its buffers: the sorted axes,
     /// the per-body boxes and flags, the pair list with its index table and payloads, the wall list, the entries of
     /// the index of bodies inserted since the last update, and the scratch buffers.

@@ -156,11 +156,13 @@ impl World {
         if found != checksum {
             return Err(CheckpointError::Corrupted { expected: checksum, found });
         }
-        let (world, rest): (World, &[u8]) = postcard::take_from_bytes(&payload)?;
+        let (mut world, rest): (World, &[u8]) = postcard::take_from_bytes(&payload)?;
         if !rest.is_empty() {
             return Err(CheckpointError::Inconsistent(format!("{} bytes left over after the World", rest.len())));
         }
         check_consistency(&world)?;
+        // Decoding grows the longer columns by doubling (serde preallocates at most 1 MiB of a sequence).
+        world.shrink_to_fit();
         Ok(world)
     }
 

@@ -653,6 +653,15 @@ impl World {
         self.config.gravity.magnitude(self.time)
     }
 
+    /// Gives back the spare room of the body columns, the broadphase's per-body buffers and its pair list, which
+    /// grow by doubling (the pairs by a quarter) while bodies and pairs are added. Scene builds and checkpoint loads
+    /// call it once the World is complete; a World that goes on growing grows them again as needed. Changes no
+    /// value.
+    pub fn shrink_to_fit(&mut self) {
+        self.bodies.shrink_to_fit();
+        self.broadphase.shrink_to_fit();
+    }
+
     /// Heap memory held by the World, in bytes, counted from the capacities of its buffers: the body columns, the
     /// broadphase with its pair list and every pair's contact record, and the drivers' lists. Divided by the number
     /// of particles it is the memory per particle including its share of the contacts.

@@ -75,6 +75,12 @@ impl Bodies {
         self.flags.len()
     }
 
+    /// Gives back the spare room of the flags and intervals.
+    pub(super) fn shrink_to_fit(&mut self) {
+        self.flags.shrink_to_fit();
+        self.current.iter_mut().chain(&mut self.previous).for_each(Vec::shrink_to_fit);
+    }
+
     /// Heap bytes of the flags and the current and previous intervals, from their capacities.
     pub(super) fn heap_bytes(&self) -> usize {
         vec_bytes(&self.flags) + self.current.iter().chain(&self.previous).map(vec_bytes).sum::<usize>()

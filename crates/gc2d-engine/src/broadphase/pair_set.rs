@@ -92,6 +92,11 @@ impl<T: Default> PairSet<T> {
         vec_bytes(&self.entries) + vec_bytes(&self.slots)
     }
 
+    /// Gives back the spare room of the entries (the index table keeps its power-of-two size).
+    pub(crate) fn shrink_to_fit(&mut self) {
+        self.entries.shrink_to_fit();
+    }
+
     /// The entry of the pair {a, b}, if present.
     pub(crate) fn get(&self, a: u32, b: u32) -> Option<&PairEntry<T>> {
         let (a, b) = ordered(a, b)?;

@@ -296,6 +296,7 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
         None => None,
     };
     world.check_time_step().map_err(|e| engine_error(&WorldError::Safety(e), "run.time_step_s"))?;
+    world.shrink_to_fit();
 
     let summary = Summary {
         name: scene.name.clone(),
