@@ -82,8 +82,9 @@ pub struct PairContact {
     pub energy: EnergyTerms,
     /// Work the real motion of a wall did on the particle this step, J.
     pub wall_work: f64,
-    /// Passes the closest-feature walk needed this step; 0 when the pair was still touching and no query ran.
-    pub passes: u32,
+    /// Passes the closest-feature walk needed this step (saturating at 65,535; the walk's own cap is far below);
+    /// 0 when the pair was still touching and no query ran. Two bytes, so that the record stays within 240.
+    pub passes: u16,
     /// `force_on_a` of the two steps before this one, newest first: the history of the force-alternation
     /// diagnostic ([`World::force_alternation`](crate::World::force_alternation)). Not saved in checkpoints, so that
     /// the format stays; a resumed World measures the diagnostic again after two steps.
@@ -123,7 +124,7 @@ fn polygon_overlap(
     }
     let separation = closest_features(vertices_i, vertices_j, contact.warm_start);
     contact.warm_start = Some(separation.features);
-    contact.passes = separation.passes;
+    contact.passes = u16::try_from(separation.passes).unwrap_or(u16::MAX);
     if separation.distance > 0.0 || contact.touching {
         None
     } else {
@@ -329,6 +330,14 @@ fn pair_properties(
 mod tests {
     use super::*;
     use gc2d_geometry::{Pose, square};
+
+    /// The record lives in every broadphase pair and is most of a World's memory (docs/performance.md, "Memory per
+    /// particle"): 264 bytes with a warm start of machine-word feature indices, 240 with byte indices and a
+    /// two-byte pass count.
+    #[test]
+    fn pair_record_is_at_most_240_bytes() {
+        assert!(std::mem::size_of::<PairContact>() <= 240, "{} bytes", std::mem::size_of::<PairContact>());
+    }
 
     /// Two unit squares, the second `gap` above the first (negative: overlapping).
     fn stacked(gap: f64) -> Bodies {

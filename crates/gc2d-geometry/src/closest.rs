@@ -18,13 +18,38 @@ mod segments;
 use crate::{DVec2, cross};
 use serde::{Deserialize, Serialize};
 
-/// A feature of a polygon's boundary ring.
+/// A feature of a polygon's boundary ring. The index is a byte (polygons have at most
+/// [`MAX_VERTICES`](crate::MAX_VERTICES) vertices), so that the engine's warm start of every pair takes 4 bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Feature {
     /// Vertex `i`.
-    Vertex(usize),
+    Vertex(u8),
     /// Edge `i`, from vertex `i` to vertex `(i + 1) % n`, the polygon on its left.
-    Edge(usize),
+    Edge(u8),
+}
+
+const _: () = assert!(crate::MAX_VERTICES <= 256, "feature indices are bytes");
+
+impl Feature {
+    /// Vertex `i` (< [`MAX_VERTICES`](crate::MAX_VERTICES)).
+    #[inline]
+    pub fn vertex(i: usize) -> Self {
+        Feature::Vertex(i as u8)
+    }
+
+    /// Edge `i` (< [`MAX_VERTICES`](crate::MAX_VERTICES)).
+    #[inline]
+    pub fn edge(i: usize) -> Self {
+        Feature::Edge(i as u8)
+    }
+
+    /// The vertex or edge index.
+    #[inline]
+    pub fn index(self) -> usize {
+        match self {
+            Feature::Vertex(i) | Feature::Edge(i) => usize::from(i),
+        }
+    }
 }
 
 /// One feature of each polygon: what the engine stores per contact to warm-start the next step's query.
@@ -39,10 +64,7 @@ pub struct FeaturePair {
 impl FeaturePair {
     /// True when both indices exist on polygons with `n_a` and `n_b` vertices.
     fn fits(&self, n_a: usize, n_b: usize) -> bool {
-        let index = |f: Feature| match f {
-            Feature::Vertex(i) | Feature::Edge(i) => i,
-        };
-        index(self.a) < n_a && index(self.b) < n_b
+        self.a.index() < n_a && self.b.index() < n_b
     }
 }
 
@@ -81,7 +103,7 @@ pub fn closest_features(a: &[DVec2], b: &[DVec2], warm_start: Option<FeaturePair
     };
     // A persisting overlap: the stored pair still crosses with `a` leaving `b`, so nothing needs to move.
     if let (Feature::Edge(i), Feature::Edge(j)) = (start.a, start.b) {
-        if let Some(crossing) = contact::proper_crossing(a, i, b, j).filter(|c| c.a_leaves_b) {
+        if let Some(crossing) = contact::proper_crossing(a, i.into(), b, j.into()).filter(|c| c.a_leaves_b) {
             return crossing.separation(1);
         }
     }
@@ -91,7 +113,7 @@ pub fn closest_features(a: &[DVec2], b: &[DVec2], warm_start: Option<FeaturePair
 impl Separation {
     /// The answer for an empty polygon: nothing to measure, never in contact.
     fn undefined() -> Self {
-        let vertex = Feature::Vertex(0);
+        let vertex = Feature::vertex(0);
         Self {
             distance: f64::INFINITY,
             point_a: DVec2::ZERO,
@@ -119,7 +141,7 @@ fn cold_start(a: &[DVec2], b: &[DVec2]) -> FeaturePair {
     let axis = vertex_mean(b) - vertex_mean(a);
     let a_front = extreme_index(a, axis);
     let b_front = extreme_index(b, -axis);
-    FeaturePair { a: Feature::Vertex(a_front), b: Feature::Vertex(b_front) }
+    FeaturePair { a: Feature::vertex(a_front), b: Feature::vertex(b_front) }
 }
 
 fn vertex_mean(points: &[DVec2]) -> DVec2 {
@@ -186,10 +208,10 @@ fn walk(a: &[DVec2], b: &[DVec2], start: FeaturePair) -> Separation {
     let (mut fa, mut fb) = (start.a, start.b);
     for pass in 1..=cap {
         let step = match (fa, fb) {
-            (Feature::Vertex(i), Feature::Vertex(j)) => vertex_vertex(a, i, b, j),
-            (Feature::Vertex(i), Feature::Edge(j)) => vertex_edge(a, i, b, j),
-            (Feature::Edge(i), Feature::Vertex(j)) => vertex_edge(b, j, a, i).swapped(),
-            (Feature::Edge(i), Feature::Edge(j)) => edge_edge(a, i, b, j),
+            (Feature::Vertex(i), Feature::Vertex(j)) => vertex_vertex(a, i.into(), b, j.into()),
+            (Feature::Vertex(i), Feature::Edge(j)) => vertex_edge(a, i.into(), b, j.into()),
+            (Feature::Edge(i), Feature::Vertex(j)) => vertex_edge(b, j.into(), a, i.into()).swapped(),
+            (Feature::Edge(i), Feature::Edge(j)) => edge_edge(a, i.into(), b, j.into()),
         };
         match step {
             Step::Closest { point_a, point_b, distance } => {
@@ -212,11 +234,11 @@ fn leave_vertex_region(poly: &[DVec2], i: usize, towards: DVec2) -> Option<Featu
     let n = poly.len();
     let v = poly[i];
     if towards.dot(poly[next(i, n)] - v) > 0.0 {
-        return Some(Feature::Edge(i));
+        return Some(Feature::edge(i));
     }
     let i_prev = prev(i, n);
     if towards.dot(v - poly[i_prev]) < 0.0 {
-        return Some(Feature::Edge(i_prev));
+        return Some(Feature::edge(i_prev));
     }
     None
 }
@@ -252,11 +274,11 @@ fn edge_region(poly: &[DVec2], i: usize, x: DVec2) -> EdgeRegion {
     let offset = x - v0;
     let along = offset.dot(d);
     if along < 0.0 {
-        return EdgeRegion::Leave(Feature::Vertex(i));
+        return EdgeRegion::Leave(Feature::vertex(i));
     }
     let length_squared = d.length_squared();
     if along > length_squared {
-        return EdgeRegion::Leave(Feature::Vertex(i_next));
+        return EdgeRegion::Leave(Feature::vertex(i_next));
     }
     let outward = cross(offset, d);
     if outward > 0.0 {
@@ -271,7 +293,7 @@ fn edge_region(poly: &[DVec2], i: usize, x: DVec2) -> EdgeRegion {
         return EdgeRegion::InPolygon(i);
     }
     match contact::most_exposed_edge(poly, x) {
-        (k, exposure) if exposure > 0.0 => EdgeRegion::Leave(Feature::Edge(k)),
+        (k, exposure) if exposure > 0.0 => EdgeRegion::Leave(Feature::edge(k)),
         (k, _) => EdgeRegion::InPolygon(k),
     }
 }
@@ -340,7 +362,7 @@ mod tests {
 
     /// Every feature of a polygon with `n` vertices.
     fn features(n: usize) -> impl Iterator<Item = Feature> {
-        (0..n).flat_map(|i| [Feature::Vertex(i), Feature::Edge(i)])
+        (0..n).flat_map(|i| [Feature::vertex(i), Feature::edge(i)])
     }
 
     /// The answer from a cold start and from every possible warm start, all of which must agree on the distance
@@ -367,7 +389,7 @@ mod tests {
         let b = [v(0.3, 1.25), v(1.0, 2.0), v(0.0, 2.0)];
         for r in all_starts(&a, &b) {
             assert_eq!(r.distance, 0.25);
-            assert_eq!(r.features, FeaturePair { a: Feature::Edge(2), b: Feature::Vertex(0) });
+            assert_eq!(r.features, FeaturePair { a: Feature::edge(2), b: Feature::vertex(0) });
             assert!((r.point_a - v(0.3, 1.0)).length() < 1e-15);
             assert_eq!(r.point_b, v(0.3, 1.25));
         }
@@ -379,7 +401,7 @@ mod tests {
         let b = rectangle(4.0, 5.0, 5.0, 6.0);
         for r in all_starts(&a, &b) {
             assert_eq!(r.distance, 5.0);
-            assert_eq!(r.features, FeaturePair { a: Feature::Vertex(2), b: Feature::Vertex(0) });
+            assert_eq!(r.features, FeaturePair { a: Feature::vertex(2), b: Feature::vertex(0) });
         }
     }
 
@@ -395,7 +417,7 @@ mod tests {
             assert_eq!(r.point_a.y, r.point_b.y);
             assert!((0.25..=1.0).contains(&r.point_a.y));
         }
-        let warm = FeaturePair { a: Feature::Edge(1), b: Feature::Edge(3) };
+        let warm = FeaturePair { a: Feature::edge(1), b: Feature::edge(3) };
         let r = closest_features(&a, &b, Some(warm));
         assert_eq!((r.point_a, r.point_b, r.features, r.passes), (v(1.0, 0.625), v(1.5, 0.625), warm, 1));
     }
@@ -445,7 +467,7 @@ mod tests {
             assert!(!r.distance.is_nan() && r.point_a.is_finite());
         }
         let cold = closest_features(&a, &a, None);
-        assert_eq!(cold.features, FeaturePair { a: Feature::Vertex(0), b: Feature::Edge(0) });
+        assert_eq!(cold.features, FeaturePair { a: Feature::vertex(0), b: Feature::edge(0) });
         assert_eq!(cold.point_a, a[0]);
     }
 
@@ -464,7 +486,7 @@ mod tests {
         // The inner vertex furthest from the outer boundary: (2, 1.5) lies 1.5 from the bottom edge.
         let r = closest_features(&inner, &outer, None);
         assert_eq!(r.point_a, v(2.0, 1.5));
-        assert_eq!(r.features, FeaturePair { a: Feature::Vertex(1), b: Feature::Edge(0) });
+        assert_eq!(r.features, FeaturePair { a: Feature::vertex(1), b: Feature::edge(0) });
     }
 
     #[test]
@@ -474,7 +496,7 @@ mod tests {
         for r in all_starts(&a, &b) {
             assert!(r.penetrating);
             // Edge 1 climbs into b, edge 2 comes back out through b's bottom edge at x = 0.5 − 0.5/11.
-            assert_eq!(r.features, FeaturePair { a: Feature::Edge(2), b: Feature::Edge(0) });
+            assert_eq!(r.features, FeaturePair { a: Feature::edge(2), b: Feature::edge(0) });
             assert!((r.point_a - v(0.5 - 0.5 / 11.0, 1.0)).length() < 1e-15);
         }
     }
@@ -494,7 +516,7 @@ mod tests {
         let a = rectangle(0.0, 0.0, 1.0, 1.0);
         let b = rectangle(3.0, 0.0, 4.0, 1.0);
         let cold = closest_features(&a, &b, None);
-        let stale = closest_features(&a, &b, Some(FeaturePair { a: Feature::Edge(9), b: Feature::Vertex(4) }));
+        let stale = closest_features(&a, &b, Some(FeaturePair { a: Feature::edge(9), b: Feature::vertex(4) }));
         assert_eq!(cold, stale);
         assert_eq!(cold.distance, 2.0);
     }

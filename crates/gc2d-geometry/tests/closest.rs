@@ -83,8 +83,8 @@ fn parry_polygon(vertices: &[DVec2]) -> ParryPolygon {
 
 fn feature_segment(poly: &[DVec2], feature: Feature) -> (DVec2, DVec2) {
     match feature {
-        Feature::Vertex(i) => (poly[i], poly[i]),
-        Feature::Edge(i) => (poly[i], poly[(i + 1) % poly.len()]),
+        Feature::Vertex(_) => (poly[feature.index()], poly[feature.index()]),
+        Feature::Edge(_) => (poly[feature.index()], poly[(feature.index() + 1) % poly.len()]),
     }
 }
 
@@ -103,8 +103,8 @@ fn assert_consistent(a: &[DVec2], b: &[DVec2], r: &Separation, scale: f64) {
                 assert!(point_segment_distance(r.point_a, a0, a1) <= tolerance);
                 assert!(point_segment_distance(r.point_a, b0, b1) <= tolerance);
             }
-            (Feature::Vertex(i), _) => assert_eq!(r.point_a, a[i]),
-            (_, Feature::Vertex(j)) => assert_eq!(r.point_a, b[j]),
+            (Feature::Vertex(i), _) => assert_eq!(r.point_a, a[usize::from(i)]),
+            (_, Feature::Vertex(j)) => assert_eq!(r.point_a, b[usize::from(j)]),
         }
     } else {
         assert!(boundary_distance(a, r.point_a) <= tolerance);
@@ -152,8 +152,8 @@ proptest! {
 
         let (i, j) = (warm.0 % a.len(), warm.1 % b.len());
         let warm_pair = FeaturePair {
-            a: if warm.2 & 1 == 0 { Feature::Vertex(i) } else { Feature::Edge(i) },
-            b: if warm.2 & 2 == 0 { Feature::Vertex(j) } else { Feature::Edge(j) },
+            a: if warm.2 & 1 == 0 { Feature::vertex(i) } else { Feature::edge(i) },
+            b: if warm.2 & 2 == 0 { Feature::vertex(j) } else { Feature::edge(j) },
         };
         for r in [closest_features(&a, &b, None), closest_features(&a, &b, Some(warm_pair))] {
             assert_consistent(&a, &b, &r, scale);
@@ -196,7 +196,7 @@ proptest! {
         let a = world(&rectangle, Pose::new(DVec2::new(3.0, 1.0), angle));
         let b = world(&rectangle, Pose::new(DVec2::new(3.0, 1.0) + axis.rotate(DVec2::new(1.0 + gap, slide)), angle));
         let reference = reference_distance(&a, &b);
-        let warm_pair = FeaturePair { a: Feature::Edge(warm.0), b: Feature::Edge(warm.1) };
+        let warm_pair = FeaturePair { a: Feature::edge(warm.0), b: Feature::edge(warm.1) };
         for r in [closest_features(&a, &b, None), closest_features(&a, &b, Some(warm_pair))] {
             assert_consistent(&a, &b, &r, 2.0);
             prop_assert!((r.distance - reference).abs() <= 1e-12 * 2.0, "{} vs {}", r.distance, reference);

@@ -22,7 +22,7 @@ pub(super) struct Crossing {
 impl Crossing {
     /// The overlap this crossing proves.
     pub(super) fn separation(&self, passes: u32) -> Separation {
-        let features = FeaturePair { a: Feature::Edge(self.edge_a), b: Feature::Edge(self.edge_b) };
+        let features = FeaturePair { a: Feature::edge(self.edge_a), b: Feature::edge(self.edge_b) };
         Separation::overlapping(self.point, features, passes)
     }
 }
@@ -127,19 +127,19 @@ pub(super) fn most_exposed_edge(poly: &[DVec2], x: DVec2) -> (usize, f64) {
 /// paired with the other polygon's edge nearest to it.
 fn deepest_vertex(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
     let mut best_depth = f64::NEG_INFINITY;
-    let mut best = (DVec2::ZERO, FeaturePair { a: Feature::Vertex(0), b: Feature::Vertex(0) });
+    let mut best = (DVec2::ZERO, FeaturePair { a: Feature::vertex(0), b: Feature::vertex(0) });
     for (i, &v) in a.iter().enumerate() {
         let (k, exposure) = most_exposed_edge(b, v);
         if -exposure > best_depth {
             best_depth = -exposure;
-            best = (v, FeaturePair { a: Feature::Vertex(i), b: Feature::Edge(k) });
+            best = (v, FeaturePair { a: Feature::vertex(i), b: Feature::edge(k) });
         }
     }
     for (j, &w) in b.iter().enumerate() {
         let (k, exposure) = most_exposed_edge(a, w);
         if -exposure > best_depth {
             best_depth = -exposure;
-            best = (w, FeaturePair { a: Feature::Edge(k), b: Feature::Vertex(j) });
+            best = (w, FeaturePair { a: Feature::edge(k), b: Feature::vertex(j) });
         }
     }
     Separation::overlapping(best.0, best.1, passes)
@@ -149,7 +149,7 @@ fn deepest_vertex(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
 /// distance exactly 0, with both points at the touching vertex.
 fn nearest_edges(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
     let mut best_squared = f64::INFINITY;
-    let vertices = FeaturePair { a: Feature::Vertex(0), b: Feature::Vertex(0) };
+    let vertices = FeaturePair { a: Feature::vertex(0), b: Feature::vertex(0) };
     let mut best = Separation::apart(a[0], b[0], a[0].distance(b[0]), vertices, passes);
     for i in 0..a.len() {
         let i_next = next(i, a.len());
@@ -177,10 +177,10 @@ fn nearest_edges(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
 /// The feature of edge `i` (from `v0`, vertex `i`, to `v1`, vertex `i_next`) that carries `x`.
 fn feature_at(x: DVec2, i: usize, v0: DVec2, i_next: usize, v1: DVec2) -> Feature {
     if x == v0 {
-        Feature::Vertex(i)
+        Feature::vertex(i)
     } else if x == v1 {
-        Feature::Vertex(i_next)
+        Feature::vertex(i_next)
     } else {
-        Feature::Edge(i)
+        Feature::edge(i)
     }
 }
