@@ -12,8 +12,8 @@ use gc2d_contact::{
     PenetrationLaw, PenetrationState, reciprocal_or_zero,
 };
 use gc2d_geometry::{
-    AreaContact, DVec2, FeaturePair, ShapeView, area_contact, closest_features, contact_geometry,
-    contact_geometry_with_centroid, penetration,
+    AreaContact, DVec2, FeaturePair, ShapeView, area_contact, area_contact_with_centroid, closest_features,
+    contact_geometry, contact_geometry_with_centroid, penetration,
 };
 use serde::{Deserialize, Serialize};
 
@@ -109,18 +109,11 @@ fn polygon_overlap(
     let overlap = |a: &[DVec2], b: &[DVec2]| {
         if with_centroid { contact_geometry_with_centroid(a, b) } else { contact_geometry(a, b) }
     };
-    let as_area_contact = |g: gc2d_geometry::ContactGeometry| AreaContact {
-        area: g.area,
-        chord_length: g.chord_length,
-        point: g.point,
-        normal: g.normal,
-        centroid: g.centroid,
-    };
     if contact.touching
         && let Some(overlap) = overlap(vertices_i, vertices_j)
     {
         contact.passes = 0;
-        return Some(as_area_contact(overlap));
+        return Some(AreaContact::from(overlap));
     }
     let separation = closest_features(vertices_i, vertices_j, contact.warm_start);
     contact.warm_start = Some(separation.features);
@@ -128,7 +121,7 @@ fn polygon_overlap(
     if separation.distance > 0.0 || contact.touching {
         None
     } else {
-        overlap(vertices_i, vertices_j).map(as_area_contact)
+        overlap(vertices_i, vertices_j).map(AreaContact::from)
     }
 }
 
@@ -237,6 +230,8 @@ impl PairContext<'_> {
         let with_centroid = law.elastic.formulation == AreaFormulation::Winkler;
         let overlap = if both_polygons {
             polygon_overlap(bodies.world_vertices_of(i), bodies.world_vertices_of(j), with_centroid, contact)
+        } else if with_centroid {
+            area_contact_with_centroid(bodies.shape_view(i), bodies.shape_view(j))
         } else {
             area_contact(bodies.shape_view(i), bodies.shape_view(j))
         };

@@ -39,7 +39,7 @@ pub use polygon::{ConvexPolygon, MAX_VERTICES, MassProperties, PolygonError};
 pub use pose::{Aabb, Pose};
 pub use randomize::{Randomization, UnknownOptionValue, truncated_gaussian};
 pub use recipe::ShapeRecipe;
-pub use shape::{AreaContact, Penetration, ShapeView, area_contact, penetration};
+pub use shape::{AreaContact, Penetration, ShapeView, area_contact, area_contact_with_centroid, penetration};
 pub use shapes::{
     AngleMode, ShapeError, cut_rectangle, ellipse_polygon, rectangle, regular_polygon, rounded_rectangle, square,
     square_cut, square_round,

@@ -325,18 +325,18 @@ fn contained_contact(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -
 
 /// Area centroid of the overlap polygon: [`centroid`] of its points, read in place.
 fn ring_centroid(ring: &[RingVertex]) -> DVec2 {
-    polygon_centroid(ring.len(), |k| ring[k].point)
+    centroid_of_vertices(ring.len(), |k| ring[k].point)
 }
 
 /// Area centroid of a counter-clockwise polygon (vertex mean for a degenerate one), summed relative to its first
 /// vertex for precision.
 pub(crate) fn centroid(points: &[DVec2]) -> DVec2 {
-    polygon_centroid(points.len(), |k| points[k])
+    centroid_of_vertices(points.len(), |k| points[k])
 }
 
 /// Area centroid of the counter-clockwise polygon of `len` (≥ 1) vertices `vertex(0..len)`.
 #[inline]
-fn polygon_centroid(len: usize, vertex: impl Fn(usize) -> DVec2) -> DVec2 {
+fn centroid_of_vertices(len: usize, vertex: impl Fn(usize) -> DVec2) -> DVec2 {
     let origin = vertex(0);
     let mut twice_area = 0.0;
     let mut weighted = DVec2::ZERO;

@@ -76,8 +76,8 @@ pub struct AreaContact {
     pub point: DVec2,
     /// Unit vector perpendicular to the chord, from j towards i: the repulsive force on i is along +normal.
     pub normal: DVec2,
-    /// Area centroid of the overlap, m, where it was asked for and is computed: polygon–polygon pairs through
-    /// [`contact_geometry_with_centroid`](crate::contact_geometry_with_centroid). `None` otherwise.
+    /// Area centroid of the overlap, m, where it was asked for and is computed ([`area_contact_with_centroid`]).
+    /// `None` otherwise.
     pub centroid: Option<DVec2>,
 }
 
@@ -178,6 +178,28 @@ pub fn area_contact(i: ShapeView, j: ShapeView) -> Option<AreaContact> {
         }
         _ => None,
     }
+}
+
+/// [`area_contact`] with the overlap's area centroid in [`AreaContact::centroid`], for laws that apply the force at
+/// the centroid (docs/model.md, "Rocking of flat contacts"). Computed for polygon–polygon (from the overlap polygon)
+/// and for a polygon with a disk or in an inner circle (the first moment by a fan from the circle's centre). `None`
+/// for the other pairs: two round outlines (disks, inner circles, a disk against a capsule), whose overlap is
+/// symmetric about the chord's perpendicular bisector, so that the centroid projects on the chord midpoint, and a
+/// polygon against a capsule.
+pub fn area_contact_with_centroid(i: ShapeView, j: ShapeView) -> Option<AreaContact> {
+    use ShapeView::*;
+    let contact = area_contact(i, j)?;
+    let centroid = match (i, j) {
+        (Polygon(a), Polygon(b)) => return polygon_polygon::area_contact_with_centroid(a, b),
+        (Disk { center, radius }, Polygon(p)) | (Polygon(p), Disk { center, radius }) => {
+            circle_polygon::disk_polygon_centroid(center, radius, p)
+        }
+        (Polygon(p), InnerCircle { center, radius }) | (InnerCircle { center, radius }, Polygon(p)) => {
+            circle_polygon::polygon_outside_circle_centroid(p, center, radius)
+        }
+        _ => None,
+    };
+    Some(AreaContact { centroid, ..contact })
 }
 
 /// Penetration depth, normal and contact point of body i with body j, for the penetration laws.

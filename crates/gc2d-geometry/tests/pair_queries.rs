@@ -30,6 +30,12 @@ fn area_of(points: &[DVec2]) -> f64 {
 /// Intersection area of two convex counter-clockwise polygons: `b` clipped by every edge of `a` (Vec-based,
 /// written independently of the crate).
 fn clip_area(a: &[DVec2], b: &[DVec2]) -> f64 {
+    area_of(&clip_polygon(a, b)).max(0.0)
+}
+
+/// The intersection polygon of two convex counter-clockwise polygons (empty when they do not overlap), as
+/// [`clip_area`] builds it.
+fn clip_polygon(a: &[DVec2], b: &[DVec2]) -> Vec<DVec2> {
     let mut poly = b.to_vec();
     for i in 0..a.len() {
         let (o, e) = (a[i], a[(i + 1) % a.len()] - a[i]);
@@ -47,10 +53,22 @@ fn clip_area(a: &[DVec2], b: &[DVec2]) -> f64 {
         }
         poly = next;
         if poly.len() < 3 {
-            return 0.0;
+            return Vec::new();
         }
     }
-    area_of(&poly).max(0.0)
+    poly
+}
+
+/// Area and first moment ∫∫ x dA of a counter-clockwise polygon (zero for an empty one).
+fn area_and_moment(points: &[DVec2]) -> (f64, DVec2) {
+    let Some(&origin) = points.first() else { return (0.0, DVec2::ZERO) };
+    let (mut twice_area, mut moment) = (0.0, DVec2::ZERO);
+    for w in points[1..].windows(2) {
+        let (p, q) = (w[0] - origin, w[1] - origin);
+        twice_area += cross(p, q);
+        moment += cross(p, q) / 6.0 * (p + q);
+    }
+    (0.5 * twice_area, moment + 0.5 * twice_area * origin)
 }
 
 /// Regular polygon of `SIDES` sides inscribed in (`outer` false) or circumscribed about (`outer` true) a circle.
@@ -490,6 +508,61 @@ proptest! {
             prop_assert!((c.point + shift - d.point).length() <= 1e-12);
         }
     }
+}
+
+/// The overlap centroid of the Winkler law for a polygon with a disk and in a chamber, against the centroid of the
+/// overlap with the circle replaced by a regular polygon of 8192 sides (clipped by this file's own clipper; for
+/// the chamber, the polygon's moment less that of its part inside): within 1e-4 of the overlap's size √A over a
+/// 7-gon (r = 5 mm) turned to 12 angles, its corner pressed 0.1 and 0.5 mm into a disk of 4 mm and into the wall
+/// of a chamber of 50 mm. Measured 2.9e-5, and 4.3e-7 with 65,536 sides: the reference's own error.
+#[test]
+fn overlap_centroids_with_circles_agree_with_a_fine_polygon() {
+    let sides = 8192;
+    let circle = |center: DVec2, radius: f64| -> Vec<DVec2> {
+        (0..sides).map(|k| center + radius * DVec2::from_angle(TAU * k as f64 / sides as f64)).collect()
+    };
+    let heptagon = |center: DVec2, angle: f64| -> Vec<DVec2> {
+        (0..7).map(|k| center + 5e-3 * DVec2::from_angle(angle + TAU * k as f64 / 7.0)).collect()
+    };
+    let mut worst: f64 = 0.0;
+    for k in 0..12 {
+        let angle = 0.37 * k as f64;
+        for depth in [1e-4, 5e-4] {
+            // A disk of 4 mm at the origin; the 7-gon's vertex nearest to it `depth` inside it.
+            let direction = DVec2::from_angle(1.1 + 0.2 * k as f64);
+            let probe = heptagon(DVec2::ZERO, angle);
+            let extreme = |sign: f64| {
+                *probe.iter().max_by(|p, q| (sign * p.dot(direction)).total_cmp(&(sign * q.dot(direction)))).unwrap()
+            };
+            let polygon = heptagon((4e-3 - depth) * direction - extreme(-1.0), angle);
+            let disk = ShapeView::Disk { center: DVec2::ZERO, radius: 4e-3 };
+            let (area, moment) = area_and_moment(&clip_polygon(&polygon, &circle(DVec2::ZERO, 4e-3)));
+            let reference = moment / area;
+            for (i, j) in [(disk, ShapeView::Polygon(&polygon)), (ShapeView::Polygon(&polygon), disk)] {
+                let centroid = gc2d_geometry::area_contact_with_centroid(i, j).unwrap().centroid.unwrap();
+                worst = worst.max((centroid - reference).length() / area.sqrt());
+            }
+
+            // A chamber of 50 mm about the origin; the 7-gon pokes `depth` out of it.
+            let polygon = heptagon((0.05 + depth) * direction - extreme(1.0), angle);
+            let (whole_area, whole_moment) = area_and_moment(&polygon);
+            let (inside_area, inside_moment) = area_and_moment(&clip_polygon(&polygon, &circle(DVec2::ZERO, 0.05)));
+            let area = whole_area - inside_area;
+            let reference = (whole_moment - inside_moment) / area;
+            let chamber = ShapeView::InnerCircle { center: DVec2::ZERO, radius: 0.05 };
+            let centroid = gc2d_geometry::area_contact_with_centroid(ShapeView::Polygon(&polygon), chamber)
+                .unwrap()
+                .centroid
+                .unwrap();
+            worst = worst.max((centroid - reference).length() / area.sqrt());
+        }
+    }
+    println!("worst centroid error {worst:.2e} of √A");
+    assert!(worst < 1e-4, "worst centroid error {worst:e} of √A");
+    // Two round outlines: no centroid (it projects on the chord midpoint by symmetry).
+    let (a, b) =
+        (ShapeView::Disk { center: DVec2::ZERO, radius: 1.0 }, ShapeView::Disk { center: DVec2::X, radius: 1.0 });
+    assert!(gc2d_geometry::area_contact_with_centroid(a, b).unwrap().centroid.is_none());
 }
 
 #[test]

@@ -2,19 +2,31 @@
 //! from it.
 
 use crate::DVec2;
-use crate::contact_geometry;
 use crate::shape::{AreaContact, PairPenetration};
+use crate::{ContactGeometry, contact_geometry, contact_geometry_with_centroid};
 
 /// Polygon i against polygon j for the area law: [`contact_geometry`] reduced to [`AreaContact`] (bitwise the same
 /// area, chord length, point and normal).
 pub(crate) fn area_contact(a: &[DVec2], b: &[DVec2]) -> Option<AreaContact> {
-    contact_geometry(a, b).map(|g| AreaContact {
-        area: g.area,
-        chord_length: g.chord_length,
-        point: g.point,
-        normal: g.normal,
-        centroid: g.centroid,
-    })
+    contact_geometry(a, b).map(AreaContact::from)
+}
+
+/// [`area_contact`] with the overlap polygon's centroid.
+pub(crate) fn area_contact_with_centroid(a: &[DVec2], b: &[DVec2]) -> Option<AreaContact> {
+    contact_geometry_with_centroid(a, b).map(AreaContact::from)
+}
+
+impl From<ContactGeometry> for AreaContact {
+    /// The polygon contact reduced to what every pair reports (bitwise the same fields).
+    fn from(g: ContactGeometry) -> Self {
+        AreaContact {
+            area: g.area,
+            chord_length: g.chord_length,
+            point: g.point,
+            normal: g.normal,
+            centroid: g.centroid,
+        }
+    }
 }
 
 /// Polygon i against polygon j for the penetration laws, defined from the area law: the overlap seen as a flat
