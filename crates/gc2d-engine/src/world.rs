@@ -928,7 +928,7 @@ impl World {
             ledger.dissipated_tangential_damping += energy.tangential_damping;
             ledger.dissipated_sliding += energy.sliding;
             ledger.opening_residual += energy.opening_residual;
-            ledger.work_walls += energy.surface_work + c.wall_work;
+            ledger.work_walls += energy.work_walls;
             if !c.touching {
                 continue;
             }

@@ -154,8 +154,8 @@ fn observed_bits(world: &World) -> Vec<u64> {
         let scalars = [s.previous_area, s.previous_chord, s.spring, s.normal_energy, c.torque_on_a, c.torque_on_b]
             .into_iter()
             .chain(constants)
-            .chain([c.force_on_a.x, c.force_on_a.y, c.point.x, c.point.y, c.overlap_fraction, c.wall_work])
-            .chain([e.normal_elastic_change, e.spring_change, e.normal_damping, e.sliding, e.opening_residual]);
+            .chain([c.force_on_a.x, c.force_on_a.y, c.point.x, c.point.y, c.overlap_fraction, e.work_walls])
+            .chain([e.normal_damping, e.tangential_damping, e.sliding, e.opening_residual]);
         bits.extend(scalars.map(f64::to_bits));
     }
     let l = world.ledger();
