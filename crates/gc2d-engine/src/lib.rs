@@ -40,7 +40,7 @@ pub use integrator::{GearC0, Integrator};
 pub use interactions::{ContactModel, InteractionError, InteractionTable, MaterialId, MaterialPair};
 pub use ledger::EnergyLedger;
 pub use motion::WallMotion;
-pub use narrowphase::{ContactHistory, PairContact};
+pub use narrowphase::{ContactHistory, LedgerTerms, PairContact};
 pub use outlets::{Outlet, OutletCounters, OutletState};
 pub use safety::{SafetyError, SafetyLimits};
 pub use shape::{BodyShape, BodyShapeError, DiskRecipe, MassModel, ParticleRecipe, ShapeKind, shape_view};
