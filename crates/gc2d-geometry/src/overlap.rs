@@ -57,8 +57,8 @@ pub struct ContactGeometry {
     pub chord_length: f64,
     /// How c1 and c2 were found.
     pub kind: ContactKind,
-    /// Area centroid of the overlap polygon, m: computed by [`contact_geometry_with_centroid`] for the overlap-centroid
-    /// force point, `None` from [`contact_geometry`] (which spends nothing on it).
+    /// Area centroid of the overlap polygon, m: computed by [`contact_geometry_with_centroid`] for the Winkler
+    /// formulation of the overlap-area law, `None` from [`contact_geometry`] (which spends nothing on it).
     pub centroid: Option<DVec2>,
 }
 
