@@ -913,7 +913,7 @@ impl World {
         for pair in self.broadphase.pairs() {
             let c = &pair.payload;
             contact_stored += c.stored_energy;
-            let [previous, before_previous] = c.earlier_forces;
+            let [previous, before_previous] = c.earlier_forces.map(|force| force.as_dvec2());
             // Only steps with a force now and two steps ago count: the first two steps of a contact and the steps
             // after its last change the force by a whole force (a Hertz force's onset alone reads 0.11) without
             // any alternation, so a bounce would read as chatter. Period-2 chatter is still seen: one that lifts
