@@ -33,9 +33,8 @@ pub enum AreaFormulation {
     /// chord midpoint, plus a dashpot couple. Against a flat face this is the exact gradient of the potential
     /// (E/2l)·∫δ² ds of the local overlap depth δ along the chord, so a tilted face meets the restoring moment
     /// E·c³·θ/(12 l) and elastic impacts on walls keep their energy; the dashpots make rocking decay, so blocks rest
-    /// on slopes below the friction angle. The centroid is computed for polygons against polygons, disks and chamber
-    /// circles; two round outlines need none (it lies on the chord's bisector), a polygon on a capsule keeps the
-    /// chord midpoint and gets the couple only.
+    /// on slopes below the friction angle. The centroid is computed for polygons against polygons, disks, capsules
+    /// and chamber circles; two round outlines need none (it lies on the chord's bisector).
     Winkler,
 }
 

@@ -182,10 +182,9 @@ pub fn area_contact(i: ShapeView, j: ShapeView) -> Option<AreaContact> {
 
 /// [`area_contact`] with the overlap's area centroid in [`AreaContact::centroid`], for laws that apply the force at
 /// the centroid (docs/model.md, "Rocking of flat contacts"). Computed for polygon–polygon (from the overlap polygon)
-/// and for a polygon with a disk or in an inner circle (the first moment by a fan from the circle's centre). `None`
-/// for the other pairs: two round outlines (disks, inner circles, a disk against a capsule), whose overlap is
-/// symmetric about the chord's perpendicular bisector, so that the centroid projects on the chord midpoint, and a
-/// polygon against a capsule.
+/// and for a polygon with a disk, in an inner circle or against a capsule (first moments, by a fan from the circles'
+/// centres). `None` for two round outlines (disks, inner circles, a disk against a capsule), whose overlap is
+/// symmetric about the chord's perpendicular bisector, so that the centroid projects on the chord midpoint.
 pub fn area_contact_with_centroid(i: ShapeView, j: ShapeView) -> Option<AreaContact> {
     use ShapeView::*;
     let contact = area_contact(i, j)?;
@@ -196,6 +195,9 @@ pub fn area_contact_with_centroid(i: ShapeView, j: ShapeView) -> Option<AreaCont
         }
         (Polygon(p), InnerCircle { center, radius }) | (InnerCircle { center, radius }, Polygon(p)) => {
             circle_polygon::polygon_outside_circle_centroid(p, center, radius)
+        }
+        (Polygon(p), Capsule { a, b, radius }) | (Capsule { a, b, radius }, Polygon(p)) => {
+            capsule::polygon_capsule_centroid(p, a, b, radius)
         }
         _ => None,
     };

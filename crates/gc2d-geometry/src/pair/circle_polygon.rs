@@ -365,7 +365,7 @@ pub(crate) fn polygon_outside_circle_centroid(polygon: &[DVec2], center: DVec2, 
 /// of an edge inside the disk and a circular sector for each piece outside. The fan cancels where the overlap is a
 /// tiny part of the disk (the reason [`walk`] sums areas otherwise), but its absolute error, ~1e-16·r³, is far below
 /// anything a contact's moment resolves; [`walk`]'s exact area divides it.
-fn disk_polygon_moment(center: DVec2, radius: f64, polygon: &[DVec2]) -> DVec2 {
+pub(crate) fn disk_polygon_moment(center: DVec2, radius: f64, polygon: &[DVec2]) -> DVec2 {
     let n = polygon.len();
     // Sector between the rays through `a` and `b` (relative to the centre, outside the disk, less than half a turn
     // apart): ∫ (r³/3)(cos θ, sin θ) dθ = −(r³/3)·perp(b̂ − â).
