@@ -187,17 +187,21 @@ pub fn area_contact(i: ShapeView, j: ShapeView) -> Option<AreaContact> {
 /// symmetric about the chord's perpendicular bisector, so that the centroid projects on the chord midpoint.
 pub fn area_contact_with_centroid(i: ShapeView, j: ShapeView) -> Option<AreaContact> {
     use ShapeView::*;
+    if let (Polygon(a), Polygon(b)) = (i, j) {
+        return polygon_polygon::area_contact_with_centroid(a, b);
+    }
+    // The pair's own area query has validated the input and measured the area the centroid divides by.
     let contact = area_contact(i, j)?;
+    let area = contact.area;
     let centroid = match (i, j) {
-        (Polygon(a), Polygon(b)) => return polygon_polygon::area_contact_with_centroid(a, b),
         (Disk { center, radius }, Polygon(p)) | (Polygon(p), Disk { center, radius }) => {
-            circle_polygon::disk_polygon_centroid(center, radius, p)
+            Some(circle_polygon::disk_polygon_centroid(center, radius, p, area))
         }
         (Polygon(p), InnerCircle { center, radius }) | (InnerCircle { center, radius }, Polygon(p)) => {
-            circle_polygon::polygon_outside_circle_centroid(p, center, radius)
+            Some(circle_polygon::polygon_outside_circle_centroid(p, center, radius, area))
         }
         (Polygon(p), Capsule { a, b, radius }) | (Capsule { a, b, radius }, Polygon(p)) => {
-            capsule::polygon_capsule_centroid(p, a, b, radius)
+            Some(capsule::polygon_capsule_centroid(p, a, b, radius, area))
         }
         _ => None,
     };

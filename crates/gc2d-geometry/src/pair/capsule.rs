@@ -182,30 +182,26 @@ fn polygon_stadium_area(polygon: &[DVec2], stadium: &Stadium) -> f64 {
     area
 }
 
-/// Area centroid of the overlap of the polygon with the capsule (a, b, `rho`), or `None` when they do not overlap:
-/// the first moments of the same parts [`polygon_stadium_area`] sums (the polygon in the rectangle, and beyond each
-/// end in its disk). Input rules of [`polygon_capsule_area_contact`].
-pub(crate) fn polygon_capsule_centroid(polygon: &[DVec2], a: DVec2, b: DVec2, rho: f64) -> Option<DVec2> {
-    if !(admissible_polygon(polygon) && finite(a) && finite(b) && positive(rho)) {
-        return None;
-    }
+/// Area centroid of the overlap, of area `area` (> 0, as [`polygon_capsule_area_contact`] gives it), of the polygon
+/// with the capsule (a, b, `rho`): the first moments of the same parts [`polygon_stadium_area`] sums (the polygon in
+/// the rectangle, and beyond each end in its disk).
+pub(crate) fn polygon_capsule_centroid(polygon: &[DVec2], a: DVec2, b: DVec2, rho: f64, area: f64) -> DVec2 {
     let Some(stadium) = Stadium::new(a, b, rho) else {
-        return circle_polygon::disk_polygon_centroid(a, rho, polygon);
+        return circle_polygon::disk_polygon_centroid(a, rho, polygon, area);
     };
     let mut overlap = OverlapPolygon::new();
     overlap_polygon(polygon, &stadium.rectangle, &mut overlap);
-    let mut area = overlap.area();
-    let mut moment = if area > 0.0 { area * polygon_centroid(overlap.vertices()) } else { DVec2::ZERO };
+    let mut moment =
+        if overlap.area() > 0.0 { overlap.area() * polygon_centroid(overlap.vertices()) } else { DVec2::ZERO };
     let mut clipped = [DVec2::ZERO; MAX_VERTICES + 1];
     for (end, out) in stadium.ends() {
         let n = clip_half_plane(polygon, end, out, &mut clipped);
         let part = circle_clipped_area(end, stadium.radius, &clipped[..n]);
         if part > 0.0 {
-            area += part;
             moment += part * end + circle_polygon::disk_polygon_moment(end, stadium.radius, &clipped[..n]);
         }
     }
-    (positive(area) && moment.is_finite()).then(|| moment / area)
+    moment / area
 }
 
 /// Crossings of the disk's outline with the stadium's, `entry` = the disk's counter-clockwise outline enters K.

@@ -346,19 +346,18 @@ pub fn polygon_outside_circle_area(polygon: &[DVec2], center: DVec2, radius: f64
     walk(center, radius, polygon, Part::OutsideCircle, &mut Crossings::new())
 }
 
-/// Area centroid of the intersection of the disk (`center`, `radius`) with the convex counter-clockwise polygon, or
-/// `None` when they do not overlap (input rules of [`circle_polygon_intersection_area`]).
-pub(crate) fn disk_polygon_centroid(center: DVec2, radius: f64, polygon: &[DVec2]) -> Option<DVec2> {
-    let area = circle_polygon_intersection_area(center, radius, polygon);
-    (area > 0.0).then(|| center + disk_polygon_moment(center, radius, polygon) / area)
+/// Area centroid of the intersection, of area `area` (> 0, as [`circle_polygon_intersection_area`] gives it), of the
+/// disk (`center`, `radius`) with the convex counter-clockwise polygon.
+pub(crate) fn disk_polygon_centroid(center: DVec2, radius: f64, polygon: &[DVec2], area: f64) -> DVec2 {
+    center + disk_polygon_moment(center, radius, polygon) / area
 }
 
-/// Area centroid of the part of the convex counter-clockwise polygon outside the circle (`center`, `radius`), or
-/// `None` when no part is outside: the first moment of the polygon less that of its part inside the circle.
-pub(crate) fn polygon_outside_circle_centroid(polygon: &[DVec2], center: DVec2, radius: f64) -> Option<DVec2> {
-    let area = polygon_outside_circle_area(polygon, center, radius);
+/// Area centroid of the part, of area `area` (> 0, as [`polygon_outside_circle_area`] gives it), of the convex
+/// counter-clockwise polygon outside the circle (`center`, `radius`): the first moment of the polygon less that of
+/// its part inside the circle.
+pub(crate) fn polygon_outside_circle_centroid(polygon: &[DVec2], center: DVec2, radius: f64, area: f64) -> DVec2 {
     let whole = polygon_area(polygon) * (polygon_centroid(polygon) - center);
-    (area > 0.0).then(|| center + (whole - disk_polygon_moment(center, radius, polygon)) / area)
+    center + (whole - disk_polygon_moment(center, radius, polygon)) / area
 }
 
 /// First moment ∫∫ (x − `center`) dA of the disk ∩ polygon, m³, by a fan from the centre: a triangle for each piece
