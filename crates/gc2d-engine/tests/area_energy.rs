@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{E_THESIS, RHO_THESIS, add_box, config, law, step, world};
+use common::{E_THESIS, RHO_THESIS, add_box, config, kinetic_change_over_one_contact, law, step, world};
 use gc2d_contact::{AreaFormulation, ContactLaw, NormalElastic};
 use gc2d_engine::World;
 use gc2d_geometry::{Aabb, AngleMode, DVec2, Pose, ellipse_polygon, regular_polygon};
@@ -47,18 +47,7 @@ fn collision(formulation: AreaFormulation, angles: (f64, f64), offset: f64) -> f
         }
         world
     };
-    let mut world = with_automatic_time_step(build, 1.0);
-    let before = world.ledger().kinetic();
-    let mut touched = false;
-    for _ in 0..100_000 {
-        step(&mut world);
-        let touching = world.contacts().next().is_some();
-        if touched && !touching {
-            return world.ledger().kinetic() / before - 1.0;
-        }
-        touched |= touching;
-    }
-    panic!("the collision did not end");
+    kinetic_change_over_one_contact(&mut with_automatic_time_step(build, 1.0))
 }
 
 /// Over a grid of orientations and two impact parameters, the conservative law keeps the kinetic energy of every

@@ -82,6 +82,22 @@ pub fn step(world: &mut World) {
     }
 }
 
+/// Steps until the World's first contact has come and gone (at most 100,000 steps, else it panics) and returns the
+/// relative change of the kinetic energy over it: after/before − 1. For single elastic collisions and impacts.
+pub fn kinetic_change_over_one_contact(world: &mut World) -> f64 {
+    let before = world.ledger().kinetic();
+    let mut touched = false;
+    for _ in 0..100_000 {
+        step(world);
+        let touching = world.contacts().next().is_some();
+        if touched && !touching {
+            return world.ledger().kinetic() / before - 1.0;
+        }
+        touched |= touching;
+    }
+    panic!("the contact did not end within 100,000 steps");
+}
+
 /// Steps until `t_end`, panicking with the engine's message on an error.
 pub fn run_until(world: &mut World, t_end: f64) {
     let result: Result<(), WorldError> = world.run_until(t_end);
