@@ -26,10 +26,33 @@ struct Incline {
 
 impl Incline {
     fn new(size: [f64; 2], slope: f64, mu: f64, formulation: AreaFormulation) -> Self {
-        let uphill = DVec2::from_angle(slope);
-        let normal = uphill.perp();
+        let normal = DVec2::from_angle(slope).perp();
         let plane = -0.5 * PLANE[1] * normal;
-        let block = (0.5 * size[1] + GAP) * normal;
+        let wall = format!(
+            "Wall(shape: Rectangle(width_m: {}, height_m: {}), position_m: Some(({:e}, {:e})), angle_rad: {slope:e}, \
+             material: Some(\"plane\"))",
+            PLANE[0], PLANE[1], plane.x, plane.y
+        );
+        Self::on_wall(&wall, (0.5 * size[1] + GAP) * normal, size, slope, mu, formulation)
+    }
+
+    /// The same block on the wall of a circular chamber of radius `chamber` (an `InnerCircle` wall), where the wall
+    /// is tilted by `slope`: its flat face rests on a concave outline.
+    fn in_chamber(size: [f64; 2], slope: f64, mu: f64, formulation: AreaFormulation, chamber: f64) -> Self {
+        let inward = DVec2::from_angle(slope).perp();
+        let centre = DVec2::new(0.0, chamber);
+        let contact = centre - chamber * inward;
+        // The face's corners reach the circle first: lift it by the sagitta of its half-width.
+        let sagitta = chamber - (chamber * chamber - 0.25 * size[0] * size[0]).sqrt();
+        let wall = format!(
+            "Wall(shape: InnerCircle(radius_m: {chamber}), position_m: Some(({:e}, {:e})), material: Some(\"plane\"))",
+            centre.x, centre.y
+        );
+        Self::on_wall(&wall, contact + (0.5 * size[1] + sagitta + GAP) * inward, size, slope, mu, formulation)
+    }
+
+    /// The scene of one `wall` (its RON text) and the block of `size` at `block`, turned by `slope`.
+    fn on_wall(wall: &str, block: DVec2, size: [f64; 2], slope: f64, mu: f64, formulation: AreaFormulation) -> Self {
         let text = format!(
             r#"Scene(
     name: "incline",
@@ -37,42 +60,14 @@ impl Incline {
     run: (end_time_s: 10.0),
     materials: [(name: "plane", mu: {mu}, gamma: 0.5), (name: "block", mu: {mu}, gamma: 0.5)],
     interactions: [(materials: ("block", "plane"), law: OverlapArea(formulation: {formulation:?}))],
-    walls: [Wall(shape: Rectangle(width_m: {}, height_m: {}), position_m: Some(({:e}, {:e})), angle_rad: {slope:e},
-                 material: Some("plane"))],
+    walls: [{wall}],
     particles: [(shape: Rectangle(width_m: {}, height_m: {}), position_m: Some(({:e}, {:e})), angle_rad: {slope:e},
                  material: Some("block"))],
 )"#,
-            PLANE[0], PLANE[1], plane.x, plane.y, size[0], size[1], block.x, block.y
+            size[0], size[1], block.x, block.y
         );
         let scene = Scene::from_str(&text, "incline.ron").expect("valid scene");
-        Self { world: scene.build().expect("the scene builds"), downhill: -uphill }
-    }
-
-    /// The same block on the wall of a circular chamber of radius `chamber` (an `InnerCircle` wall), where the wall
-    /// is tilted by `slope`: its flat face rests on a concave outline.
-    fn in_chamber(size: [f64; 2], slope: f64, mu: f64, formulation: AreaFormulation, chamber: f64) -> Self {
-        let uphill = DVec2::from_angle(slope);
-        let inward = uphill.perp();
-        let centre = DVec2::new(0.0, chamber);
-        let contact = centre - chamber * inward;
-        // The face's corners reach the circle first: lift it by the sagitta of its half-width.
-        let sagitta = chamber - (chamber * chamber - 0.25 * size[0] * size[0]).sqrt();
-        let block = contact + (0.5 * size[1] + sagitta + GAP) * inward;
-        let text = format!(
-            r#"Scene(
-    name: "chamber",
-    gravity: Constant({G}),
-    run: (end_time_s: 10.0),
-    materials: [(name: "plane", mu: {mu}, gamma: 0.5), (name: "block", mu: {mu}, gamma: 0.5)],
-    interactions: [(materials: ("block", "plane"), law: OverlapArea(formulation: {formulation:?}))],
-    walls: [Wall(shape: InnerCircle(radius_m: {chamber}), position_m: Some(({:e}, {:e})), material: Some("plane"))],
-    particles: [(shape: Rectangle(width_m: {}, height_m: {}), position_m: Some(({:e}, {:e})), angle_rad: {slope:e},
-                 material: Some("block"))],
-)"#,
-            centre.x, centre.y, size[0], size[1], block.x, block.y
-        );
-        let scene = Scene::from_str(&text, "chamber.ron").expect("valid scene");
-        Self { world: scene.build().expect("the scene builds"), downhill: -uphill }
+        Self { world: scene.build().expect("the scene builds"), downhill: -DVec2::from_angle(slope) }
     }
 
     fn run_until(&mut self, t: f64) {
