@@ -271,6 +271,7 @@ impl<T: Default> SortAndSweep<T> {
         if !self.pending.is_empty() {
             self.merge_pending();
         }
+        self.pairs.sort_if_disordered();
         self.reported = self.ended.len();
     }
 

@@ -4,6 +4,12 @@
 //! table (linear probing, a fixed multiplicative hash, backward-shift deletion) finds an entry by its two body ids in
 //! O(1). Nothing here depends on a random seed or on memory addresses, so the same sequence of insertions and removals
 //! gives the same entry order on every run.
+//!
+//! The entries are kept roughly in body order (sorted by (a, b)) so that the narrowphase, which walks them in list
+//! order, reads the bodies' columns in nearly ascending order: new pairs are appended and removals swap the last entry
+//! in, and once the list holds more than one descent per `SORT_WHEN_DESCENTS_EXCEED` entries it is sorted again
+//! (docs/performance.md, "Pairs in body order"). The descent count is a function of the list alone, so the sorts
+//! fall on the same steps in every run, for any thread count and across a checkpoint.
 
 use serde::{Deserialize, Serialize};
 
@@ -42,17 +48,28 @@ const EMPTY: u32 = u32::MAX;
 /// The smallest index table; it doubles whenever it would become more than half full.
 const MIN_SLOTS: usize = 64;
 
+/// The list is sorted again once it holds more than one descent (an entry whose key is below its predecessor's) per
+/// this many entries. A sort costs about as much as a tenth of a narrowphase pass and the gain (docs/performance.md)
+/// is a quarter of the step on large piles; 16 keeps the list nearly sorted in a flowing mill while a settled pile
+/// sorts rarely.
+const SORT_WHEN_DESCENTS_EXCEED: usize = 16;
+
 /// Dense pair entries plus an index from (a, b) to the entry's position.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub(crate) struct PairSet<T> {
     entries: Vec<PairEntry<T>>,
     /// Open-addressing table of entry positions; its length is zero or a power of two.
     slots: Vec<u32>,
+    /// The number of descents in `entries` (positions whose key is below the one before), kept up to date by every
+    /// change; `None` after loading a checkpoint until the next [`sort_if_disordered`](Self::sort_if_disordered)
+    /// counts them.
+    #[serde(skip)]
+    descents: Option<usize>,
 }
 
 impl<T> Default for PairSet<T> {
     fn default() -> Self {
-        Self { entries: Vec::new(), slots: Vec::new() }
+        Self { entries: Vec::new(), slots: Vec::new(), descents: Some(0) }
     }
 }
 
@@ -74,8 +91,17 @@ fn hash(a: u32, b: u32) -> usize {
     (mixed ^ (mixed >> 29)) as usize
 }
 
+impl<T> PairEntry<T> {
+    /// The pair's key, by which the list is sorted.
+    #[inline]
+    fn key(&self) -> (u32, u32) {
+        (self.a, self.b)
+    }
+}
+
 impl<T: Default> PairSet<T> {
-    /// All entries, in insertion order as modified by swap-removal.
+    /// All entries: new pairs appended, removed ones replaced by the last entry, the whole list sorted by body ids
+    /// from time to time.
     #[inline]
     pub(crate) fn entries(&self) -> &[PairEntry<T>] {
         &self.entries
@@ -127,7 +153,11 @@ impl<T: Default> PairSet<T> {
                     // records and are most of a World's memory, and a quarter keeps insertion amortised O(1).
                     self.entries.reserve_exact(self.entries.capacity() / 4 + MIN_SLOTS);
                 }
+                let descent = self.entries.last().is_some_and(|last| last.key() > (a, b));
                 self.entries.push(PairEntry { a, b, payload: T::default() });
+                if let Some(descents) = &mut self.descents {
+                    *descents += usize::from(descent);
+                }
                 true
             }
         }
@@ -204,12 +234,61 @@ impl<T: Default> PairSet<T> {
                 self.slots[moved_slot] = index as u32;
             }
         }
-        self.entries.swap_remove(index)
+        // The positions whose predecessor changes: the freed one and the one after it (the moved entry's
+        // neighbours), and the last (which goes).
+        let mut touched = [index, index + 1, last];
+        touched.sort_unstable();
+        let before = self.descents_at(&touched);
+        let removed = self.entries.swap_remove(index);
+        let after = self.descents_at(&touched);
+        if let Some(descents) = &mut self.descents {
+            *descents = *descents + after - before;
+        }
+        removed
+    }
+
+    /// The number of distinct positions among `positions` (ascending, repeats adjacent) that are descents.
+    fn descents_at(&self, positions: &[usize]) -> usize {
+        let mut count = 0;
+        let mut previous = None;
+        for &position in positions {
+            if previous != Some(position) && self.is_descent(position) {
+                count += 1;
+            }
+            previous = Some(position);
+        }
+        count
+    }
+
+    /// Whether the entry at `position` has a key below its predecessor's (false at 0 and past the end).
+    fn is_descent(&self, position: usize) -> bool {
+        position > 0 && position < self.entries.len() && self.entries[position - 1].key() > self.entries[position].key()
+    }
+
+    /// Sorts the entries by their body ids when more than one in `SORT_WHEN_DESCENTS_EXCEED` is a descent, and
+    /// rebuilds the index. Returns whether it sorted. The keys are unique, so the order is the same on every run.
+    pub(crate) fn sort_if_disordered(&mut self) -> bool {
+        let descents = match self.descents {
+            Some(descents) => descents,
+            None => (1..self.entries.len()).filter(|&position| self.is_descent(position)).count(),
+        };
+        self.descents = Some(descents);
+        if descents * SORT_WHEN_DESCENTS_EXCEED <= self.entries.len() {
+            return false;
+        }
+        self.entries.sort_unstable_by_key(PairEntry::key);
+        self.descents = Some(0);
+        self.rebuild_index(self.slots.len());
+        true
     }
 
     /// Doubles the index table and re-inserts every entry in list order.
     fn grow(&mut self) {
-        let size = (self.slots.len() * 2).max(MIN_SLOTS);
+        self.rebuild_index((self.slots.len() * 2).max(MIN_SLOTS));
+    }
+
+    /// Fills an index table of `size` slots (a power of two) with every entry's position.
+    fn rebuild_index(&mut self, size: usize) {
         self.slots.clear();
         self.slots.resize(size, EMPTY);
         let mask = size - 1;
@@ -268,6 +347,57 @@ mod tests {
         for entry in set.entries() {
             assert_eq!(model.get(&(entry.a(), entry.b())), Some(&entry.payload));
         }
+    }
+
+    /// The descents counted from scratch.
+    fn recounted_descents<T: Default>(set: &PairSet<T>) -> usize {
+        (1..set.entries.len()).filter(|&position| set.is_descent(position)).count()
+    }
+
+    #[test]
+    fn the_descent_count_follows_every_change_and_a_sort_keeps_every_pair_findable() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let mut set = PairSet::<u32>::default();
+        let mut model = BTreeMap::new();
+        let mut sorts = 0;
+        for step in 0..20_000u32 {
+            let (a, b) = (rng.random_range(0..80), rng.random_range(0..80));
+            if rng.random_bool(0.5) {
+                if set.insert(a, b) {
+                    set.get_mut(a, b).unwrap().payload = step;
+                    model.insert((a.min(b), a.max(b)), step);
+                }
+            } else if let Some(entry) = set.remove(a, b) {
+                assert_eq!(model.remove(&(entry.a(), entry.b())), Some(entry.payload));
+            }
+            assert_eq!(set.descents, Some(recounted_descents(&set)), "step {step}");
+            if step % 50 == 0 && set.sort_if_disordered() {
+                sorts += 1;
+                assert!(set.entries.is_sorted_by_key(PairEntry::key));
+                assert_eq!(set.descents, Some(0));
+            }
+            assert!(recounted_descents(&set) * SORT_WHEN_DESCENTS_EXCEED <= set.entries.len() || step % 50 != 0);
+        }
+        assert!(sorts > 10, "only {sorts} sorts");
+        for (&(a, b), &payload) in &model {
+            assert_eq!(set.get(b, a).map(|e| e.payload), Some(payload));
+        }
+    }
+
+    #[test]
+    fn a_loaded_list_counts_its_descents_before_deciding_to_sort() {
+        let mut set = PairSet::<u8>::default();
+        for (a, b) in [(5, 6), (1, 2), (3, 4), (0, 9)] {
+            set.insert(a, b);
+        }
+        let bytes = postcard::to_allocvec(&set).unwrap();
+        let mut loaded: PairSet<u8> = postcard::from_bytes(&bytes).unwrap();
+        assert_eq!(loaded.descents, None);
+        assert!(loaded.sort_if_disordered());
+        let keys: Vec<_> = loaded.entries().iter().map(PairEntry::key).collect();
+        assert_eq!(keys, [(0, 9), (1, 2), (3, 4), (5, 6)]);
+        assert!(loaded.get(9, 0).is_some() && loaded.get(4, 3).is_some());
+        assert!(!loaded.sort_if_disordered());
     }
 
     #[test]
