@@ -8,8 +8,8 @@ use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::interactions::{ContactModel, InteractionTable};
 use crate::shape::ShapeKind;
 use gc2d_contact::{
-    AreaFormulation, BodyMotion, ContactLaw, ContactState, EnergyTerms, PairProperties, PenetrationGeometry,
-    PenetrationLaw, PenetrationState, reciprocal_or_zero,
+    AreaFormulation, BodyMotion, ContactLaw, ContactResponse, ContactState, EnergyTerms, PairProperties,
+    PenetrationGeometry, PenetrationLaw, PenetrationResponse, PenetrationState, reciprocal_or_zero,
 };
 use gc2d_geometry::{
     AreaContact, DVec2, FeaturePair, ShapeView, area_contact, area_contact_with_centroid, closest_features,
@@ -230,19 +230,28 @@ impl PairContext<'_> {
             arm_i: p.point - position_i,
             arm_j: p.point - position_j,
         });
-        let (motion_i, motion_j) = (self.motion(i), self.motion(j));
-        let radius_i = bodies.contact_radius(i.index());
-        let surface_radius_j = match bodies.shape_view(j) {
-            ShapeView::Disk { radius, .. } if bodies.kind[j.index()] == BodyKind::Particle => radius,
-            ShapeView::Polygon(_) if bodies.kind[j.index()] == BodyKind::Particle => bodies.contact_radius(j.index()),
-            _ => found.map_or(f64::INFINITY, |p| p.surface_radius_j),
-        };
-        let properties = pair_properties(radius_i, &motion_i, surface_radius_j, &motion_j, &geometry);
         let previous = contact.state.penetration();
-        let response = law.evaluate(&geometry, &properties, &motion_i, &motion_j, &previous, self.dt);
+        // A pair apart now that was not touching before gets the law's answer for it (no force, nothing stored or
+        // booked) without reading the bodies' velocities, as in `evaluate_overlap_area`.
+        let (response, stored_energy, wall_work) = if found.is_none() && !previous.is_touching() {
+            (PenetrationResponse::default(), 0.0, 0.0)
+        } else {
+            let (motion_i, motion_j) = (self.motion(i), self.motion(j));
+            let radius_i = bodies.contact_radius(i.index());
+            let surface_radius_j = match bodies.shape_view(j) {
+                ShapeView::Disk { radius, .. } if bodies.kind[j.index()] == BodyKind::Particle => radius,
+                ShapeView::Polygon(_) if bodies.kind[j.index()] == BodyKind::Particle => {
+                    bodies.contact_radius(j.index())
+                }
+                _ => found.map_or(f64::INFINITY, |p| p.surface_radius_j),
+            };
+            let properties = pair_properties(radius_i, &motion_i, surface_radius_j, &motion_j, &geometry);
+            let response = law.evaluate(&geometry, &properties, &motion_i, &motion_j, &previous, self.dt);
+            let stored_energy = law.stored_energy(&properties, &response.state);
+            (response, stored_energy, wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt))
+        };
         contact.state = ContactHistory::Penetration(response.state);
-        contact.stored_energy = law.stored_energy(&properties, &response.state);
-        let wall_work = wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt);
+        contact.stored_energy = stored_energy;
         contact.energy = LedgerTerms::of(&response.energy, wall_work);
         contact.touching = geometry.is_touching();
         contact.point = if contact.touching { position_i + geometry.arm_i } else { DVec2::ZERO };
@@ -281,11 +290,20 @@ impl PairContext<'_> {
             arm_j: g.point - position_j,
             centroid_offset: g.centroid.map_or(0.0, |centroid| (centroid - g.point).dot(g.normal.perp())),
         });
-        let (motion_i, motion_j) = (self.motion(i), self.motion(j));
-        let response = law.evaluate(&geometry, &motion_i, &motion_j, &contact.state.overlap_area(), self.dt);
+        let previous = contact.state.overlap_area();
+        // A pair apart now that was not in contact before (no contact constants) gets the law's answer for it, no
+        // force and nothing to book, without reading the bodies' velocities: most box pairs of a pile are such
+        // pairs (docs/performance.md, "Pairs apart skip the law").
+        let (response, wall_work) = if overlap.is_none() && previous.constants.is_none() {
+            (ContactResponse::default(), 0.0)
+        } else {
+            let (motion_i, motion_j) = (self.motion(i), self.motion(j));
+            let response = law.evaluate(&geometry, &motion_i, &motion_j, &previous, self.dt);
+            let wall_work = wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt);
+            (response, wall_work)
+        };
         contact.state = ContactHistory::OverlapArea(response.state);
         contact.stored_energy = law.stored_energy(&response.state);
-        let wall_work = wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt);
         contact.energy = LedgerTerms::of(&response.energy, wall_work);
         contact.touching = overlap.is_some();
         contact.point = overlap.map_or(DVec2::ZERO, |g| g.point);
