@@ -94,7 +94,7 @@ const BATCHES: usize = 8;
 ///
 /// The median speed of the mill carries fluctuations slower than its autocorrelation's first 1/e decay: over 0.8 s
 /// windows of the CI mill, the two halves of one run differed by 2.5–8 % and the window means of runs with other seeds
-/// and other summation orders by up to 8 % (2.32–2.51 m/s; docs/validation.md, "The CI mill's window means"). An
+/// and other summation orders by up to 10 % (2.32–2.56 m/s; docs/validation.md, "The CI mill's window means"). An
 /// error summed from the autocorrelation up to 0.1 s put these differences at 4–6 standard errors, so the batches
 /// measure the scatter instead.
 struct BatchMeans {
