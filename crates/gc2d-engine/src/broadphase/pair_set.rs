@@ -264,13 +264,15 @@ impl<T: Default> PairSet<T> {
         position > 0 && position < self.entries.len() && self.entries[position - 1].key() > self.entries[position].key()
     }
 
+    /// The descents counted from scratch, one pass over the list.
+    fn count_descents(&self) -> usize {
+        (1..self.entries.len()).filter(|&position| self.is_descent(position)).count()
+    }
+
     /// Sorts the entries by their body ids when more than one in `SORT_WHEN_DESCENTS_EXCEED` is a descent, and
     /// rebuilds the index. Returns whether it sorted. The keys are unique, so the order is the same on every run.
     pub(crate) fn sort_if_disordered(&mut self) -> bool {
-        let descents = match self.descents {
-            Some(descents) => descents,
-            None => (1..self.entries.len()).filter(|&position| self.is_descent(position)).count(),
-        };
+        let descents = self.descents.unwrap_or_else(|| self.count_descents());
         self.descents = Some(descents);
         if descents * SORT_WHEN_DESCENTS_EXCEED <= self.entries.len() {
             return false;
@@ -348,11 +350,6 @@ mod tests {
         }
     }
 
-    /// The descents counted from scratch.
-    fn recounted_descents<T: Default>(set: &PairSet<T>) -> usize {
-        (1..set.entries.len()).filter(|&position| set.is_descent(position)).count()
-    }
-
     #[test]
     fn the_descent_count_follows_every_change_and_a_sort_keeps_every_pair_findable() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
@@ -369,13 +366,13 @@ mod tests {
             } else if let Some(entry) = set.remove(a, b) {
                 assert_eq!(model.remove(&(entry.a(), entry.b())), Some(entry.payload));
             }
-            assert_eq!(set.descents, Some(recounted_descents(&set)), "step {step}");
+            assert_eq!(set.descents, Some(set.count_descents()), "step {step}");
             if step % 50 == 0 && set.sort_if_disordered() {
                 sorts += 1;
                 assert!(set.entries.is_sorted_by_key(PairEntry::key));
                 assert_eq!(set.descents, Some(0));
             }
-            assert!(recounted_descents(&set) * SORT_WHEN_DESCENTS_EXCEED <= set.entries.len() || step % 50 != 0);
+            assert!(set.count_descents() * SORT_WHEN_DESCENTS_EXCEED <= set.entries.len() || step % 50 != 0);
         }
         assert!(sorts > 10, "only {sorts} sorts");
         for (&(a, b), &payload) in &model {
