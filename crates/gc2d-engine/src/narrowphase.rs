@@ -79,10 +79,12 @@ pub struct PairContact {
     /// How deep the bodies overlap: for the overlap-area law the overlap area as a fraction of the smaller
     /// particle's area, for penetration laws the depth as a fraction of the smaller particle's diameter.
     pub overlap_fraction: f64,
-    /// What the energy ledger books from the contact this step.
-    pub energy: LedgerTerms,
+    /// Energy dissipated in the contact this step by damping and sliding, J (≥ 0): what the contact events add up
+    /// per episode. The ledger's own terms are summed in the narrowphase pass and not kept per pair
+    /// (`pair_sums.rs`).
+    pub dissipated: f64,
     /// Passes the closest-feature walk needed this step (saturating at 65,535; the walk's own cap is far below);
-    /// 0 when the pair was still touching and no query ran. Two bytes, so that the record stays within 192.
+    /// 0 when the pair was still touching and no query ran. Two bytes, so that the record stays within 160.
     pub passes: u16,
     /// `force_on_a` of the two steps before this one, newest first: the history of the force-alternation
     /// diagnostic ([`World::force_alternation`](crate::World::force_alternation)). Not saved in checkpoints, so that
@@ -92,11 +94,11 @@ pub struct PairContact {
     pub earlier_forces: [Vec2; 2],
 }
 
-/// The part of a contact's [`EnergyTerms`] the energy ledger books, with the work of walls folded in: what a pair
-/// keeps of its step's energy (the stored-energy changes are not needed, since the ledger reads the stored energy
-/// itself), in 40 bytes instead of 72.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-pub struct LedgerTerms {
+/// The part of a contact's [`EnergyTerms`] the energy ledger books, with the work of walls folded in (the
+/// stored-energy changes are not needed, since the ledger reads the stored energy itself): what a pair's evaluation
+/// returns for the step's sums.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct LedgerTerms {
     /// Dissipated by the normal damping, J (≥ 0).
     pub normal_damping: f64,
     /// Dissipated by the tangential damping, J (≥ 0).
@@ -126,6 +128,16 @@ impl LedgerTerms {
     #[inline]
     pub fn dissipation(&self) -> f64 {
         self.normal_damping + self.tangential_damping + self.sliding
+    }
+
+    /// Adds `other` term by term.
+    #[inline]
+    pub fn add(&mut self, other: &LedgerTerms) {
+        self.normal_damping += other.normal_damping;
+        self.tangential_damping += other.tangential_damping;
+        self.sliding += other.sliding;
+        self.opening_residual += other.opening_residual;
+        self.work_walls += other.work_walls;
     }
 }
 
@@ -183,11 +195,12 @@ impl PairContext<'_> {
         }
     }
 
-    /// Evaluates the pair {a, b} (a < b) for this step and stores the result in `contact`.
+    /// Evaluates the pair {a, b} (a < b) for this step, stores the result in `contact` and returns what the energy
+    /// ledger books from it.
     ///
     /// When one body is a wall, the contact law sees the particle as body i; the stored result is always expressed
     /// for `a`, so that accumulation does not need to know.
-    pub fn evaluate(&self, a: u32, b: u32, contact: &mut PairContact) {
+    pub fn evaluate(&self, a: u32, b: u32, contact: &mut PairContact) -> LedgerTerms {
         let bodies = self.bodies;
         let wall_first = bodies.kind[a as usize] == BodyKind::Wall;
         let (i, j) = if wall_first { (BodyId(b), BodyId(a)) } else { (BodyId(a), BodyId(b)) };
@@ -220,7 +233,7 @@ impl PairContext<'_> {
         j: BodyId,
         wall_first: bool,
         contact: &mut PairContact,
-    ) {
+    ) -> LedgerTerms {
         let bodies = self.bodies;
         let found = penetration(bodies.shape_view(i), bodies.shape_view(j));
         let (position_i, position_j) = (bodies.pose[i.index()].position, bodies.pose[j.index()].position);
@@ -252,13 +265,15 @@ impl PairContext<'_> {
         };
         contact.state = ContactHistory::Penetration(response.state);
         contact.stored_energy = stored_energy;
-        contact.energy = LedgerTerms::of(&response.energy, wall_work);
+        let energy = LedgerTerms::of(&response.energy, wall_work);
+        contact.dissipated = energy.dissipation();
         contact.touching = geometry.is_touching();
         contact.point = if contact.touching { position_i + geometry.arm_i } else { DVec2::ZERO };
         contact.overlap_fraction =
             if contact.touching { geometry.depth / (2.0 * self.smaller_radius(i, j)) } else { 0.0 };
         contact.passes = 0;
         contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
+        energy
     }
 
     /// The overlap-area law for the pair (i, j), i the particle when one body is a wall.
@@ -269,7 +284,7 @@ impl PairContext<'_> {
         j: BodyId,
         wall_first: bool,
         contact: &mut PairContact,
-    ) {
+    ) -> LedgerTerms {
         let bodies = self.bodies;
         let both_polygons =
             bodies.shape[i.index()] == ShapeKind::Polygon && bodies.shape[j.index()] == ShapeKind::Polygon;
@@ -304,11 +319,13 @@ impl PairContext<'_> {
         };
         contact.state = ContactHistory::OverlapArea(response.state);
         contact.stored_energy = law.stored_energy(&response.state);
-        contact.energy = LedgerTerms::of(&response.energy, wall_work);
+        let energy = LedgerTerms::of(&response.energy, wall_work);
+        contact.dissipated = energy.dissipation();
         contact.touching = overlap.is_some();
         contact.point = overlap.map_or(DVec2::ZERO, |g| g.point);
         contact.overlap_fraction = overlap.map_or(0.0, |g| g.area / self.smaller_particle_area(i, j));
         contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
+        energy
     }
 
     /// Area of the smaller particle of the pair at its current scale (walls do not count).
@@ -384,10 +401,11 @@ mod tests {
     /// The record lives in every broadphase pair and is most of a World's memory (docs/performance.md, "Memory per
     /// particle"): 264 bytes with a warm start of machine-word feature indices, 240 with byte indices and a
     /// two-byte pass count, 208 with the ledger's terms alone instead of all energy terms and the wall work, 192
-    /// with the chatter watch's history in single precision.
+    /// with the chatter watch's history in single precision, 160 with the ledger's terms summed in the narrowphase
+    /// pass (`pair_sums.rs`) and only the dissipation kept.
     #[test]
-    fn pair_record_is_at_most_192_bytes() {
-        assert!(std::mem::size_of::<PairContact>() <= 192, "{} bytes", std::mem::size_of::<PairContact>());
+    fn pair_record_is_at_most_160_bytes() {
+        assert!(std::mem::size_of::<PairContact>() <= 160, "{} bytes", std::mem::size_of::<PairContact>());
     }
 
     /// Two unit squares, the second `gap` above the first (negative: overlapping).

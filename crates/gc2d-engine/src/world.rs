@@ -1,7 +1,8 @@
 //! The World: bodies, contacts and drivers, and the step that advances them by one Δt.
 //!
 //! One step, as data flows (ARCHITECTURE.md): predict → vertices and boxes → sort-and-sweep → narrowphase and contact
-//! law per pair (parallel, each pair writes only its own record) → accumulation in pair order → body forces →
+//! law per pair (parallel, each pair writes only its own record, each fixed chunk of pairs its own sums) →
+//! accumulation in pair order → body forces →
 //! correct → walls, g(t), domain and outlet removals, sources and inlets, s(t) → ledger and safety checks. Stages a
 //! scene does not use are skipped by a flag test, so a plain pile pays nothing for drag springs, moving walls,
 //! heating, sources, inlets or outlets.
@@ -18,6 +19,7 @@ use crate::ledger::EnergyLedger;
 use crate::motion::WallMotion;
 use crate::narrowphase::{ContactHistory, PairContact, PairContext};
 use crate::outlets::{Outlet, OutletState};
+use crate::pair_sums::{PAIRS_PER_CHUNK, PairSums};
 use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
 use crate::shape::{BodyShape, MassModel, shape_view};
@@ -244,6 +246,9 @@ pub struct World {
     /// This step's [`Self::force_alternation`]; not saved in checkpoints (NaN after loading).
     #[serde(skip, default = "ForceAlternation::not_measured")]
     force_alternation: ForceAlternation,
+    /// The narrowphase pass's sums, one per chunk of [`PAIRS_PER_CHUNK`] pairs; refilled every step, so not saved.
+    #[serde(skip)]
+    pair_sums: Vec<PairSums>,
 }
 
 impl World {
@@ -281,6 +286,7 @@ impl World {
             started: false,
             force_history_steps: FULL_FORCE_HISTORY,
             force_alternation: ForceAlternation::default(),
+            pair_sums: Vec::new(),
         })
     }
 
@@ -871,7 +877,7 @@ impl World {
                 force_on_a: c.force_on_a,
                 point: c.point,
                 overlap_fraction: c.overlap_fraction,
-                dissipated: c.energy.dissipation(),
+                dissipated: c.dissipated,
             };
             if c.touching && !open {
                 let (normal_speed, tangential_speed) = impact_speeds(&context, pair.a(), pair.b(), c.point);
@@ -884,68 +890,66 @@ impl World {
         }
     }
 
-    /// Narrowphase and contact law for every pair, in parallel; each pair writes only its own record.
+    /// Narrowphase and contact law for every pair, in parallel; each pair writes only its own record, and each
+    /// fixed chunk of pairs its own [`PairSums`] (the ledger's terms, the chatter watch, the statistics).
     fn evaluate_pairs(&mut self) {
         let context =
             PairContext { bodies: &self.bodies, interactions: &self.config.interactions, dt: self.config.time_step };
-        let evaluate = |pair: &mut PairEntry<PairContact>| context.evaluate(pair.a(), pair.b(), &mut pair.payload);
+        let pairs = self.broadphase.pairs_mut();
+        self.pair_sums.resize(pairs.len().div_ceil(PAIRS_PER_CHUNK), PairSums::default());
+        let evaluate_chunk = |(chunk, sums): (&mut [PairEntry<PairContact>], &mut PairSums)| {
+            *sums = PairSums::default();
+            for pair in chunk {
+                let energy = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
+                sums.add_pair(&pair.payload, &energy);
+            }
+        };
         if self.bodies.len() >= PARALLEL_MIN_BODIES {
-            self.broadphase.pairs_mut().par_iter_mut().for_each(evaluate);
+            pairs.par_chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.par_iter_mut()).for_each(evaluate_chunk);
         } else {
-            self.broadphase.pairs_mut().iter_mut().for_each(evaluate);
+            pairs.chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.iter_mut()).for_each(evaluate_chunk);
         }
     }
 
-    /// Adds the contact forces to the bodies in pair order (independent of the thread count), books the contacts'
-    /// energy terms and sums the energy they store (kept by the ledger until the next step: pairs of particles removed
-    /// later in this step still hold it, and their ending books it as opening residual then).
+    /// Adds the contact forces to the bodies in pair order (independent of the thread count), and books the chunks'
+    /// sums in chunk order: the contacts' energy terms, the energy they store (kept by the ledger until the next
+    /// step: pairs of particles removed later in this step still hold it, and their ending books it as opening
+    /// residual then), the chatter watch and the statistics.
     fn accumulate_contact_forces(&mut self) {
         let b = &mut self.bodies;
         b.force.iter_mut().for_each(|f| *f = DVec2::ZERO);
         b.torque.iter_mut().for_each(|t| *t = 0.0);
-        let mut stats = StepStats { box_pairs: self.broadphase.pairs().len(), ..self.stats };
-        stats.contacts = 0;
-        stats.max_overlap_fraction = 0.0;
-        stats.multi_pass_queries = 0;
-        let ledger = &mut self.ledger;
-        let mut contact_stored = 0.0;
-        let (mut alternation, mut force_scale) = (0.0, 0.0);
         for pair in self.broadphase.pairs() {
             let c = &pair.payload;
-            contact_stored += c.stored_energy;
-            let [previous, before_previous] = c.earlier_forces.map(|force| force.as_dvec2());
-            // Only steps with a force now and two steps ago count: the first two steps of a contact and the steps
-            // after its last change the force by a whole force (a Hertz force's onset alone reads 0.11) without
-            // any alternation, so a bounce would read as chatter. Period-2 chatter is still seen: one that lifts
-            // off every other step (F, 0, F, …) counts on its steps with a force, at the full ratio 1.
-            if c.force_on_a != DVec2::ZERO && before_previous != DVec2::ZERO {
-                alternation += (c.force_on_a - 2.0 * previous + before_previous).length();
-                force_scale += c.force_on_a.length() + previous.length();
-            }
-            stats.multi_pass_queries += usize::from(c.passes > 1);
-            let energy = &c.energy;
-            ledger.dissipated_normal_damping += energy.normal_damping;
-            ledger.dissipated_tangential_damping += energy.tangential_damping;
-            ledger.dissipated_sliding += energy.sliding;
-            ledger.opening_residual += energy.opening_residual;
-            ledger.work_walls += energy.work_walls;
             if !c.touching {
                 continue;
             }
-            stats.contacts += 1;
-            stats.max_overlap_fraction = stats.max_overlap_fraction.max(c.overlap_fraction);
             let (a, bb) = (pair.a() as usize, pair.b() as usize);
             b.force[a] += c.force_on_a;
             b.force[bb] -= c.force_on_a;
             b.torque[a] += c.torque_on_a;
             b.torque[bb] += c.torque_on_b;
         }
-        ledger.contact_stored = contact_stored;
-        self.stats = stats;
+        let mut sums = PairSums::default();
+        self.pair_sums.iter().for_each(|chunk| sums.add(chunk));
+        let ledger = &mut self.ledger;
+        ledger.dissipated_normal_damping += sums.energy.normal_damping;
+        ledger.dissipated_tangential_damping += sums.energy.tangential_damping;
+        ledger.dissipated_sliding += sums.energy.sliding;
+        ledger.opening_residual += sums.energy.opening_residual;
+        ledger.work_walls += sums.energy.work_walls;
+        ledger.contact_stored = sums.contact_stored;
+        self.stats = StepStats {
+            box_pairs: self.broadphase.pairs().len(),
+            contacts: sums.contacts,
+            max_overlap_fraction: sums.max_overlap_fraction,
+            multi_pass_queries: sums.multi_pass_queries,
+            ..self.stats
+        };
         self.force_alternation = if self.force_history_steps < FULL_FORCE_HISTORY {
             ForceAlternation::not_measured()
         } else {
-            ForceAlternation { change: alternation, scale: 2.0 * force_scale }
+            ForceAlternation { change: sums.alternation, scale: 2.0 * sums.force_scale }
         };
         self.force_history_steps = (self.force_history_steps + 1).min(FULL_FORCE_HISTORY);
     }
