@@ -190,7 +190,8 @@ struct RunArgs {
     #[arg(long)]
     resume: Option<PathBuf>,
     /// Use this random seed instead of the scene's run.seed: one member of an ensemble of runs that differ only in
-    /// their random numbers (shapes, sources).
+    /// their random numbers (shapes, sources). Not with --resume: a resumed run goes on with the seed and the random
+    /// state its checkpoint holds.
     #[arg(long, conflicts_with = "resume")]
     seed: Option<u64>,
     /// Record the run for Foxglove into this MCAP file (frames at the scene's frames_per_second).

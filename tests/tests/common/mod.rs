@@ -21,13 +21,22 @@ fn load_scene(file: &str) -> Scene {
 /// `<dir>/<scene stem>/final.ckpt` instead of running the scene again.
 pub const RUN_DIR_VARIABLE: &str = "GC2D_REGRESSION_RUN_DIR";
 
+/// The directory [`RUN_DIR_VARIABLE`] names, if set. A relative path is taken from the workspace root, where the
+/// README's commands run: cargo starts the tests in this crate's directory, which would otherwise turn `runs` into
+/// `tests/runs`.
+fn run_dir() -> Option<PathBuf> {
+    let dir = PathBuf::from(std::env::var_os(RUN_DIR_VARIABLE)?);
+    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the tests crate lies in the workspace");
+    Some(if dir.is_absolute() { dir } else { workspace.join(dir) })
+}
+
 /// The thesis-sized scenes take hours: they are best run with `gc2d-rs run` (progress bar, checkpoints, resume) and
 /// then measured here. If [`RUN_DIR_VARIABLE`] is set, loads that run's final checkpoint and checks it reached the
 /// scene's end time (the returned duration is zero); otherwise runs the scene like [`run_scene`].
 pub fn run_or_load_scene(file: &str) -> (World, Duration) {
-    let Some(dir) = std::env::var_os(RUN_DIR_VARIABLE) else { return run_scene(file) };
+    let Some(dir) = run_dir() else { return run_scene(file) };
     let stem = Path::new(file).file_stem().expect("a scene file name");
-    let world = load_finished_run(&PathBuf::from(dir).join(stem), &load_scene(file));
+    let world = load_finished_run(&dir.join(stem), &load_scene(file));
     (world, Duration::ZERO)
 }
 
@@ -53,18 +62,18 @@ fn load_finished_run(run: &Path, scene: &Scene) -> World {
 /// `gc2d-rs run SCENE --seed N --out DIR/sandpile_thesis_seedN`), each checked to have reached the scene's end time,
 /// in name order; otherwise the scene run once with its own seed. Each member comes with its name.
 pub fn run_or_load_ensemble(file: &str) -> Vec<(String, World)> {
-    let Some(dir) = std::env::var_os(RUN_DIR_VARIABLE) else {
+    let Some(dir) = run_dir() else {
         return vec![(file.to_owned(), run_scene(file).0)];
     };
     let stem = Path::new(file).file_stem().expect("a scene file name").to_string_lossy().into_owned();
     let mut members: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("cannot list {}: {e}", Path::new(&dir).display()))
+        .unwrap_or_else(|e| panic!("cannot list {} ({RUN_DIR_VARIABLE}): {e}", dir.display()))
         .filter_map(|entry| entry.ok().map(|e| e.path()))
         .filter(|path| path.file_name().is_some_and(|name| name.to_string_lossy().starts_with(&stem)))
         .filter(|path| path.join("final.ckpt").is_file())
         .collect();
     members.sort();
-    assert!(!members.is_empty(), "no {stem}*/final.ckpt in {}", Path::new(&dir).display());
+    assert!(!members.is_empty(), "no {stem}*/final.ckpt in {}", dir.display());
     let scene = load_scene(file);
     members
         .into_iter()
