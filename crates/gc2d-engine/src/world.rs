@@ -2,10 +2,9 @@
 //!
 //! One step, as data flows (ARCHITECTURE.md): predict → vertices and boxes → sort-and-sweep → narrowphase and contact
 //! law per pair (parallel, each pair writes only its own record, each fixed chunk of pairs its own sums) →
-//! accumulation in pair order → body forces →
-//! correct → walls, g(t), domain and outlet removals, sources and inlets, s(t) → ledger and safety checks. Stages a
-//! scene does not use are skipped by a flag test, so a plain pile pays nothing for drag springs, moving walls,
-//! heating, sources, inlets or outlets.
+//! accumulation in pair order → body forces → correct → walls, g(t), domain and outlet removals, sources and inlets,
+//! s(t) → ledger and safety checks. Stages a scene does not use are skipped by a flag test, so a plain pile pays
+//! nothing for drag springs, moving walls, heating, sources, inlets or outlets.
 
 use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns};
 use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid};
@@ -669,7 +668,8 @@ impl World {
     }
 
     /// Heap memory held by the World, in bytes, counted from the capacities of its buffers: the body columns, the
-    /// broadphase with its pair list and every pair's contact record, and the drivers' lists. Divided by the number
+    /// broadphase with its pair list and every pair's contact record, the narrowphase's chunk sums, and the drivers'
+    /// lists. Divided by the number
     /// of particles it is the memory per particle including its share of the contacts.
     pub fn heap_bytes(&self) -> usize {
         self.bodies.heap_bytes()
@@ -681,6 +681,7 @@ impl World {
             + crate::bodies::vec_bytes(&self.inlets)
             + crate::bodies::vec_bytes(&self.outlets)
             + crate::bodies::vec_bytes(&self.positions_before_step)
+            + crate::bodies::vec_bytes(&self.pair_sums)
             + self.transits.heap_bytes()
             + self.insertions.heap_bytes()
     }
