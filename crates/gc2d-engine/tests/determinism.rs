@@ -15,10 +15,12 @@ const ROWS: usize = 24;
 const RADIUS: f64 = 1.5e-3;
 /// Lattice spacing: two largest radii plus 0.1 mm, so nothing overlaps at the start.
 const SPACING: f64 = 2.0 * 1.1 * RADIUS + 1e-4;
-const STEPS: usize = 1000;
+const STEPS: usize = 3000;
 
-/// 600 random RAND1 7-gons on a lattice in a closed box, flying in random directions at up to 1 m/s, so that
-/// about a hundred contacts are active by the end of the 2 ms run. More than the engine's 512-body threshold for parallel stages.
+/// 600 random RAND1 7-gons on a lattice in a closed box, flying in random directions at up to 1 m/s, so that about
+/// a hundred contacts are active by the end of the 6 ms run and the pair list holds more than two of the
+/// narrowphase's chunks of 256 pairs, whose sums are added in chunk order (docs/model.md, "Narrowphase and ledger
+/// shortcuts"). More than the engine's 512-body threshold for parallel stages.
 fn random_pile() -> World {
     let mut world = world(config(2e-6, law(E_THESIS, 0.5, 0.6), G));
     let inner = Aabb { min: DVec2::ZERO, max: DVec2::new(COLUMNS as f64 * SPACING, ROWS as f64 * SPACING) };
@@ -37,15 +39,30 @@ fn random_pile() -> World {
     world
 }
 
-/// Every number that defines the state after the run, as bits, and the most contacts seen in one step.
-fn run_in_pool(threads: usize) -> (Vec<u64>, String, usize) {
+/// What a run ends with, and how busy it was.
+struct RunEnd {
+    /// Every number that defines the particles' state after the run, as bits.
+    bits: Vec<u64>,
+    /// The ledger, printed (Debug prints the shortest decimal that reads back to the same f64, so equal strings mean
+    /// equal bits).
+    ledger: String,
+    /// The most contacts seen in one step.
+    most_contacts: usize,
+    /// The most box pairs seen in one step.
+    most_pairs: usize,
+}
+
+/// The random pile run inside a rayon pool of `threads` threads.
+fn run_in_pool(threads: usize) -> RunEnd {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
     pool.install(|| {
         let mut world = random_pile();
         let mut most_contacts = 0;
+        let mut most_pairs = 0;
         for _ in 0..STEPS {
             step(&mut world);
             most_contacts = most_contacts.max(world.stats().contacts);
+            most_pairs = most_pairs.max(world.stats().box_pairs);
         }
         let b = world.bodies();
         let bits = b
@@ -57,21 +74,22 @@ fn run_in_pool(threads: usize) -> (Vec<u64>, String, usize) {
             })
             .map(f64::to_bits)
             .collect();
-        // Debug prints the shortest decimal that reads back to the same f64, so equal strings mean equal bits.
-        (bits, format!("{:?}", world.ledger()), most_contacts)
+        RunEnd { bits, ledger: format!("{:?}", world.ledger()), most_contacts, most_pairs }
     })
 }
 
 #[test]
 fn pile_is_bitwise_identical_on_1_2_and_8_threads() {
-    let (bits, ledger, contacts) = run_in_pool(1);
-    assert_eq!(bits.len(), 6 * COLUMNS * ROWS);
-    // Measured: 102 contacts in the busiest step.
+    let one = run_in_pool(1);
+    assert_eq!(one.bits.len(), 6 * COLUMNS * ROWS);
+    let (contacts, pairs) = (one.most_contacts, one.most_pairs);
     assert!(contacts > 50, "the run must exercise contacts, saw at most {contacts}");
+    // Measured: 108 contacts and 532 box pairs in the busiest step (three chunks of the narrowphase's sums).
+    assert!(pairs > 2 * 256, "the run must fill more than two chunks of pairs, saw at most {pairs} pairs");
     for threads in [2, 8] {
-        let (other_bits, other_ledger, _) = run_in_pool(threads);
-        let first_difference = bits.iter().zip(&other_bits).position(|(a, b)| a != b);
+        let other = run_in_pool(threads);
+        let first_difference = one.bits.iter().zip(&other.bits).position(|(a, b)| a != b);
         assert_eq!(first_difference, None, "{threads} threads: particle {:?} differs", first_difference.map(|k| k / 6));
-        assert_eq!(ledger, other_ledger, "{threads} threads: the ledger differs");
+        assert_eq!(one.ledger, other.ledger, "{threads} threads: the ledger differs");
     }
 }
