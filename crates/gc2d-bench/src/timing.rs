@@ -1,7 +1,7 @@
 //! Timing of `World::step`: one measurement on a rayon pool of a given size, wall-clock and CPU time, and its row in
 //! the Markdown table docs/performance.md quotes.
 
-use gc2d_engine::{World, WorldError};
+use gc2d_engine::{Stage, StageTimes, World, WorldError};
 use std::time::Instant;
 
 /// Untimed steps before each measurement (fills the caches, lets the thread pool spin up).
@@ -27,6 +27,8 @@ pub struct Measurement {
     pub heap_bytes: usize,
     /// The body columns' part of it.
     pub body_heap_bytes: usize,
+    /// Wall-clock time per stage of the timed steps, where the measurement was asked to time them.
+    pub stages: Option<StageTimes>,
 }
 
 impl Measurement {
@@ -62,12 +64,40 @@ impl Measurement {
     }
 }
 
+impl Measurement {
+    /// The stage times as a row of the Markdown table of [`stage_table_header`], µs per step; `None` where the
+    /// stages were not timed.
+    pub fn stage_row(&self) -> Option<String> {
+        let stages = self.stages.as_ref()?;
+        let per_step = |seconds: f64| 1e6 * seconds / stages.steps as f64;
+        let cells: Vec<String> =
+            Stage::ALL.iter().map(|&stage| format!("{:>8.1}", per_step(stages.seconds(stage)))).collect();
+        Some(format!(
+            "| {:>7} | {:>7} | {} | {:>8.1} |",
+            self.particles,
+            self.threads,
+            cells.join(" | "),
+            per_step(stages.total_seconds())
+        ))
+    }
+}
+
 /// The head of the Markdown table of [`Measurement::row`] (two lines); `particle` names them ("grain", "disk").
 pub fn table_header(particle: &str) -> String {
     format!(
         "| {particle}s | threads | steps | wall s | CPU s | M p-steps/s | M contacts/s | wall ns/p-step | CPU ns/p-step \
          | box pairs/{particle} | contacts/{particle} | heap B/{particle} | of it bodies |\n\
          |---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    )
+}
+
+/// The head of the Markdown table of [`Measurement::stage_row`] (two lines): microseconds per step in each stage.
+pub fn stage_table_header(particle: &str) -> String {
+    let names: Vec<&str> = Stage::ALL.iter().map(|s| s.name()).collect();
+    format!(
+        "| {particle}s | threads | {} | all stages |\n|---|---|{}---|",
+        names.join(" | "),
+        "---|".repeat(names.len())
     )
 }
 
@@ -86,13 +116,17 @@ fn process_cpu_seconds() -> Option<f64> {
     (status == 0).then_some(time.tv_sec as f64 + time.tv_nsec as f64 * 1e-9)
 }
 
-/// Steps `world` `steps` times on a pool of `threads` threads, after `WARM_STEPS` untimed ones, and times it; the
-/// error of a step that fails (a blow-up).
-pub fn measure(world: &mut World, threads: usize, steps: u64) -> Result<Measurement, WorldError> {
+/// Steps `world` `steps` times on a pool of `threads` threads, after `WARM_STEPS` untimed ones, and times it, each
+/// stage too where `time_stages` asks for it ([`World::start_stage_clock`]); the error of a step that fails (a
+/// blow-up).
+pub fn measure(world: &mut World, threads: usize, steps: u64, time_stages: bool) -> Result<Measurement, WorldError> {
     let particles = world.bodies().particles().count();
     pool(threads).install(|| {
         for _ in 0..WARM_STEPS {
             world.step()?;
+        }
+        if time_stages {
+            world.start_stage_clock();
         }
         let (mut contacts, mut box_pairs) = (0, 0);
         let cpu_before = process_cpu_seconds();
@@ -115,6 +149,7 @@ pub fn measure(world: &mut World, threads: usize, steps: u64) -> Result<Measurem
             box_pairs,
             heap_bytes,
             body_heap_bytes,
+            stages: world.stop_stage_clock(),
         })
     })
 }

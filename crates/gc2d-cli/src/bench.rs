@@ -5,9 +5,9 @@
 use crate::console;
 use crate::failure::CommandFailure;
 use crate::runner::simulation_bar;
-use gc2d_bench::timing::{load_average, measure, pool, table_header};
+use gc2d_bench::timing::{load_average, measure, pool, stage_table_header, table_header};
 use gc2d_bench::{Measurement, StandardPile};
-use gc2d_engine::World;
+use gc2d_engine::{Stage, World};
 use indicatif::ProgressBar;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -49,6 +49,10 @@ pub struct BenchArgs {
     /// Also write the measurements as CSV (one row per pile, size and thread count).
     #[arg(long)]
     pub csv: Option<PathBuf>,
+    /// Also time each stage of the step (predictor, broadphase, narrowphase, …) and print µs per step in each, to
+    /// see which stages keep more threads from paying.
+    #[arg(long)]
+    pub stages: bool,
     /// Hide the progress bars.
     #[arg(long)]
     pub quiet: bool,
@@ -95,13 +99,24 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
         say(&format!("\n{} (settled {settle_time} s)\n\n{}", pile.name(), table_header("grain")))?;
         for &particles in &sizes {
             let mut world = settled(pile, particles, settle_time, cores, cache.as_deref(), args.quiet)?;
+            let first_row = rows.len();
             for &n in &threads {
                 let steps = (args.particle_steps / particles as u64).max(MIN_TIMED_STEPS);
-                let measurement = measure(&mut world, n, steps).map_err(|e| {
+                let measurement = measure(&mut world, n, steps, args.stages).map_err(|e| {
                     CommandFailure::failed(format!("{} pile of {particles} blew up while measured: {e}", pile.name()))
                 })?;
                 say(&measurement.row())?;
                 rows.push(BenchRow { pile, measurement });
+            }
+            if args.stages {
+                let stage_rows: Vec<String> =
+                    rows[first_row..].iter().filter_map(|r| r.measurement.stage_row()).collect();
+                say(&format!(
+                    "\n{} {particles}, µs per step in each stage:\n\n{}\n{}\n",
+                    pile.name(),
+                    stage_table_header("grain"),
+                    stage_rows.join("\n")
+                ))?;
             }
         }
     }
@@ -210,13 +225,18 @@ fn settling_bar(pile: StandardPile, particles: usize, quiet: bool) -> ProgressBa
     bar
 }
 
-/// The measurements as CSV, one row per pile, size and thread count.
+/// The measurements as CSV, one row per pile, size and thread count; the stage columns (s over the timed steps)
+/// are empty where the stages were not timed.
 fn csv(rows: &[BenchRow]) -> String {
     let mut out = String::from(
-        "pile,particles,threads,steps,wall_s,cpu_s,particle_steps_per_s,contacts_per_particle,heap_bytes_per_particle\n",
+        "pile,particles,threads,steps,wall_s,cpu_s,particle_steps_per_s,contacts_per_particle,heap_bytes_per_particle",
     );
+    for stage in Stage::ALL {
+        let _ = write!(out, ",stage_{}_s", stage.name());
+    }
+    out.push('\n');
     for BenchRow { pile, measurement: m } in rows {
-        let _ = writeln!(
+        let _ = write!(
             out,
             "{},{},{},{},{},{},{},{},{}",
             pile.name(),
@@ -229,6 +249,13 @@ fn csv(rows: &[BenchRow]) -> String {
             m.contacts_per_particle(),
             m.heap_bytes as f64 / m.particles as f64
         );
+        for stage in Stage::ALL {
+            out.push(',');
+            if let Some(stages) = &m.stages {
+                let _ = write!(out, "{}", stages.seconds(stage));
+            }
+        }
+        out.push('\n');
     }
     out
 }

@@ -12,16 +12,33 @@ struct Row {
     threads: usize,
     steps: u64,
     particle_steps_per_s: f64,
+    wall_s: f64,
     contacts_per_particle: f64,
     heap_bytes_per_particle: f64,
+    /// Seconds in each stage of the step over the timed steps; empty where the stages were not timed.
+    stage_s: Vec<f64>,
 }
 
-/// Runs a small bench (two piles of 60 grains, settled 2 ms, 1 and 2 threads) with its cache in `cache`; returns
-/// stdout, stderr and the CSV's rows.
-fn small_bench(cache: &Path, csv: &Path) -> (String, String, Vec<Row>) {
+/// The stages `--stages` times, in the order of the CSV's columns.
+const STAGES: [&str; 9] = [
+    "predict",
+    "vertices",
+    "broadphase",
+    "narrowphase",
+    "accumulation",
+    "body_forces",
+    "correct",
+    "boundaries",
+    "ledger_checks",
+];
+
+/// Runs a small bench (two piles of 60 grains, settled 2 ms, 1 and 2 threads) with its cache in `cache` and the
+/// further arguments `extra`; returns stdout, stderr and the CSV's rows.
+fn small_bench(cache: &Path, csv: &Path, extra: &[&str]) -> (String, String, Vec<Row>) {
     let output = Command::cargo_bin("gc2d-rs")
         .unwrap()
         .args(["bench", "--pile", "dense7,disks", "--size", "60", "--threads", "1,2", "--particle-steps", "3000"])
+        .args(extra)
         .args(["--settle-time", "0.002", "--quiet", "--cache"])
         .arg(cache)
         .arg("--csv")
@@ -32,11 +49,15 @@ fn small_bench(cache: &Path, csv: &Path) -> (String, String, Vec<Row>) {
     assert!(output.status.success(), "{stdout}\n{stderr}");
     let text = std::fs::read_to_string(csv).unwrap();
     let mut lines = text.lines();
+    let stage_columns: String = STAGES.iter().map(|s| format!(",stage_{s}_s")).collect();
     assert_eq!(
         lines.next(),
         Some(
-            "pile,particles,threads,steps,wall_s,cpu_s,particle_steps_per_s,contacts_per_particle,\
-             heap_bytes_per_particle"
+            format!(
+                "pile,particles,threads,steps,wall_s,cpu_s,particle_steps_per_s,contacts_per_particle,\
+                 heap_bytes_per_particle{stage_columns}"
+            )
+            .as_str()
         )
     );
     let rows = lines
@@ -47,9 +68,11 @@ fn small_bench(cache: &Path, csv: &Path) -> (String, String, Vec<Row>) {
                 particles: f[1].parse().unwrap(),
                 threads: f[2].parse().unwrap(),
                 steps: f[3].parse().unwrap(),
+                wall_s: f[4].parse().unwrap(),
                 particle_steps_per_s: f[6].parse().unwrap(),
                 contacts_per_particle: f[7].parse().unwrap(),
                 heap_bytes_per_particle: f[8].parse().unwrap(),
+                stage_s: f[9..].iter().filter(|cell| !cell.is_empty()).map(|cell| cell.parse().unwrap()).collect(),
             }
         })
         .collect();
@@ -60,7 +83,7 @@ fn small_bench(cache: &Path, csv: &Path) -> (String, String, Vec<Row>) {
 fn bench_measures_every_pile_and_thread_count_and_a_cached_pile_measures_as_the_fresh_one() {
     let dir = tempfile::tempdir().unwrap();
     let cache = dir.path().join("cache");
-    let (stdout, stderr, fresh) = small_bench(&cache, &dir.path().join("fresh.csv"));
+    let (stdout, stderr, fresh) = small_bench(&cache, &dir.path().join("fresh.csv"), &[]);
     assert!(stdout.contains("dense7 (settled 0.002 s)") && stdout.contains("disks (settled 0.002 s)"), "{stdout}");
     assert_eq!(stdout.lines().filter(|l| l.starts_with("|      60 |")).count(), 4, "{stdout}");
     assert!(stderr.contains("dense7 60: built and settled 0.002 s (1000 steps)"), "{stderr}");
@@ -69,12 +92,14 @@ fn bench_measures_every_pile_and_thread_count_and_a_cached_pile_measures_as_the_
     for row in &fresh {
         assert_eq!((row.particles, row.steps), (60, 50), "3000 particle-steps of 60 grains: {row:?}");
         assert!(row.particle_steps_per_s > 0.0 && row.heap_bytes_per_particle > 100.0, "{row:?}");
+        assert!(row.stage_s.is_empty(), "stages are timed only with --stages: {row:?}");
     }
+    assert!(!stdout.contains("per step in each stage"), "{stdout}");
     // After 2 ms the 1 µm gaps of the deposition have closed: the grains rest on the floor and on each other.
     assert!(fresh[0].contacts_per_particle > 0.3, "{:?}", fresh[0]);
     assert!(cache.join("dense7-60-settled-0.002s-v1.ckpt").is_file());
 
-    let (_, stderr, cached) = small_bench(&cache, &dir.path().join("cached.csv"));
+    let (_, stderr, cached) = small_bench(&cache, &dir.path().join("cached.csv"), &[]);
     assert!(stderr.contains("dense7 60: settled state from"), "{stderr}");
     assert!(!stderr.contains("built and settled"), "{stderr}");
     for (fresh, cached) in fresh.iter().zip(&cached) {
@@ -83,6 +108,24 @@ fn bench_measures_every_pile_and_thread_count_and_a_cached_pile_measures_as_the_
             cached.contacts_per_particle.to_bits(),
             "{fresh:?} {cached:?}"
         );
+    }
+}
+
+#[test]
+fn bench_stages_split_the_step_time_among_the_stages() {
+    let dir = tempfile::tempdir().unwrap();
+    let (stdout, _, rows) = small_bench(&dir.path().join("cache"), &dir.path().join("stages.csv"), &["--stages"]);
+    assert!(stdout.contains("dense7 60, µs per step in each stage:"), "{stdout}");
+    let head = format!("| grains | threads | {} | all stages |", STAGES.join(" | "));
+    assert_eq!(stdout.lines().filter(|l| *l == head).count(), 2, "{stdout}");
+    for row in &rows {
+        assert_eq!(row.stage_s.len(), STAGES.len(), "{row:?}");
+        assert!(row.stage_s.iter().all(|&s| s >= 0.0), "{row:?}");
+        // The narrowphase of a pile at rest on its floor always takes time; the stages' sum is the timed steps'
+        // time less the loop's bookkeeping between steps.
+        assert!(row.stage_s[3] > 0.0, "{row:?}");
+        let sum: f64 = row.stage_s.iter().sum();
+        assert!(sum <= row.wall_s && sum > 0.5 * row.wall_s, "stages {sum} s of {} s: {row:?}", row.wall_s);
     }
 }
 

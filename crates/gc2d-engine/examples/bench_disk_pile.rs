@@ -63,7 +63,10 @@ fn main() {
     println!();
     println!("{}", table_header("disk"));
     for threads in [1, 2] {
-        println!("{}", measure(&mut world, threads, PARTICLE_STEPS_PER_RUN / disks as u64).expect("no blow-up").row());
+        println!(
+            "{}",
+            measure(&mut world, threads, PARTICLE_STEPS_PER_RUN / disks as u64, false).expect("no blow-up").row()
+        );
     }
     println!("\nload average after: {}", load_average());
 }

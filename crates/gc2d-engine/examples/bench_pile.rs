@@ -62,7 +62,9 @@ fn main() {
             for threads in [1, 2] {
                 println!(
                     "{}",
-                    measure(&mut world, threads, PARTICLE_STEPS_PER_RUN / particles as u64).expect("no blow-up").row()
+                    measure(&mut world, threads, PARTICLE_STEPS_PER_RUN / particles as u64, false)
+                        .expect("no blow-up")
+                        .row()
                 );
             }
         }
@@ -72,7 +74,7 @@ fn main() {
         println!("{}", table_header("grain"));
         for particles in sizes_or(&[1_000, 10_000, 100_000]) {
             let mut world = settled_pile(particles, StandardPile::Layer);
-            println!("{}", measure(&mut world, 1, LAYER_STEPS).expect("no blow-up").row());
+            println!("{}", measure(&mut world, 1, LAYER_STEPS, false).expect("no blow-up").row());
         }
     }
     println!("\nload average after: {}", load_average());

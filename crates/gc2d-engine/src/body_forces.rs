@@ -6,10 +6,15 @@ use crate::integrator::TimeStep;
 use crate::ledger::EnergyLedger;
 use crate::schedules::DragSpring;
 use crate::shape::{MassModel, ShapeKind};
+use crate::world::PARALLEL_MIN_BODIES;
 use gc2d_fluid::drag::{buoyancy_force, drag_force, equivalent_radius};
 use gc2d_fluid::{DragCoefficient, FluidField, FluidProperties, ImmersedBody, OutsideField};
 use gc2d_geometry::DVec2;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+
+/// Fewest bodies one task of the parallel gravity pass takes.
+const GRAVITY_BODIES_PER_TASK: usize = 4096;
 
 /// A drag spring attached to a particle (reference §2.12).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -131,10 +136,22 @@ impl BodyForce {
     ) -> Result<(), OutsideField> {
         match self {
             BodyForce::Gravity => {
-                for i in 0..bodies.len() {
-                    if bodies.kind[i] == BodyKind::Particle && bodies.alive[i] {
-                        bodies.force[i] += bodies.mass[i] * step.gravity;
+                let Bodies { force, mass, kind, alive, .. } = bodies;
+                let pull = |(piece, forces): (usize, &mut [DVec2])| {
+                    let first = piece * GRAVITY_BODIES_PER_TASK;
+                    for (i, force) in (first..).zip(forces) {
+                        if kind[i] == BodyKind::Particle && alive[i] {
+                            *force += mass[i] * step.gravity;
+                        }
                     }
+                };
+                // One addition per body: the same bits in any order, so parallel where the World is, in pieces large
+                // enough that handing them out costs less than the additions (rayon's finest split made this stage
+                // three to five times slower on 16 threads, docs/performance.md).
+                if force.len() >= PARALLEL_MIN_BODIES {
+                    force.par_chunks_mut(GRAVITY_BODIES_PER_TASK).enumerate().for_each(pull);
+                } else {
+                    force.chunks_mut(GRAVITY_BODIES_PER_TASK).enumerate().for_each(pull);
                 }
             }
             BodyForce::DragSprings(springs) => {

@@ -18,7 +18,8 @@
 //! both sweeps write the one pair list. In parallel they would need a lock (as gc2d had), and the order in which the
 //! two threads reach the lock would decide the order of the list, so the pair order, and with it the narrowphase's
 //! summation order, would change from run to run. Sequentially the list order is a pure function of the input. The
-//! sort is O(N) and small next to the narrowphase, which is where the threads are used.
+//! sort is O(N) and small next to the narrowphase on one thread; only the refresh of the endpoint values before it
+//! runs in parallel. On 16 threads the sort is the largest sequential stage (docs/performance.md, "Sixteen cores").
 //!
 //! Bodies are inserted and removed at any time (drop sources, particles leaving the domain). Insertions are merged at
 //! the next [`SortAndSweep::update`]: their endpoints are sorted (O(k log k)), merged into the axes in one pass, and
@@ -32,10 +33,11 @@ pub use bodies::BodyKind;
 pub use pair_set::PairEntry;
 
 use crate::bodies::vec_bytes;
-use bodies::{Bodies, SlotState};
+use bodies::{Bodies, Interval, SlotState};
 use box_query::PendingIndex;
 use gc2d_geometry::Aabb;
 use pair_set::PairSet;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::cmp::Ordering;
 
@@ -368,9 +370,9 @@ impl<T: Default> SortAndSweep<T> {
     }
 }
 
-/// Refreshes the values of one axis from the bodies' new boxes and re-sorts it by insertion sort, applying Table 2.3
-/// at every adjacent swap. Refreshing element i just before inserting it keeps this to one pass over the array, and
-/// the common case (element already in place) stays a tight loop; moving an element is done out of line.
+/// Refreshes the values of one axis from the bodies' new boxes, then re-sorts it by insertion sort, applying Table 2.3
+/// at every adjacent swap; the common case (element already in place) stays a tight loop, moving an element is done
+/// out of line.
 fn insertion_sort<T: Default>(
     endpoints: &mut [Endpoint],
     axis: usize,
@@ -379,22 +381,31 @@ fn insertion_sort<T: Default>(
     ended: &mut Vec<PairEntry<T>>,
     stats: &mut BroadphaseStats,
 ) {
-    let intervals = bodies.intervals(axis);
-    let mut previous: Option<Endpoint> = None;
-    for i in 0..endpoints.len() {
-        let mut moving = endpoints[i];
-        let interval = intervals[moving.body() as usize];
-        moving.value = if moving.is_end() { interval.upper } else { interval.lower };
-        match previous {
-            Some(left) if moving.precedes(left) => {
-                sink(&mut endpoints[..=i], moving, bodies, pairs, ended, stats);
-                previous = Some(endpoints[i]);
-            }
-            _ => {
-                endpoints[i] = moving;
-                previous = Some(moving);
-            }
+    refresh_values(endpoints, bodies.intervals(axis));
+    for i in 1..endpoints.len() {
+        let moving = endpoints[i];
+        if moving.precedes(endpoints[i - 1]) {
+            sink(&mut endpoints[..=i], moving, bodies, pairs, ended, stats);
         }
+    }
+}
+
+/// Endpoints one task of [`refresh_values`] takes at least; below twice this an axis is refreshed on one thread.
+const ENDPOINTS_PER_TASK: usize = 4096;
+
+/// Sets every endpoint's value to its body's new bound on this axis (`intervals`, by body id). The axis is in
+/// coordinate order, not body order, so these reads are scattered: on a 100,000-grain layer they were most of the
+/// update's time on one thread. They are independent of each other, so they run in parallel before the (sequential)
+/// sort, which then reads the array in order; the values, and so the sort, are the same for any thread count.
+fn refresh_values(endpoints: &mut [Endpoint], intervals: &[Interval]) {
+    let refresh = |e: &mut Endpoint| {
+        let interval = intervals[e.body() as usize];
+        e.value = if e.is_end() { interval.upper } else { interval.lower };
+    };
+    if endpoints.len() >= 2 * ENDPOINTS_PER_TASK {
+        endpoints.par_iter_mut().with_min_len(ENDPOINTS_PER_TASK).for_each(refresh);
+    } else {
+        endpoints.iter_mut().for_each(refresh);
     }
 }
 

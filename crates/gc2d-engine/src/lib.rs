@@ -11,6 +11,7 @@
 
 pub mod bodies;
 pub mod body_forces;
+mod body_sums;
 pub mod broadphase;
 pub mod checkpoint;
 pub mod events;
@@ -27,6 +28,7 @@ pub mod safety;
 pub mod schedules;
 pub mod shape;
 pub mod sources;
+pub mod stage_clock;
 pub mod time_window;
 pub mod transits;
 pub mod world;
@@ -46,6 +48,7 @@ pub use outlets::{Outlet, OutletCounters, OutletState};
 pub use safety::{SafetyError, SafetyLimits};
 pub use shape::{BodyShape, BodyShapeError, DiskRecipe, MassModel, ParticleRecipe, ShapeKind, shape_view};
 pub use sources::{DropHeight, DropSource};
+pub use stage_clock::{Stage, StageTimes};
 pub use time_window::TimeWindow;
 pub use transits::{InletEntry, Transit};
 pub use world::{ForceAlternation, RotorPower, RotorWork, StepStats, WallLoad, World, WorldConfig, WorldError};

@@ -15,6 +15,36 @@ use glam::DVec2;
 /// thread waiting for the other's last chunk and made two threads about 5 % slower there (docs/performance.md).
 pub(crate) const PAIRS_PER_CHUNK: usize = 64;
 
+/// The lowest and highest body id among a chunk's touching pairs: the force accumulation skips the chunks that touch
+/// none of the bodies it adds up.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct BodySpan {
+    lowest: u32,
+    highest: u32,
+}
+
+impl Default for BodySpan {
+    /// No body: meets no range.
+    fn default() -> Self {
+        Self { lowest: u32::MAX, highest: 0 }
+    }
+}
+
+impl BodySpan {
+    /// Widens the span to hold the pair {a, b} (a < b).
+    #[inline]
+    pub fn include(&mut self, a: u32, b: u32) {
+        self.lowest = self.lowest.min(a);
+        self.highest = self.highest.max(b);
+    }
+
+    /// Whether some body of the span may lie in `first..end`.
+    #[inline]
+    pub fn meets(&self, first: u32, end: u32) -> bool {
+        self.lowest < end && self.highest >= first
+    }
+}
+
 /// What one chunk of pairs adds to the step's sums.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct PairSums {
@@ -32,12 +62,14 @@ pub(crate) struct PairSums {
     pub multi_pass_queries: usize,
     /// Largest overlap fraction of a touching pair.
     pub max_overlap_fraction: f64,
+    /// The bodies of the touching pairs.
+    pub touching_bodies: BodySpan,
 }
 
 impl PairSums {
-    /// Adds a pair that was just evaluated: its record and the ledger terms its evaluation returned.
+    /// Adds the pair {a, b} (a < b) that was just evaluated: its record and the ledger terms its evaluation returned.
     #[inline]
-    pub fn add_pair(&mut self, contact: &PairContact, energy: &LedgerTerms) {
+    pub fn add_pair(&mut self, a: u32, b: u32, contact: &PairContact, energy: &LedgerTerms) {
         self.contact_stored += contact.stored_energy;
         let [previous, before_previous] = contact.earlier_forces.map(|force| force.as_dvec2());
         // Only steps with a force now and two steps ago count: the first two steps of a contact and the steps after
@@ -53,6 +85,7 @@ impl PairSums {
         if contact.touching {
             self.contacts += 1;
             self.max_overlap_fraction = self.max_overlap_fraction.max(contact.overlap_fraction);
+            self.touching_bodies.include(a, b);
         }
     }
 
@@ -65,6 +98,7 @@ impl PairSums {
         self.contacts += chunk.contacts;
         self.multi_pass_queries += chunk.multi_pass_queries;
         self.max_overlap_fraction = self.max_overlap_fraction.max(chunk.max_overlap_fraction);
+        self.touching_bodies.include(chunk.touching_bodies.lowest, chunk.touching_bodies.highest);
     }
 }
 
@@ -89,12 +123,16 @@ mod tests {
         let pairs: Vec<_> =
             (0..1000).map(|k| touching_pair(f64::from(k), 0.25 * f64::from(k), 1e-4 * f64::from(k))).collect();
         let terms = LedgerTerms { normal_damping: 0.5, sliding: 0.25, ..LedgerTerms::default() };
+        let ids = |k: usize| (k as u32, 2 * k as u32 + 1);
         let mut whole = PairSums::default();
-        pairs.iter().for_each(|pair| whole.add_pair(pair, &terms));
+        pairs.iter().enumerate().for_each(|(k, pair)| whole.add_pair(ids(k).0, ids(k).1, pair, &terms));
         let mut by_chunks = PairSums::default();
-        for chunk in pairs.chunks(PAIRS_PER_CHUNK) {
+        for (c, chunk) in pairs.chunks(PAIRS_PER_CHUNK).enumerate() {
             let mut sums = PairSums::default();
-            chunk.iter().for_each(|pair| sums.add_pair(pair, &terms));
+            for (k, pair) in chunk.iter().enumerate() {
+                let (a, b) = ids(c * PAIRS_PER_CHUNK + k);
+                sums.add_pair(a, b, pair, &terms);
+            }
             by_chunks.add(&sums);
         }
         assert_eq!(by_chunks, whole);
@@ -102,5 +140,21 @@ mod tests {
         assert_eq!((whole.energy.normal_damping, whole.energy.sliding), (500.0, 250.0));
         assert_eq!(whole.contact_stored, 0.25 * 999.0 * 1000.0 / 2.0);
         assert_eq!(whole.alternation, 0.0, "a steady force does not alternate");
+        assert!(whole.touching_bodies.meets(0, 1) && whole.touching_bodies.meets(1999, 2000));
+        assert!(!whole.touching_bodies.meets(2000, 3000));
+    }
+
+    /// A chunk's span holds every body of its touching pairs and nothing of pairs apart.
+    #[test]
+    fn the_span_meets_exactly_the_ranges_that_hold_a_touching_body() {
+        let terms = LedgerTerms::default();
+        let mut sums = PairSums::default();
+        assert!(!sums.touching_bodies.meets(0, u32::MAX), "an empty chunk meets no range");
+        sums.add_pair(3, 900, &PairContact::default(), &terms);
+        assert!(!sums.touching_bodies.meets(0, u32::MAX), "pairs apart are not in the span");
+        sums.add_pair(10, 40, &touching_pair(1.0, 0.0, 0.0), &terms);
+        sums.add_pair(12, 25, &touching_pair(1.0, 0.0, 0.0), &terms);
+        assert!(sums.touching_bodies.meets(40, 41) && sums.touching_bodies.meets(0, 11));
+        assert!(!sums.touching_bodies.meets(41, 100) && !sums.touching_bodies.meets(0, 10));
     }
 }

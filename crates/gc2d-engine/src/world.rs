@@ -8,6 +8,7 @@
 
 use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns};
 use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid};
+use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingPass};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
 use crate::inlets::{Inlet, InletState};
@@ -23,6 +24,7 @@ use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
 use crate::shape::{BodyShape, MassModel, shape_view};
 use crate::sources::{DropHeight, DropSource, PLACEMENT_ATTEMPTS, SourceState};
+use crate::stage_clock::{Stage, StageClock, StageTimes};
 use crate::transits::{Transit, TransitLog};
 use gc2d_geometry::{Aabb, DVec2, Pose, ShapeView, area_contact};
 use rand::{Rng, SeedableRng};
@@ -248,6 +250,12 @@ pub struct World {
     /// The narrowphase pass's sums, one per chunk of [`PAIRS_PER_CHUNK`] pairs; refilled every step, so not saved.
     #[serde(skip)]
     pair_sums: Vec<PairSums>,
+    /// The closing pass's sums, one per chunk of [`BODIES_PER_CHUNK`] bodies; refilled every step, so not saved.
+    #[serde(skip)]
+    body_sums: Vec<BodySums>,
+    /// Time per stage of the step, while [`Self::start_stage_clock`] has turned it on; not saved.
+    #[serde(skip)]
+    stage_clock: Option<StageClock>,
 }
 
 impl World {
@@ -286,6 +294,8 @@ impl World {
             force_history_steps: FULL_FORCE_HISTORY,
             force_alternation: ForceAlternation::default(),
             pair_sums: Vec::new(),
+            body_sums: Vec::new(),
+            stage_clock: None,
         })
     }
 
@@ -682,6 +692,7 @@ impl World {
             + crate::bodies::vec_bytes(&self.outlets)
             + crate::bodies::vec_bytes(&self.positions_before_step)
             + crate::bodies::vec_bytes(&self.pair_sums)
+            + crate::bodies::vec_bytes(&self.body_sums)
             + self.transits.heap_bytes()
             + self.insertions.heap_bytes()
     }
@@ -737,20 +748,27 @@ impl World {
         }
         let dt = self.config.time_step;
         let t_next = self.time + dt;
+        if let Some(clock) = &mut self.stage_clock {
+            clock.start_step();
+        }
         if self.stages.outlets {
             self.transits.start_step();
             self.positions_before_step.clear();
             self.positions_before_step.extend(self.bodies.pose.iter().map(|pose| pose.position));
         }
         self.predict(t_next);
+        self.lap(Stage::Predict);
         self.bodies.update_world_vertices();
+        self.lap(Stage::Vertices);
         if self.stages.sources || self.stages.inlets {
             self.broadphase.update_for_queries(&self.bodies.aabb);
         } else {
             self.broadphase.update(&self.bodies.aabb);
         }
         self.close_ended_pairs(t_next);
+        self.lap(Stage::Broadphase);
         self.evaluate_pairs();
+        self.lap(Stage::Narrowphase);
         self.accumulate_contact_forces();
         if self.stages.rotors {
             let drive = self.rotor_power();
@@ -760,8 +778,11 @@ impl World {
         if self.events.is_some() {
             self.log_contact_events(t_next);
         }
+        self.lap(Stage::Accumulation);
         self.apply_body_forces(t_next)?;
+        self.lap(Stage::BodyForces);
         self.correct();
+        self.lap(Stage::Correct);
         if self.stages.moving_walls {
             self.advance_pistons();
         }
@@ -783,8 +804,33 @@ impl World {
         if self.stages.inlets {
             self.run_inlets()?;
         }
-        let finite = self.refresh_stored_energies();
-        self.check_blow_up(finite)
+        self.lap(Stage::Boundaries);
+        let closing = self.refresh_stored_energies();
+        let checked = self.check_blow_up(&closing);
+        self.lap(Stage::LedgerAndChecks);
+        if let Some(clock) = &mut self.stage_clock {
+            clock.end_step();
+        }
+        checked
+    }
+
+    /// Books the time since the last lap to `stage` while the stage clock runs.
+    fn lap(&mut self, stage: Stage) {
+        if let Some(clock) = &mut self.stage_clock {
+            clock.lap(stage);
+        }
+    }
+
+    /// Times every stage of each step from now on, from zero if the clock already ran, until
+    /// [`Self::stop_stage_clock`]. For finding what limits a run on many threads; costs a clock reading per stage.
+    pub fn start_stage_clock(&mut self) {
+        self.stage_clock = Some(StageClock::new());
+    }
+
+    /// Stops the stage clock and returns the wall-clock time per stage of the steps since
+    /// [`Self::start_stage_clock`]; `None` where it was not running.
+    pub fn stop_stage_clock(&mut self) -> Option<StageTimes> {
+        self.stage_clock.take().map(StageClock::into_times)
     }
 
     /// Steps until the time reaches `t_end` (within half a step).
@@ -902,7 +948,7 @@ impl World {
             *sums = PairSums::default();
             for pair in chunk {
                 let energy = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
-                sums.add_pair(&pair.payload, &energy);
+                sums.add_pair(pair.a(), pair.b(), &pair.payload, &energy);
             }
         };
         if self.bodies.len() >= PARALLEL_MIN_BODIES {
@@ -912,24 +958,26 @@ impl World {
         }
     }
 
-    /// Adds the contact forces to the bodies in pair order (independent of the thread count), and books the chunks'
-    /// sums in chunk order: the contacts' energy terms, the energy they store (kept by the ledger until the next
-    /// step: pairs of particles removed later in this step still hold it, and their ending books it as opening
-    /// residual then), the chatter watch and the statistics.
+    /// Adds the contact forces to the bodies, each body's in pair order (so independent of the thread count), in
+    /// parallel over ranges of bodies; then books the chunks' sums in chunk order: the contacts' energy terms, the
+    /// energy they store (kept by the ledger until the next step: pairs of particles removed later in this step still
+    /// hold it, and their ending books it as opening residual then), the chatter watch and the statistics.
     fn accumulate_contact_forces(&mut self) {
+        let pairs = self.broadphase.pairs();
+        let chunk_sums = &self.pair_sums;
         let b = &mut self.bodies;
-        b.force.iter_mut().for_each(|f| *f = DVec2::ZERO);
-        b.torque.iter_mut().for_each(|t| *t = 0.0);
-        for pair in self.broadphase.pairs() {
-            let c = &pair.payload;
-            if !c.touching {
-                continue;
-            }
-            let (a, bb) = (pair.a() as usize, pair.b() as usize);
-            b.force[a] += c.force_on_a;
-            b.force[bb] -= c.force_on_a;
-            b.torque[a] += c.torque_on_a;
-            b.torque[bb] += c.torque_on_b;
+        if b.len() >= PARALLEL_MIN_BODIES {
+            // One range of bodies per thread: a range reads every chunk of pairs whose touching bodies reach into
+            // it, which in a pile numbered in space order is little more than its share of the list, and in one
+            // numbered otherwise (a wide layer deposited in passes) can be most of it: more ranges would read the
+            // list more often.
+            let per_range = b.len().div_ceil(rayon::current_num_threads());
+            let ranges = b.force.par_chunks_mut(per_range).zip(b.torque.par_chunks_mut(per_range));
+            ranges.enumerate().for_each(|(range, (forces, torques))| {
+                add_contact_forces(pairs, chunk_sums, range * per_range, forces, torques);
+            });
+        } else {
+            add_contact_forces(pairs, chunk_sums, 0, &mut b.force, &mut b.torque);
         }
         let mut sums = PairSums::default();
         self.pair_sums.iter().for_each(|chunk| sums.add(chunk));
@@ -1186,36 +1234,34 @@ impl World {
     }
 
     /// Recomputes the kinetic, potential and drag-spring energies of the ledger from the state, in one pass over the
-    /// bodies that also checks that every living body passes [`state_is_finite`] (returned: false when one may not).
-    /// The contact energy is summed where the pairs are visited anyway, in [`Self::accumulate_contact_forces`].
-    fn refresh_stored_energies(&mut self) -> bool {
-        let g = self.config.gravity.magnitude(self.time);
+    /// bodies (parallel over fixed chunks, [`crate::body_sums`]) that also checks that every living body passes
+    /// [`state_is_finite`] and every particle the travel limit; returns what the checks found. The contact energy is
+    /// summed where the pairs are visited anyway, in [`Self::evaluate_pairs`].
+    fn refresh_stored_energies(&mut self) -> BodySums {
+        let pass = ClosingPass {
+            gravity: self.config.gravity.magnitude(self.time),
+            dt: self.config.time_step,
+            max_travel_fraction: self.config.safety.max_travel_fraction,
+        };
         let b = &self.bodies;
-        let (mut translational, mut rotational, mut potential) = (0.0, 0.0, 0.0);
-        let mut finite = true;
-        for i in 0..b.len() {
-            if !b.alive[i] {
-                continue;
-            }
-            let (pose, velocity) = (&b.pose[i], b.velocity[i]);
-            finite &= pose.position.is_finite()
-                & pose.angle.is_finite()
-                & velocity.is_finite()
-                & b.angular_velocity[i].is_finite();
-            if b.kind[i] == BodyKind::Particle {
-                translational += 0.5 * b.mass[i] * velocity.length_squared();
-                rotational += 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i];
-                potential += b.mass[i] * g * pose.position.y;
-            }
+        self.body_sums.resize(b.len().div_ceil(BODIES_PER_CHUNK), BodySums::default());
+        let sum_chunk = |(k, sums): (usize, &mut BodySums)| *sums = pass.chunk(b, k * BODIES_PER_CHUNK);
+        if b.len() >= PARALLEL_MIN_BODIES {
+            self.body_sums.par_iter_mut().enumerate().for_each(sum_chunk);
+        } else {
+            self.body_sums.iter_mut().enumerate().for_each(sum_chunk);
         }
+        let mut all = BodySums::default();
+        self.body_sums.iter().for_each(|chunk| all.add(chunk));
         let drag_stored: f64 = self.body_forces.iter().map(|f| f.stored_energy(b, self.time)).sum();
         let l = &mut self.ledger;
-        l.kinetic_translational = translational;
-        l.kinetic_rotational = rotational;
-        l.potential = potential;
+        l.kinetic_translational = all.translational;
+        l.kinetic_rotational = all.rotational;
+        l.potential = all.potential;
         l.drag_stored = drag_stored;
         // A finite velocity can still overflow ½mv²: that poisons the ledger, so it counts as not finite.
-        finite && (translational + rotational).is_finite()
+        all.not_finite |= !(all.translational + all.rotational).is_finite();
+        all
     }
 
     /// Energy stored in the contacts of the current pair list, J.
@@ -1255,13 +1301,16 @@ impl World {
         (approach, depth)
     }
 
-    /// Stops the run on NaN (`finite` is false when some living body's state is not finite), on a tunnelling
-    /// overlap, or on an energy gain the ledger cannot explain.
-    fn check_blow_up(&self, finite: bool) -> Result<(), WorldError> {
+    /// Stops the run on NaN (`closing.not_finite`: some living body's state may not be finite), on a tunnelling
+    /// overlap, on a particle that travelled too far in the step (`closing.first_excessive_travel`), or on an energy
+    /// gain the ledger cannot explain.
+    fn check_blow_up(&self, closing: &BodySums) -> Result<(), WorldError> {
         let limits = &self.config.safety;
         let suggested = || safety::suggested_time_step(self.config.time_step, self.stable_time_step());
         let b = &self.bodies;
-        if !finite && let Some(i) = (0..b.len()).find(|&i| b.alive[i] && !state_is_finite(b, i)) {
+        if closing.not_finite
+            && let Some(i) = (0..b.len()).find(|&i| b.alive[i] && !state_is_finite(b, i))
+        {
             return Err(SafetyError::NotFinite {
                 time: self.time,
                 step: self.steps,
@@ -1288,8 +1337,8 @@ impl World {
             }
             .into());
         }
-        if let Some(error) = self.excessive_travel(suggested) {
-            return Err(error.into());
+        if let Some(i) = closing.first_excessive_travel {
+            return Err(self.excessive_travel(i, suggested()).into());
         }
         let gain = self.ledger.balance_error();
         let scale = self.ledger.energy_scale();
@@ -1307,27 +1356,61 @@ impl World {
         Ok(())
     }
 
-    /// The first particle that moved further in the last step than the travel limit allows (reference §3.6
+    /// The error for particle `i`, which moved further in the last step than the travel limit allows (reference §3.6
     /// failure mode 2: a particle that jumps right across a thin wall is never seen overlapping it).
-    /// `suggested_dt` is only evaluated when the limit is exceeded (it costs a pass over the particles).
-    fn excessive_travel(&self, suggested_dt: impl Fn() -> f64) -> Option<SafetyError> {
+    fn excessive_travel(&self, i: usize, suggested_dt: f64) -> SafetyError {
         let fraction = self.config.safety.max_travel_fraction;
         let dt = self.config.time_step;
         let b = &self.bodies;
-        b.particles().find_map(|id| {
-            let i = id.index();
-            let inscribed_radius = b.inscribed_radius[i] * b.pose[i].scale;
-            let travel = safety::step_travel(b, i, dt);
-            (travel > fraction * inscribed_radius).then(|| SafetyError::ExcessiveTravel {
-                time: self.time,
-                step: self.steps,
-                body: id.0,
-                travel,
-                inscribed_radius,
-                limit_percent: 100.0 * fraction,
-                suggested_dt: suggested_dt().min(0.5 * dt * fraction * inscribed_radius / travel),
-            })
-        })
+        let inscribed_radius = b.inscribed_radius[i] * b.pose[i].scale;
+        let travel = safety::step_travel(b, i, dt);
+        SafetyError::ExcessiveTravel {
+            time: self.time,
+            step: self.steps,
+            body: i as u32,
+            travel,
+            inscribed_radius,
+            limit_percent: 100.0 * fraction,
+            suggested_dt: suggested_dt.min(0.5 * dt * fraction * inscribed_radius / travel),
+        }
+    }
+}
+
+/// Sets `forces` and `torques`, the rows of bodies `first`, `first + 1`, …, to the sum of the contact forces and
+/// torques the touching pairs exert on them, adding each body's terms in pair order: the same sums, bit for bit, as
+/// one pass over the pairs in list order, whatever range a body falls in. `chunk_sums` are the narrowphase's sums of
+/// the chunks of [`PAIRS_PER_CHUNK`] pairs; a chunk whose touching bodies all lie outside the range is skipped.
+fn add_contact_forces(
+    pairs: &[PairEntry<PairContact>],
+    chunk_sums: &[PairSums],
+    first: usize,
+    forces: &mut [DVec2],
+    torques: &mut [f64],
+) {
+    forces.fill(DVec2::ZERO);
+    torques.fill(0.0);
+    let len = forces.len();
+    let end = first + len;
+    // Below `first` the subtraction wraps to a huge index: one comparison tells whether the body is in the range.
+    let local = |body: u32| Some((body as usize).wrapping_sub(first)).filter(|&i| i < len);
+    for (chunk, sums) in pairs.chunks(PAIRS_PER_CHUNK).zip(chunk_sums) {
+        if !sums.touching_bodies.meets(first as u32, end as u32) {
+            continue;
+        }
+        for pair in chunk {
+            let c = &pair.payload;
+            if !c.touching {
+                continue;
+            }
+            if let Some(i) = local(pair.a()) {
+                forces[i] += c.force_on_a;
+                torques[i] += c.torque_on_a;
+            }
+            if let Some(j) = local(pair.b()) {
+                forces[j] -= c.force_on_a;
+                torques[j] += c.torque_on_b;
+            }
+        }
     }
 }
 
@@ -1367,7 +1450,7 @@ fn force_history_after_loading() -> u8 {
 
 /// Worlds with fewer bodies than this step on the calling thread: below it, handing work to the thread pool costs
 /// more than it saves. Results are bitwise the same either way (every parallel task writes only its own data).
-const PARALLEL_MIN_BODIES: usize = 512;
+pub(crate) const PARALLEL_MIN_BODIES: usize = 512;
 
 /// True when body `i`'s pose and velocities are finite and, for a particle, so is its kinetic energy (a finite
 /// velocity can still overflow ½mv², which would poison the ledger).
@@ -1416,4 +1499,69 @@ fn sync_kinematics(
     pose.angle = state.angle();
     *velocity = state.velocity(time_step);
     *angular_velocity = state.angular_velocity(time_step);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::narrowphase::LedgerTerms;
+    use rand::Rng;
+
+    /// Adding each body's forces within ranges of bodies gives the same bits as one pass over the pairs in list
+    /// order, for any split into ranges, and skipping chunks by their span loses nothing.
+    #[test]
+    fn forces_added_by_ranges_of_bodies_equal_one_pass_in_pair_order_bit_for_bit() {
+        let bodies = 3000;
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut pairs: Vec<PairEntry<PairContact>> = (0..9000)
+            .map(|k| {
+                // Mostly near neighbours in id order, some far apart, like a pile numbered partly in space order.
+                let a = (k / 3 + rng.random_range(0..40)).min(bodies - 2) as u32;
+                let b = if rng.random_bool(0.8) {
+                    a + rng.random_range(1..60).min(bodies as u32 - 1 - a)
+                } else {
+                    rng.random_range(a + 1..bodies as u32)
+                };
+                let contact = PairContact {
+                    touching: rng.random_bool(0.7),
+                    force_on_a: DVec2::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)),
+                    torque_on_a: rng.random_range(-1e-3..1e-3),
+                    torque_on_b: rng.random_range(-1e-3..1e-3),
+                    ..PairContact::default()
+                };
+                PairEntry::for_test(a, b, contact)
+            })
+            .collect();
+        pairs.sort_by_key(|p| p.a());
+        let chunk_sums: Vec<PairSums> = pairs
+            .chunks(PAIRS_PER_CHUNK)
+            .map(|chunk| {
+                let mut sums = PairSums::default();
+                chunk.iter().for_each(|p| sums.add_pair(p.a(), p.b(), &p.payload, &LedgerTerms::default()));
+                sums
+            })
+            .collect();
+        let mut expected_force = vec![DVec2::ZERO; bodies];
+        let mut expected_torque = vec![0.0; bodies];
+        for pair in pairs.iter().filter(|p| p.payload.touching) {
+            let (a, b, c) = (pair.a() as usize, pair.b() as usize, &pair.payload);
+            expected_force[a] += c.force_on_a;
+            expected_force[b] -= c.force_on_a;
+            expected_torque[a] += c.torque_on_a;
+            expected_torque[b] += c.torque_on_b;
+        }
+        for ranges in [1, 2, 7, 16, 3000] {
+            let per_range = bodies.div_ceil(ranges);
+            let mut force = vec![DVec2::splat(f64::NAN); bodies];
+            let mut torque = vec![f64::NAN; bodies];
+            for (range, (f, t)) in force.chunks_mut(per_range).zip(torque.chunks_mut(per_range)).enumerate() {
+                add_contact_forces(&pairs, &chunk_sums, range * per_range, f, t);
+            }
+            for i in 0..bodies {
+                assert_eq!(force[i].x.to_bits(), expected_force[i].x.to_bits(), "{ranges} ranges, body {i}");
+                assert_eq!(force[i].y.to_bits(), expected_force[i].y.to_bits(), "{ranges} ranges, body {i}");
+                assert_eq!(torque[i].to_bits(), expected_torque[i].to_bits(), "{ranges} ranges, body {i}");
+            }
+        }
+    }
 }

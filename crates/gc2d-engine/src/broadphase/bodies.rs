@@ -5,7 +5,11 @@
 
 use crate::bodies::vec_bytes;
 use gc2d_geometry::Aabb;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+
+/// Slots one task of [`Bodies::advance`] takes at least; below twice this the boxes are copied on one thread.
+const SLOTS_PER_TASK: usize = 4096;
 
 /// Whether a body moves. Two static bodies (walls) are never paired: their contact would exert no force.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -132,21 +136,33 @@ impl Bodies {
     /// pass that reads every box anyway, so that a query needs no pass of its own. Without, returns +∞ (unknown).
     pub(super) fn advance<const MEASURE_EXTENT: bool>(&mut self, aabbs: &[Aabb]) -> [f64; 2] {
         std::mem::swap(&mut self.current, &mut self.previous);
-        let mut extent = if MEASURE_EXTENT { [0.0_f64; 2] } else { [f64::INFINITY; 2] };
+        let mut extent = [f64::INFINITY; 2];
         for (axis, extent) in extent.iter_mut().enumerate() {
-            let (current, previous) = (&mut self.current[axis], &self.previous[axis]);
-            for (index, (current, previous)) in current.iter_mut().zip(previous).enumerate() {
-                let flags = self.flags[index];
-                *current = match aabbs.get(index) {
-                    Some(aabb) if flags.state != SlotState::Absent => {
-                        let interval = Interval::sanitised(aabb.min[axis], aabb.max[axis]);
-                        if MEASURE_EXTENT && flags.kind == BodyKind::Dynamic {
-                            *extent = extent.max(interval.upper - interval.lower);
-                        }
-                        interval
+            let flags = &self.flags;
+            // The new interval of slot `index`, and its width where it is measured (0 where not).
+            let refresh = |(index, (current, previous)): (usize, (&mut Interval, &Interval))| {
+                let f = flags[index];
+                match aabbs.get(index) {
+                    Some(aabb) if f.state != SlotState::Absent => {
+                        *current = Interval::sanitised(aabb.min[axis], aabb.max[axis]);
+                        if MEASURE_EXTENT && f.kind == BodyKind::Dynamic { current.upper - current.lower } else { 0.0 }
                     }
-                    _ => *previous,
-                };
+                    _ => {
+                        *current = *previous;
+                        0.0
+                    }
+                }
+            };
+            let (current, previous) = (&mut self.current[axis], &self.previous[axis]);
+            // The maximum ignores NaN widths (from infinite boxes) in any order, so it is the same on any thread count.
+            let widest = if current.len() >= 2 * SLOTS_PER_TASK {
+                let slots = current.par_iter_mut().zip(previous.par_iter()).enumerate().with_min_len(SLOTS_PER_TASK);
+                slots.map(refresh).reduce(|| 0.0, f64::max)
+            } else {
+                current.iter_mut().zip(previous).enumerate().map(refresh).fold(0.0, f64::max)
+            };
+            if MEASURE_EXTENT {
+                *extent = widest;
             }
         }
         extent

@@ -91,6 +91,13 @@ fn hash(a: u32, b: u32) -> usize {
 }
 
 impl<T> PairEntry<T> {
+    /// An entry for the pair {a, b} (a < b), for tests that need a pair list without a broadphase.
+    #[cfg(test)]
+    pub(crate) fn for_test(a: u32, b: u32, payload: T) -> Self {
+        assert!(a < b, "a pair entry holds the smaller id first");
+        Self { a, b, payload }
+    }
+
     /// The pair's key, by which the list is sorted.
     #[inline]
     fn key(&self) -> (u32, u32) {
