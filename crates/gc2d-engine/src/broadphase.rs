@@ -14,12 +14,13 @@
 //! [`Aabb::overlaps`]. The pair list is therefore always exactly the set of touching-or-overlapping box pairs (minus
 //! static–static pairs). The proof and the tie rules are in `docs/model.md`, "Broadphase (§4.2)".
 //!
-//! **Why the two axes are swept one after the other, not in parallel** (the thesis ran them on two threads, §4.5):
-//! both sweeps write the one pair list. In parallel they would need a lock (as gc2d had), and the order in which the
-//! two threads reach the lock would decide the order of the list, so the pair order, and with it the narrowphase's
-//! summation order, would change from run to run. Sequentially the list order is a pure function of the input. The
-//! sort is O(N) and small next to the narrowphase on one thread; only the refresh of the endpoint values before it
-//! runs in parallel. On 16 threads the sort is the largest sequential stage (docs/performance.md, "Sixteen cores").
+//! **The two axes are sorted in parallel, the pair list changed after** (the thesis ran the two sweeps on two threads,
+//! §4.5, with a lock on the list): if both sorts wrote the one pair list as they swap, the order in which the two
+//! threads reached it would decide the order of the list, so the pair order, and with it the narrowphase's summation
+//! order, would change from run to run. Instead each sort only records the changes its swaps call for (the tests of
+//! Table 2.3 read the boxes alone, never the list), and the changes are applied afterwards, the x axis's first, each
+//! in the order found: the same sequence of insertions and removals as sorting x and then y with the list changed at
+//! once, so the list is a pure function of the input and the same for any thread count.
 //!
 //! Bodies are inserted and removed at any time (drop sources, particles leaving the domain). Insertions are merged at
 //! the next [`SortAndSweep::update`]: their endpoints are sorted (O(k log k)), merged into the axes in one pass, and
@@ -160,6 +161,19 @@ pub struct SortAndSweep<T> {
     /// Scratch for the sweep that finds new bodies' pairs.
     #[serde(skip)]
     sweep: SweepScratch,
+    /// Scratch: the pair-list changes each axis's sort found in the current update, in the order found.
+    #[serde(skip)]
+    changes: [Vec<PairChange>; 2],
+}
+
+/// A change of the pair list that a swap of the insertion sort calls for (Table 2.3), recorded by the sort and applied
+/// after both axes are sorted.
+#[derive(Debug, Clone, Copy)]
+enum PairChange {
+    /// The boxes of the two bodies now touch: add the pair if it is not listed yet.
+    Add(u32, u32),
+    /// The intervals stopped overlapping on one axis and the boxes touched before: end the pair if it is listed.
+    Remove(u32, u32),
 }
 
 impl<T: Default> Default for SortAndSweep<T> {
@@ -179,6 +193,7 @@ impl<T: Default> Default for SortAndSweep<T> {
             pending_index: Some(PendingIndex::default()),
             merge_buffer: Vec::new(),
             sweep: SweepScratch::default(),
+            changes: [Vec::new(), Vec::new()],
         }
     }
 }
@@ -267,9 +282,7 @@ impl<T: Default> SortAndSweep<T> {
         if self.static_bodies.is_none() {
             self.static_bodies = Some(self.bodies.static_slots());
         }
-        for axis in 0..2 {
-            insertion_sort(&mut self.axes[axis], axis, &self.bodies, &mut self.pairs, &mut self.ended, &mut self.stats);
-        }
+        self.sort_axes();
         if !self.pending.is_empty() {
             self.merge_pending();
         }
@@ -333,11 +346,40 @@ impl<T: Default> SortAndSweep<T> {
             + vec_bytes(&self.sweep.open)
             + vec_bytes(&self.sweep.open_fresh)
             + vec_bytes(&self.sweep.position)
+            + self.changes.iter().map(vec_bytes).sum::<usize>()
     }
 
     /// True if `body` is in the broadphase (active or waiting for the next update).
     pub fn contains(&self, body: u32) -> bool {
         self.bodies.state(body) != SlotState::Absent
+    }
+
+    /// Re-sorts both axes (in parallel where they are long), then applies the pair-list changes their swaps found: the
+    /// x axis's, then the y axis's, each in the order found.
+    fn sort_axes(&mut self) {
+        let bodies = &self.bodies;
+        let ([x, y], [x_changes, y_changes]) = (&mut self.axes, &mut self.changes);
+        let (x_swaps, y_swaps) = if x.len() >= 2 * ENDPOINTS_PER_TASK {
+            rayon::join(|| insertion_sort(x, 0, bodies, x_changes), || insertion_sort(y, 1, bodies, y_changes))
+        } else {
+            (insertion_sort(x, 0, bodies, x_changes), insertion_sort(y, 1, bodies, y_changes))
+        };
+        self.stats.swaps += x_swaps + y_swaps;
+        for change in x_changes.drain(..).chain(y_changes.drain(..)) {
+            match change {
+                PairChange::Add(m, n) => {
+                    if self.pairs.insert(m, n) {
+                        self.stats.pairs_added += 1;
+                    }
+                }
+                PairChange::Remove(m, n) => {
+                    if let Some(entry) = self.pairs.remove(m, n) {
+                        self.ended.push(entry);
+                        self.stats.pairs_removed += 1;
+                    }
+                }
+            }
+        }
     }
 
     /// Merges the pending bodies into both axes, then finds their pairs with one sweep along x.
@@ -370,24 +412,19 @@ impl<T: Default> SortAndSweep<T> {
     }
 }
 
-/// Refreshes the values of one axis from the bodies' new boxes, then re-sorts it by insertion sort, applying Table 2.3
-/// at every adjacent swap; the common case (element already in place) stays a tight loop, moving an element is done
-/// out of line.
-fn insertion_sort<T: Default>(
-    endpoints: &mut [Endpoint],
-    axis: usize,
-    bodies: &Bodies,
-    pairs: &mut PairSet<T>,
-    ended: &mut Vec<PairEntry<T>>,
-    stats: &mut BroadphaseStats,
-) {
+/// Refreshes the values of one axis from the bodies' new boxes, then re-sorts it by insertion sort, recording in
+/// `changes` the pair-list changes of Table 2.3 at every adjacent swap; returns the number of swaps. The common case
+/// (element already in place) stays a tight loop; moving an element is done out of line.
+fn insertion_sort(endpoints: &mut [Endpoint], axis: usize, bodies: &Bodies, changes: &mut Vec<PairChange>) -> u64 {
     refresh_values(endpoints, bodies.intervals(axis));
+    let mut swaps = 0;
     for i in 1..endpoints.len() {
         let moving = endpoints[i];
         if moving.precedes(endpoints[i - 1]) {
-            sink(&mut endpoints[..=i], moving, bodies, pairs, ended, stats);
+            swaps += sink(&mut endpoints[..=i], moving, bodies, changes);
         }
     }
+    swaps
 }
 
 /// Endpoints one task of [`refresh_values`] takes at least; below twice this an axis is refreshed on one thread.
@@ -409,41 +446,35 @@ fn refresh_values(endpoints: &mut [Endpoint], intervals: &[Interval]) {
     }
 }
 
-/// Moves `moving` left from the end of `endpoints` to its place, applying Table 2.3 to every element it passes.
+/// Moves `moving` left from the end of `endpoints` to its place, recording the change of Table 2.3 that each element
+/// it passes calls for; returns the number of elements passed.
 ///
-/// Adding checks that the boxes touch with their *new* values on both axes, so a pair is added only if it exists at
-/// the end of the update; this keeps the list exact whichever axis is sorted first. Removing needs no test, but a
-/// pair whose boxes did not touch at the previous update cannot be in the list, so its lookup is skipped.
+/// An addition is recorded only if the boxes touch with their *new* values on both axes, so a pair is added only if
+/// it exists at the end of the update; this keeps the list exact whichever axis's changes are applied first. A
+/// removal needs no test, but a pair whose boxes did not touch at the previous update cannot be in the list, so it
+/// is not recorded.
 #[inline(never)]
-fn sink<T: Default>(
-    endpoints: &mut [Endpoint],
-    moving: Endpoint,
-    bodies: &Bodies,
-    pairs: &mut PairSet<T>,
-    ended: &mut Vec<PairEntry<T>>,
-    stats: &mut BroadphaseStats,
-) {
+fn sink(endpoints: &mut [Endpoint], moving: Endpoint, bodies: &Bodies, changes: &mut Vec<PairChange>) -> u64 {
     let mut j = endpoints.len() - 1;
+    let mut swaps = 0;
     while j > 0 && moving.precedes(endpoints[j - 1]) {
         let passed = endpoints[j - 1];
-        stats.swaps += 1;
+        swaps += 1;
         let (m, n) = (passed.body(), moving.body());
         if passed.is_end() && !moving.is_end() {
             // e_m b_n ⇒ b_n e_m: the intervals start to overlap on this axis.
-            if bodies.may_pair(m, n) && pairs.insert(m, n) {
-                stats.pairs_added += 1;
+            if bodies.may_pair(m, n) {
+                changes.push(PairChange::Add(m, n));
             }
         } else if !passed.is_end() && moving.is_end() && bodies.met_before(m, n) {
             // b_m e_n ⇒ e_n b_m: the intervals stop overlapping on this axis.
-            if let Some(entry) = pairs.remove(m, n) {
-                ended.push(entry);
-                stats.pairs_removed += 1;
-            }
+            changes.push(PairChange::Remove(m, n));
         }
         endpoints[j] = passed;
         j -= 1;
     }
     endpoints[j] = moving;
+    swaps
 }
 
 /// Merges the sorted `extra` into the sorted `axis` in place, from the back, in one pass.
