@@ -4,6 +4,7 @@
 //! are summed step by step from what the contact law and the drivers report. `balance_error` is what the two sides
 //! disagree by: time-integration error in a sound run, a blow-up when it jumps.
 
+use crate::narrowphase::LedgerTerms;
 use serde::{Deserialize, Serialize};
 
 /// Energies of a World, J per unit thickness.
@@ -45,6 +46,16 @@ pub struct EnergyLedger {
 }
 
 impl EnergyLedger {
+    /// Books a step's contact terms (summed over the pairs): the three dissipations, the opening residual and the
+    /// walls' work.
+    pub(crate) fn book_contacts(&mut self, terms: &LedgerTerms) {
+        self.dissipated_normal_damping += terms.normal_damping;
+        self.dissipated_tangential_damping += terms.tangential_damping;
+        self.dissipated_sliding += terms.sliding;
+        self.opening_residual += terms.opening_residual;
+        self.work_walls += terms.work_walls;
+    }
+
     /// Kinetic energy, translational and rotational.
     pub fn kinetic(&self) -> f64 {
         self.kinetic_translational + self.kinetic_rotational

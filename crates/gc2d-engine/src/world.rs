@@ -981,13 +981,8 @@ impl World {
         }
         let mut sums = PairSums::default();
         self.pair_sums.iter().for_each(|chunk| sums.add(chunk));
-        let ledger = &mut self.ledger;
-        ledger.dissipated_normal_damping += sums.energy.normal_damping;
-        ledger.dissipated_tangential_damping += sums.energy.tangential_damping;
-        ledger.dissipated_sliding += sums.energy.sliding;
-        ledger.opening_residual += sums.energy.opening_residual;
-        ledger.work_walls += sums.energy.work_walls;
-        ledger.contact_stored = sums.contact_stored;
+        self.ledger.book_contacts(&sums.energy);
+        self.ledger.contact_stored = sums.contact_stored;
         self.stats = StepStats {
             box_pairs: self.broadphase.pairs().len(),
             contacts: sums.contacts,
