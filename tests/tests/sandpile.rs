@@ -117,7 +117,7 @@ fn ci_sandpile() {
 /// criterion of reference §10.3 item 19; the thesis's ± 2.0° is the spread of its nine seeds, printed beside it) and
 /// its mean width within 0.46 ± 0.05 m. Run the seeds with `gc2d-rs run … --seed N` as tests/README.md describes
 /// (about 1 h each on one thread); without `GC2D_REGRESSION_RUN_DIR` the test runs the scene's own seed once.
-/// Measured with the scene's GAUSS size spread (seeds 1–7): mean flank 26.34° ± 1.56°, width 0.423 m. With gc2d's
+/// Measured with the scene's GAUSS size spread (seeds 1–9): mean flank 26.24° ± 1.96°, width 0.424 m. With gc2d's
 /// EQUAL spread (grains up to 1.67:1) two seeds gave 29.78° ± 0.88° and 0.410 m, steeper and narrower than the
 /// thesis's; docs/validation.md has both.
 #[test]
