@@ -62,9 +62,7 @@ impl Measurement {
             self.body_heap_bytes / self.particles,
         )
     }
-}
 
-impl Measurement {
     /// The stage times as a row of the Markdown table of [`stage_table_header`], µs per step; `None` where the
     /// stages were not timed.
     pub fn stage_row(&self) -> Option<String> {

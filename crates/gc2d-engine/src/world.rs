@@ -678,9 +678,9 @@ impl World {
     }
 
     /// Heap memory held by the World, in bytes, counted from the capacities of its buffers: the body columns, the
-    /// broadphase with its pair list and every pair's contact record, the narrowphase's chunk sums, and the drivers'
-    /// lists. Divided by the number
-    /// of particles it is the memory per particle including its share of the contacts.
+    /// broadphase with its pair list and every pair's contact record, the chunk sums of the narrowphase and of the
+    /// closing pass, and the drivers' lists. Divided by the number of particles it is the memory per particle
+    /// including its share of the contacts.
     pub fn heap_bytes(&self) -> usize {
         self.bodies.heap_bytes()
             + self.broadphase.heap_bytes()
