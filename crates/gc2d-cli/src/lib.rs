@@ -1,6 +1,7 @@
 //! The `gc2d-rs` command line as a library: the run loop and the files a run writes. `main.rs` parses the
 //! arguments and wires scenes, recordings and checkpoints to these.
 
+pub mod analysis;
 pub mod bench;
 pub mod chatter;
 pub mod console;

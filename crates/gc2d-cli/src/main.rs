@@ -4,9 +4,8 @@
 //! Ctrl-C, SIGTERM or SIGHUP.
 
 use clap::{Parser, Subcommand};
-use gc2d_analysis::{
-    AnalyzeOptions, FeedpipeOptions, MillOptions, SceneKind, analyze_feedpipe, analyze_mill, analyze_run, mill_report,
-};
+use gc2d_analysis::{MillOptions, mill_report};
+use gc2d_cli::analysis::{AnalysisKind, AnalysisSettings, DEFAULT_BINS};
 use gc2d_cli::console;
 use gc2d_cli::dumps::StateDumps;
 use gc2d_cli::events::EventsWriter;
@@ -83,8 +82,8 @@ enum Command {
         /// The run directory (written by `gc2d-rs run`).
         run: PathBuf,
         /// What the run is: a pile, a silo, a ball mill, a feed pipe, or (pile or silo) decide from the wall forces.
-        #[arg(long, value_enum, default_value_t = Kind::Auto)]
-        kind: Kind,
+        #[arg(long, value_enum, default_value_t = AnalysisKind::Auto)]
+        kind: AnalysisKind,
         /// Half-width of the pressure window, m [default: about 15 contacts per window].
         #[arg(long)]
         window: Option<f64>,
@@ -96,7 +95,7 @@ enum Command {
         #[arg(long)]
         warm_up: Option<f64>,
         /// Feed pipe: bins across the pipe's section for the profiles.
-        #[arg(long, default_value_t = 12)]
+        #[arg(long, default_value_t = DEFAULT_BINS)]
         bins: usize,
     },
     /// Convert a legacy gc2d input file (.gsi) into a RON scene; prints its `$` comments and every warning.
@@ -149,21 +148,6 @@ impl From<Colour> for ColourBy {
             Colour::Material => ColourBy::Material,
         }
     }
-}
-
-/// Scene kinds for the analysis.
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum Kind {
-    /// Decide from the wall forces.
-    Auto,
-    /// A free heap on a floor.
-    Pile,
-    /// A column between side walls.
-    Silo,
-    /// A ball mill: collision statistics from events.csv and the power balance (run it with --events).
-    Mill,
-    /// A feed pipe: throughput, transit times and profiles across the pipe from transits.csv and the dumps.
-    Feedpipe,
 }
 
 #[derive(clap::Args)]
@@ -639,38 +623,15 @@ fn snapshot(
 /// `analyze`: runs the analysis of a finished run and says where the tables and figures are.
 fn analyze(
     run: &Path,
-    kind: Kind,
+    kind: AnalysisKind,
     window: Option<f64>,
     grid: Option<f64>,
     warm_up: Option<f64>,
     bins: usize,
 ) -> Result<u8, CommandFailure> {
-    let failed =
-        |e: gc2d_analysis::AnalysisError| CommandFailure::input(format!("cannot analyse {}: {e}", run.display()));
-    let scene = match kind {
-        Kind::Auto => SceneKind::Auto,
-        Kind::Pile => SceneKind::Pile,
-        Kind::Silo => SceneKind::Silo,
-        Kind::Mill => {
-            let report = analyze_mill(run, &MillOptions { warm_up_s: warm_up }).map_err(failed)?;
-            let json =
-                serde_json::to_string_pretty(&report).map_err(|e| CommandFailure { code: 1, report: e.to_string() })?;
-            console::out(&json).map_err(|e| CommandFailure::stdout(&e))?;
-            console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
-            return Ok(0);
-        }
-        Kind::Feedpipe => {
-            let report = analyze_feedpipe(run, &FeedpipeOptions { warm_up_s: warm_up, bins }).map_err(failed)?;
-            let json =
-                serde_json::to_string_pretty(&report).map_err(|e| CommandFailure { code: 1, report: e.to_string() })?;
-            console::out(&json).map_err(|e| CommandFailure::stdout(&e))?;
-            console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
-            return Ok(0);
-        }
-    };
-    let options = AnalyzeOptions { scene, window_half_width: window, grid_cell: grid };
-    let report = analyze_run(run, &options).map_err(failed)?;
-    let json = serde_json::to_string_pretty(&report).map_err(|e| CommandFailure { code: 1, report: e.to_string() })?;
+    let settings = AnalysisSettings { window_half_width_m: window, grid_cell_m: grid, warm_up_s: warm_up, bins };
+    let json = gc2d_cli::analysis::analyze(run, kind, &settings)
+        .map_err(|e| CommandFailure::input(format!("cannot analyse {}: {e}", run.display())))?;
     console::out(&json).map_err(|e| CommandFailure::stdout(&e))?;
     console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
     Ok(0)

@@ -314,6 +314,36 @@ fn bad_sweep_files_are_located() {
         "    parameters: [(path: \"materials[0].mu\", values: List([0.5]))],\n    plots: [(x: \"m\", y: [\"time_s\"])],\n",
     );
     assert!(error.contains("`m` is not a parameter of this sweep, did you mean `mu`?"), "{error}");
+    let error = sweep_error("    analysis: (kind: Mill),\n");
+    assert!(error.contains("`analysis.kind`: this analysis needs a scene with a `mill`"), "{error}");
+    let error = sweep_error("    analysis: (kind: Feedpipe),\n");
+    assert!(error.contains("this analysis needs a scene with `outlets`"), "{error}");
+    let error = sweep_error("    analysis: (kind: Heap),\n");
+    assert!(error.contains("Heap"), "{error}");
+    let error = sweep_error("    analysis: (warm_up_s: -0.1),\n");
+    assert!(error.contains("`analysis.warm_up_s`: must be a time ≥ 0 in s, got -0.1"), "{error}");
+}
+
+#[test]
+fn a_pile_ensemble_is_analysed_as_a_pile_before_it_is_collected() {
+    let dir = sweep_folder("    seeds: Count(2),\n    analysis: (kind: Pile),\n");
+    sweep(dir.path()).args(["--jobs", "2", "--threads", "1"]).assert().success();
+    let out = dir.path().join("out");
+    let (header, rows) = csv(&out.join("sweep.csv"));
+    assert_eq!(rows.iter().map(|r| r[0].as_str()).collect::<Vec<_>>(), ["seed=3", "seed=4"]);
+    // `analyze --kind pile` ran in each run directory, and its report's numbers are columns prefixed `analysis.`.
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no {name}: {header:?}"));
+    let (height, particles) = (column("analysis.pile.height"), column("analysis.particles"));
+    for row in &rows {
+        let report: serde_json::Value =
+            serde_json::from_slice(&read(out.join(&row[0]).join("analysis/analysis.json"))).unwrap();
+        assert_eq!(report["scene"], "Pile");
+        let value: f64 = row[height].parse().unwrap();
+        assert_eq!(value.to_bits(), report["pile"]["height"].as_f64().unwrap().to_bits());
+        assert!(value > 0.0);
+        assert_eq!(row[particles], report["particles"].to_string());
+    }
+    assert_ne!(rows[0][height], rows[1][height], "two seeds pour two different piles");
 }
 
 #[test]

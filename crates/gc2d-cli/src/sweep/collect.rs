@@ -1,14 +1,14 @@
 //! Gathering the sweep's results into one table, a row per point: the point's name, its parameter values and seed,
 //! the run's outcome, then every number of its `summary.json` and of each scene-type analysis it has
-//! (`analysis/<kind>.json`, the mill's run first where it is missing), read generically as flattened JSON, so that
-//! fields an analysis gains later appear as new columns.
+//! (`analysis/<kind>.json`, the sweep's analysis run first where its report is missing), read generically as
+//! flattened JSON, so that fields an analysis gains later appear as new columns.
 
 use super::scenes::PointScene;
 use super::spec::{SEED, Sweep};
 use super::state::outcome;
+use crate::analysis::{AnalysisSettings, analyze};
 use crate::failure::CommandFailure;
 use gc2d_analysis::particle_state::csv::quoted;
-use gc2d_analysis::{MillOptions, analyze_mill};
 use serde_json::Value;
 use std::collections::HashMap;
 use std::path::Path;
@@ -66,10 +66,14 @@ pub fn collect(sweep: &Sweep, points: &[PointScene]) -> (Table, Vec<String>) {
             Ok(summary) => flatten("", &summary, &mut values),
             Err(message) => warnings.push(format!("{}: {message}", point.name)),
         }
-        if point.is_mill && outcome.as_deref() == Some("completed") && !dir.join("analysis/mill.json").is_file() {
-            let options = MillOptions { warm_up_s: sweep.file.analysis.warm_up_s };
-            if let Err(e) = analyze_mill(dir, &options) {
-                warnings.push(format!("{}: the mill analysis failed: {e}", point.name));
+        if let Some(kind) = point.analysis
+            && outcome.as_deref() == Some("completed")
+            && !dir.join(kind.report_file()).is_file()
+        {
+            let settings =
+                AnalysisSettings { warm_up_s: sweep.file.analysis.warm_up_s, ..AnalysisSettings::automatic() };
+            if let Err(e) = analyze(dir, kind, &settings) {
+                warnings.push(format!("{}: the {} analysis failed: {e}", point.name, kind.name()));
             }
         }
         for (kind, path) in analyses(dir) {

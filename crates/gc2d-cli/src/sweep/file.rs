@@ -1,6 +1,7 @@
 //! The sweep file as written: a RON `Sweep(…)` read through serde, with ron's errors located in the file like a
 //! scene's (file, line, column, field path, and a "did you mean" for misspelled field names).
 
+use crate::analysis::AnalysisKind;
 use crate::failure::CommandFailure;
 use gc2d_scene::{ErrorKind, SceneError, SourceText, error::suggest};
 use ron::extensions::Extensions;
@@ -90,7 +91,11 @@ pub struct RunOptions {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AnalysisOptions {
-    /// Mill: the warm-up left out of the averages, s. Default: the automatic cut of `analyze --kind mill`.
+    /// The analysis run on every finished point that lacks its report (`gc2d-rs analyze --kind`): `Pile`, `Silo`,
+    /// `Auto` (pile or silo), `Mill` or `Feedpipe`. Default: `Mill` for a mill scene, none otherwise.
+    #[serde(default)]
+    pub kind: Option<AnalysisKind>,
+    /// Mill and feed pipe: the warm-up left out of the averages, s. Default: the automatic cut of `analyze`.
     #[serde(default)]
     pub warm_up_s: Option<f64>,
 }

@@ -4,6 +4,7 @@
 
 use super::apply::{PathProblem, Target, put, target};
 use super::spec::{ParameterSpec, Point, Sweep};
+use crate::analysis::AnalysisKind;
 use crate::failure::CommandFailure;
 use crate::outputs::SCENE_COPY;
 use gc2d_scene::{ErrorKind, Scene};
@@ -28,8 +29,9 @@ pub struct PointScene {
     pub dir: PathBuf,
     /// The scene as RON text with every field written, as `scene.ron` holds it.
     pub text: String,
-    /// True for a mill scene (its runs record contact events and are analysed with `analyze --kind mill`).
-    pub is_mill: bool,
+    /// The analysis its finished run gets before collecting: the sweep file's `analysis.kind`, else the mill's for a
+    /// mill scene, else none.
+    pub analysis: Option<AnalysisKind>,
 }
 
 /// Makes and checks the scene of every point.
@@ -46,6 +48,7 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
     for parameter in &sweep.parameters {
         check_path(sweep, &base_text, parameter)?;
     }
+    check_analysis_kind(sweep, &base)?;
     let points = sweep.points(base.run.seed);
     let mut seen: HashMap<String, usize> = HashMap::new();
     for point in &points {
@@ -101,7 +104,22 @@ fn point_scene(sweep: &Sweep, base_text: &str, point: &Point) -> Result<PointSce
     let scene = Scene::from_str(&text, &file.display().to_string()).map_err(|e| fail(super::file::render(&e)))?;
     scene.summary().map_err(|e| fail(super::file::render(&e)))?;
     let text = scene.to_ron_string().map_err(|e| fail(format!("cannot write the scene: {e}")))?;
-    Ok(PointScene { point: point.clone(), name, dir, text, is_mill: scene.mill.is_some() })
+    let analysis = sweep.file.analysis.kind.or(scene.mill.is_some().then_some(AnalysisKind::Mill));
+    Ok(PointScene { point: point.clone(), name, dir, text, analysis })
+}
+
+/// Refuses an `analysis.kind` the base scene cannot give: a mill analysis without a `mill`, a feed pipe's without
+/// `outlets` (its transit times come from them).
+fn check_analysis_kind(sweep: &Sweep, base: &Scene) -> Result<(), CommandFailure> {
+    let missing = match sweep.file.analysis.kind {
+        Some(AnalysisKind::Mill) if base.mill.is_none() => "a `mill`",
+        Some(AnalysisKind::Feedpipe) if base.outlets.is_empty() => "`outlets`",
+        _ => return Ok(()),
+    };
+    Err(sweep.field_error(
+        "analysis.kind",
+        format!("this analysis needs a scene with {missing}, and {} has none", sweep.scene.display()),
+    ))
 }
 
 /// Refuses a parameter whose path does not lead to a field of the base scene: located at the parameter in the sweep

@@ -136,6 +136,11 @@ impl Sweep {
         {
             return Err(error("run.checkpoint_every_s".into(), format!("must be a positive time in s, got {every}")));
         }
+        if let Some(warm_up) = file.analysis.warm_up_s
+            && !(warm_up.is_finite() && warm_up >= 0.0)
+        {
+            return Err(error("analysis.warm_up_s".into(), format!("must be a time ≥ 0 in s, got {warm_up}")));
+        }
         check_plots(&file.plots, &parameters).map_err(|(field, message)| error(field, message))?;
         Ok(Self { path: path.to_path_buf(), source, scene, out, parameters, seeds, file })
     }
@@ -182,6 +187,13 @@ impl Sweep {
             self.parameters.iter().zip(&point.values).map(|(p, v)| format!("{} = {v}", p.path)).collect();
         parts.push(format!("run.seed = {}", point.seed));
         parts.join(", ")
+    }
+
+    /// An error of the value at `field` (`analysis.kind`), located in the sweep file.
+    pub fn field_error(&self, field: &str, message: String) -> CommandFailure {
+        CommandFailure::input(render(
+            &SceneError::new(ErrorKind::Value, field.to_owned(), message).located(Some(&self.source)),
+        ))
     }
 
     /// An error located at a parameter's `path` field in the sweep file.
