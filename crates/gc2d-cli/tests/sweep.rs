@@ -344,6 +344,18 @@ fn a_pile_ensemble_is_analysed_as_a_pile_before_it_is_collected() {
         assert_eq!(row[particles], report["particles"].to_string());
     }
     assert_ne!(rows[0][height], rows[1][height], "two seeds pour two different piles");
+
+    // The ensemble's mean and spread over the seeds: one row, as the thesis reports its pile ensemble.
+    let (means_header, means) = csv(&out.join("sweep_means.csv"));
+    assert_eq!(means_header[0], "seeds");
+    assert_eq!(means.len(), 1);
+    assert_eq!(means[0][0], "2");
+    let heights: Vec<f64> = rows.iter().map(|r| r[height].parse().unwrap()).collect();
+    let at = |name: &str| means_header.iter().position(|h| h == name).unwrap();
+    let mean: f64 = means[0][at("analysis.pile.height.mean")].parse().unwrap();
+    let sd: f64 = means[0][at("analysis.pile.height.sd")].parse().unwrap();
+    assert!((mean - 0.5 * (heights[0] + heights[1])).abs() <= 1e-15 * mean);
+    assert!((sd - (heights[0] - heights[1]).abs() / 2f64.sqrt()).abs() <= 1e-12 * sd);
 }
 
 #[test]

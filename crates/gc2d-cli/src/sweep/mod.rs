@@ -11,6 +11,7 @@ mod local;
 mod parquet_file;
 mod plots;
 mod scenes;
+mod seed_means;
 mod slurm;
 mod spec;
 mod state;
@@ -29,6 +30,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub const TABLE_CSV: &str = "sweep.csv";
 /// The collected table as Parquet.
 pub const TABLE_PARQUET: &str = "sweep.parquet";
+/// The means and spreads over the seeds of each combination of parameter values.
+pub const MEANS_CSV: &str = "sweep_means.csv";
 
 /// The arguments of `gc2d-rs sweep`.
 #[derive(Debug, Clone, clap::Args)]
@@ -168,14 +171,17 @@ fn collect_results(sweep: &Sweep, points: &[PointScene]) -> Result<u8, CommandFa
     collect::write_csv(&table, &csv)?;
     let parquet = sweep.out.join(TABLE_PARQUET);
     parquet_file::write_parquet(&table, &parquet)?;
+    let means = sweep.out.join(MEANS_CSV);
+    seed_means::write_means_csv(&table, &seed_means::seed_groups(&table), &means)?;
     let figures = plots::draw_plots(&table, &sweep.file.plots, &sweep.out.join("plots"))?;
     let finished = table.rows.iter().filter(|r| r.outcome.as_deref() == Some("completed")).count();
     console::err(&format!(
-        "Collected {} points ({finished} completed, {} columns) into {} and {}{}.",
+        "Collected {} points ({finished} completed, {} columns) into {} and {}, the means over the seeds into {}{}.",
         table.rows.len(),
         table.numbers.len() + table.parameters.len() + 3,
         csv.display(),
         parquet.display(),
+        means.display(),
         if figures.is_empty() {
             String::new()
         } else {

@@ -1,5 +1,5 @@
 //! SVG figures of outputs against a parameter (plotters, in the analysis figures' style): one series per
-//! combination of the other parameters' values, each point the mean over the seeds with an error bar of ± one
+//! combination of the other parameters' values, each point the mean over the completed seeds with an error bar of ± one
 //! (sample) standard deviation; the legend says so.
 
 use super::collect::Table;
@@ -40,7 +40,8 @@ pub fn draw_plots(table: &Table, plots: &[Plot], folder: &Path) -> Result<Vec<Pa
 }
 
 /// The series of column `y` against parameter `x`: rows grouped by the other parameters' values, then by x; the mean
-/// and sample standard deviation over the group's seeds (rows where y is missing or not finite are left out).
+/// and sample standard deviation over the group's seeds (points that did not complete, and rows where y is missing or
+/// not finite, are left out).
 pub fn series(table: &Table, x: &str, y: &str) -> Result<Vec<SeriesStats>, CommandFailure> {
     let Some(x_index) = table.parameters.iter().position(|p| p == x) else {
         return Err(CommandFailure::input(format!("a plot's x, `{x}`, is not a parameter")));
@@ -56,6 +57,9 @@ pub fn series(table: &Table, x: &str, y: &str) -> Result<Vec<SeriesStats>, Comma
     let mut order: Vec<String> = Vec::new();
     let mut groups: BTreeMap<String, BTreeMap<OrderedX, Vec<f64>>> = BTreeMap::new();
     for (row, value) in table.rows.iter().zip(column) {
+        if row.outcome.as_deref() != Some("completed") {
+            continue;
+        }
         let Ok(xv) = row.parameters[x_index].parse::<f64>() else {
             return Err(CommandFailure::input(format!(
                 "a plot's x, `{x}`, has the value `{}`, which is not a number",
