@@ -306,26 +306,30 @@ impl PairContext<'_> {
             centroid_offset: g.centroid.map_or(0.0, |centroid| (centroid - g.point).dot(g.normal.perp())),
         });
         let previous = contact.state.overlap_area();
+        // What the pair keeps of a response. Each branch below passes its response by reference: moving the
+        // 176-byte struct out of the branch made the compiler copy it with a memcpy call, 4 % of a dense pile's
+        // step (docs/performance.md, "Profile of a step").
+        let record = |contact: &mut PairContact, response: &ContactResponse, wall_work: f64| {
+            contact.state = ContactHistory::OverlapArea(response.state);
+            contact.stored_energy = law.stored_energy(&response.state);
+            let energy = LedgerTerms::of(&response.energy, wall_work);
+            contact.dissipated = energy.dissipation();
+            contact.touching = overlap.is_some();
+            contact.point = overlap.map_or(DVec2::ZERO, |g| g.point);
+            contact.overlap_fraction = overlap.map_or(0.0, |g| g.area / self.smaller_particle_area(i, j));
+            contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
+            energy
+        };
         // A pair apart now that was not in contact before (no contact constants) gets the law's answer for it, no
         // force and nothing to book, without reading the bodies' velocities: most box pairs of a pile are such
         // pairs (docs/performance.md, "Pairs apart skip the law").
-        let (response, wall_work) = if overlap.is_none() && previous.constants.is_none() {
-            (ContactResponse::default(), 0.0)
+        if overlap.is_none() && previous.constants.is_none() {
+            record(contact, &ContactResponse::default(), 0.0)
         } else {
             let (motion_i, motion_j) = (self.motion(i), self.motion(j));
             let response = law.evaluate(&geometry, &motion_i, &motion_j, &previous, self.dt);
-            let wall_work = wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt);
-            (response, wall_work)
-        };
-        contact.state = ContactHistory::OverlapArea(response.state);
-        contact.stored_energy = law.stored_energy(&response.state);
-        let energy = LedgerTerms::of(&response.energy, wall_work);
-        contact.dissipated = energy.dissipation();
-        contact.touching = overlap.is_some();
-        contact.point = overlap.map_or(DVec2::ZERO, |g| g.point);
-        contact.overlap_fraction = overlap.map_or(0.0, |g| g.area / self.smaller_particle_area(i, j));
-        contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
-        energy
+            record(contact, &response, wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt))
+        }
     }
 
     /// Area of the smaller particle of the pair at its current scale (walls do not count).

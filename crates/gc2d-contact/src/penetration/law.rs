@@ -197,7 +197,7 @@ impl PenetrationLaw {
             (previous.impact_speed, previous.damping_ratio)
         } else {
             let impact = if approach_speed > 0.0 { approach_speed } else { 0.0 };
-            (impact, self.damping.map_or(0.0, |d| d.episode_ratio(impact, &self.normal, self.tensile_clamp)))
+            (impact, self.damping.as_ref().map_or(0.0, |d| d.episode_ratio(impact, &self.normal, self.tensile_clamp)))
         };
 
         let elastic = self.normal.force(depth, radius);
@@ -309,7 +309,8 @@ impl PenetrationLaw {
     pub fn max_time_step(&self, properties: &PairProperties, max_speed: f64) -> Option<f64> {
         let depth = self.max_depth(properties, max_speed);
         let radius = properties.effective_radius;
-        let normal_ratio = self.damping.map_or(0.0, |d| d.max_ratio(max_speed, &self.normal, self.tensile_clamp));
+        let normal_ratio =
+            self.damping.as_ref().map_or(0.0, |d| d.max_ratio(max_speed, &self.normal, self.tensile_clamp));
         let mut modes = [(properties.effective_mass, self.max_stiffness(properties, max_speed), normal_ratio); 3];
         if let Some(t) = &self.tangential {
             modes[1] = (properties.tangential_mass, t.stiffness(&self.normal, depth, radius), t.damping_ratio);
