@@ -9,18 +9,21 @@ use gc2d_geometry::{Aabb, AngleMode, DVec2, Pose, ellipse_polygon};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-const COLUMNS: usize = 25;
+const COLUMNS: usize = 45;
 const ROWS: usize = 24;
 /// Nominal semi-axis of the 7-gons, m (the thesis's r = 1.5 mm), varied by ±10 %.
 const RADIUS: f64 = 1.5e-3;
 /// Lattice spacing: two largest radii plus 0.1 mm, so nothing overlaps at the start.
 const SPACING: f64 = 2.0 * 1.1 * RADIUS + 1e-4;
 const STEPS: usize = 3000;
+// The closing ledger pass must have more than one of its chunks of 1,024 bodies.
+const _: () = assert!(COLUMNS * ROWS > 1024);
 
-/// 600 random RAND1 7-gons on a lattice in a closed box, flying in random directions at up to 1 m/s, so that about
-/// a hundred contacts are active by the end of the 6 ms run and the pair list holds more than eight of the
+/// 1,080 random RAND1 7-gons on a lattice in a closed box, flying in random directions at up to 1 m/s, so that
+/// about 160 contacts are active by the end of the 6 ms run and the pair list holds more than eight of the
 /// narrowphase's chunks of 64 pairs, whose sums are added in chunk order (docs/model.md, "Narrowphase and ledger
-/// shortcuts"). More than the engine's 512-body threshold for parallel stages.
+/// shortcuts"). More than the engine's 512-body threshold for parallel stages, and more than one of the closing
+/// ledger pass's fixed chunks of 1,024 bodies, whose sums are also added in chunk order.
 fn random_pile() -> World {
     let mut world = world(config(2e-6, law(E_THESIS, 0.5, 0.6), G));
     let inner = Aabb { min: DVec2::ZERO, max: DVec2::new(COLUMNS as f64 * SPACING, ROWS as f64 * SPACING) };
@@ -84,7 +87,7 @@ fn pile_is_bitwise_identical_on_1_2_and_8_threads() {
     assert_eq!(one.bits.len(), 6 * COLUMNS * ROWS);
     let (contacts, pairs) = (one.most_contacts, one.most_pairs);
     assert!(contacts > 50, "the run must exercise contacts, saw at most {contacts}");
-    // Measured: 108 contacts and 532 box pairs in the busiest step (nine chunks of the narrowphase's sums).
+    // Measured: 160 contacts and 920 box pairs in the busiest step (fifteen chunks of the narrowphase's sums).
     assert!(pairs > 8 * 64, "the run must fill more than eight chunks of pairs, saw at most {pairs} pairs");
     for threads in [2, 8] {
         let other = run_in_pool(threads);
