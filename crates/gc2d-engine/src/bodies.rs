@@ -99,8 +99,10 @@ pub struct Bodies {
     pub inscribed_radius: Vec<f64>,
     /// Largest distance of a point of the body from its centroid, at scale 1, m.
     pub reach: Vec<f64>,
-    /// Virtual tangential surface velocity of a wall (drums, §2.11); zero for particles.
-    pub surface_velocity: Vec<DVec2>,
+    /// Virtual tangential surface velocity of the walls that have one (drums, §2.11), by body id. The column ends
+    /// at the last such wall: every body beyond it has none, so the particles, added after the walls, do not carry
+    /// 16 bytes each of a wall property. Read it with [`Bodies::surface_velocity_of`].
+    pub(crate) surface_velocity: Vec<DVec2>,
     /// Axis-aligned box around the world vertices.
     pub aabb: Vec<Aabb>,
     /// Force accumulated this step, N.
@@ -146,15 +148,17 @@ impl Bodies {
         self.area.push(shape.area());
         self.inscribed_radius.push(shape.inscribed_radius());
         self.reach.push(shape.reach());
-        self.surface_velocity.push(DVec2::ZERO);
         self.force.push(DVec2::ZERO);
         self.torque.push(0.0);
         id
     }
 
     /// Gives back the spare room of every column (a `Vec` grows by doubling, so up to half of a column can be
-    /// unused); the values stay as they are.
+    /// unused); the values stay as they are. The surface-velocity column is cut after its last wall with a surface
+    /// velocity (checkpoints written before it stopped there hold one entry per body).
     pub fn shrink_to_fit(&mut self) {
+        let kept = self.surface_velocity.iter().rposition(|&v| v != DVec2::ZERO).map_or(0, |last| last + 1);
+        self.surface_velocity.truncate(kept);
         self.kind.shrink_to_fit();
         self.alive.shrink_to_fit();
         self.shape.shrink_to_fit();
@@ -206,6 +210,24 @@ impl Bodies {
             + vec_bytes(&self.aabb)
             + vec_bytes(&self.force)
             + vec_bytes(&self.torque)
+    }
+
+    /// Virtual tangential surface velocity of body `i`, m/s: a wall's as given to `World::add_wall`, zero for every
+    /// particle.
+    #[inline]
+    pub fn surface_velocity_of(&self, i: usize) -> DVec2 {
+        self.surface_velocity.get(i).copied().unwrap_or(DVec2::ZERO)
+    }
+
+    /// Gives body `id` the surface velocity `velocity`, extending the column to it when it is not zero.
+    pub(crate) fn set_surface_velocity(&mut self, id: BodyId, velocity: DVec2) {
+        let i = id.index();
+        if velocity != DVec2::ZERO && self.surface_velocity.len() <= i {
+            self.surface_velocity.resize(i + 1, DVec2::ZERO);
+        }
+        if let Some(slot) = self.surface_velocity.get_mut(i) {
+            *slot = velocity;
+        }
     }
 
     /// World-frame vertices of one body.

@@ -241,13 +241,18 @@ fn check_consistency(world: &World) -> Result<(), CheckpointError> {
         ("inverse_inertia", b.inverse_inertia.len()),
         ("area", b.area.len()),
         ("inscribed_radius", b.inscribed_radius.len()),
-        ("surface_velocity", b.surface_velocity.len()),
         ("aabb", b.aabb.len()),
         ("force", b.force.len()),
         ("torque", b.torque.len()),
     ];
     if let Some((name, len)) = columns.iter().find(|(_, len)| *len != n) {
         return Err(CheckpointError::Inconsistent(format!("body column {name} has {len} entries for {n} bodies")));
+    }
+    if b.surface_velocity.len() > n {
+        return Err(CheckpointError::Inconsistent(format!(
+            "body column surface_velocity has {} entries for {n} bodies",
+            b.surface_velocity.len()
+        )));
     }
     if b.world_vertices.len() != b.body_vertices.len() {
         return Err(CheckpointError::Inconsistent("body-frame and world-frame vertex counts differ".into()));

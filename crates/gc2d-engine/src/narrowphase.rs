@@ -191,7 +191,7 @@ impl PairContext<'_> {
             angular_velocity: b.angular_velocity[i],
             inv_mass: b.inverse_mass[i],
             inv_inertia: b.inverse_inertia[i],
-            surface_velocity: b.surface_velocity[i],
+            surface_velocity: b.surface_velocity_of(i),
         }
     }
 

@@ -371,7 +371,7 @@ impl World {
         let shape = shape.into();
         assert!(shape.validate(false).is_ok(), "invalid wall shape {shape:?}");
         let id = self.bodies.push(BodyKind::Wall, &shape, pose, f64::INFINITY, f64::INFINITY);
-        self.bodies.surface_velocity[id.index()] = surface_velocity;
+        self.bodies.set_surface_velocity(id, surface_velocity);
         if !motion.is_static() {
             self.stages.rotors |= matches!(motion, WallMotion::Rotating(_));
             self.moving_walls.push(MovingWall { body: id, rest: pose, motion });

@@ -168,3 +168,39 @@ fn pulled_block_starts_to_slide_at_mu_m_g() {
         );
     }
 }
+
+#[test]
+fn a_belt_drags_a_block_to_its_surface_speed() {
+    // A wall's virtual surface velocity (gc2d's drums and belts, §2.11): a block set down at rest on a floor whose
+    // surface moves at 5 cm/s slides, accelerated by kinetic friction at μ·g, until it moves with the surface, then
+    // rides along. A block on an ordinary floor beside it, added before the belt (a particle with a lower id than the
+    // belt), stays at rest. Measured: 0.978 of μ·g·t at half the catch-up time (the contact loads up during the first
+    // steps), then the belt's speed within 5e-5, and the other block at 8e-14 m/s.
+    let (mu, belt_speed) = (0.4, 0.05);
+    let mut world = world(config(INCLINE_DT, law(E_THESIS, GAMMA, mu), G));
+    let floor = rectangle(0.2, 0.02).unwrap();
+    let block = rectangle(INCLINE_BLOCK.x, INCLINE_BLOCK.y).unwrap();
+    let on_floor = |x: f64| Pose::new(DVec2::new(x, 0.5 * INCLINE_BLOCK.y), 0.0);
+    add_static_wall(&mut world, &floor, Pose::new(DVec2::new(-0.15, -0.01), 0.0));
+    let resting = world.add_particle(&block, on_floor(-0.15), RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+    let belt_pose = Pose::new(DVec2::new(0.15, -0.01), 0.0);
+    world.add_wall(&floor, belt_pose, DVec2::new(belt_speed, 0.0), gc2d_engine::WallMotion::Static);
+    let riding = world.add_particle(&block, on_floor(0.1), RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+
+    let catch_up = belt_speed / (mu * G);
+    run_until(&mut world, 0.5 * catch_up);
+    let speed = velocity(&world, riding).x;
+    assert!(
+        (0.95..1.0).contains(&(speed / (0.5 * belt_speed))),
+        "after half the catch-up time v/(μg) the block moves at {speed} m/s, expected about {}",
+        0.5 * belt_speed
+    );
+    run_until(&mut world, 4.0 * catch_up);
+    let speed = velocity(&world, riding).x;
+    assert!((speed / belt_speed - 1.0).abs() < 1e-3, "the block rides at {speed} m/s on a belt at {belt_speed}");
+    assert!(
+        velocity(&world, resting).length() < 1e-9,
+        "the block on the plain floor moves: {}",
+        velocity(&world, resting)
+    );
+}
