@@ -1,6 +1,6 @@
 //! SVG figures of outputs against a parameter (plotters, in the analysis figures' style): one series per
-//! combination of the other parameters' values, each point the mean over the completed seeds with an error bar of ± one
-//! (sample) standard deviation; the legend says so.
+//! combination of the other parameters' values, each point the mean over the completed seeds with an error bar of
+//! ± one (sample) standard deviation; the legend says so.
 
 use super::collect::Table;
 use super::file::Plot;
