@@ -341,10 +341,10 @@ fn a_payload_that_passes_the_checksum_but_is_not_a_world_is_an_error() {
 /// The payload length of a fixed scene pins the serialized layout: a field added to, removed from or retyped in any
 /// type of the World changes it. When this fails, bump `CHECKPOINT_FORMAT_VERSION` and update the length. The scene
 /// runs until it has a touching pair, so that the pair records are in the payload too (after one step it had none,
-/// and format 12's smaller record passed the pin unseen). The length also follows what the columns hold: 21,435 bytes
-/// became 20,923 when the wall surface-velocity column stopped at the last wall that has one (the scene's 32
-/// bodies without one no longer write 16 zero bytes each), a change of content, not of layout, so format 12 stayed (files with
-/// the full column still load).
+/// and format 12's smaller record passed the pin unseen). The length also follows what the columns hold: 21,435
+/// bytes became 20,923 when the wall surface-velocity column stopped at the last wall that has one (the scene's 32
+/// bodies without one no longer write 16 zero bytes each), a change of content, not of layout, so format 12 stayed
+/// (files with the full column still load).
 #[test]
 fn checkpoint_layout_is_pinned() {
     let mut world = scene();
