@@ -238,6 +238,11 @@ fn seeds_multiply_the_points_and_slurm_tasks_take_chunks() {
     names.sort();
     assert_eq!(names, ["gamma=1.0_seed=7", "gamma=1.0_seed=9"]);
     assert_eq!(gc2d_scene::Scene::from_path(made[0].join("scene.ron")).unwrap().materials[0].gamma, 1.0);
+    // Collecting before the other tasks have run names the points without results in one warning.
+    sweep(dir.path()).arg("--collect").assert().success().stderr(contains(
+        "warning: 4 of 6 points have no summary.json yet (not run, or still running): gamma=0.5_seed=7, \
+         gamma=0.5_seed=9, gamma=0.75_seed=7, gamma=0.75_seed=9\n",
+    ));
     sweep(dir.path())
         .args(["--task", "2", "--points-per-task", "4"])
         .assert()

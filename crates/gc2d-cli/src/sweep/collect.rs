@@ -17,6 +17,9 @@ use std::path::Path;
 /// are arrays whose length differs between the points (histograms with a bin count that follows the sample count).
 pub const MAX_ARRAY_COLUMNS: usize = 8;
 
+/// Longest list of points without results that the warning names.
+const LISTED_POINTS: usize = 10;
+
 /// One point's results.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Row {
@@ -58,13 +61,19 @@ pub fn collect(sweep: &Sweep, points: &[PointScene]) -> (Table, Vec<String>) {
     let mut warnings = Vec::new();
     let mut numbers: Vec<String> = Vec::new();
     let mut rows: Vec<Row> = Vec::with_capacity(points.len());
+    let mut without_summary: Vec<&str> = Vec::new();
     for point in points {
         let dir = &point.dir;
         let outcome = outcome(dir);
         let mut values = Vec::new();
-        match read_json(&dir.join("summary.json")) {
-            Ok(summary) => flatten("", &summary, &mut values),
-            Err(message) => warnings.push(format!("{}: {message}", point.name)),
+        let summary = dir.join("summary.json");
+        if !summary.exists() {
+            without_summary.push(&point.name);
+        } else {
+            match read_json(&summary) {
+                Ok(summary) => flatten("", &summary, &mut values),
+                Err(message) => warnings.push(format!("{}: {message}", point.name)),
+            }
         }
         if let Some(kind) = point.analysis
             && outcome.as_deref() == Some("completed")
@@ -94,6 +103,17 @@ pub fn collect(sweep: &Sweep, points: &[PointScene]) -> (Table, Vec<String>) {
             outcome,
             numbers: values.into_iter().collect(),
         });
+    }
+    if !without_summary.is_empty() {
+        let listed = &without_summary[..without_summary.len().min(LISTED_POINTS)];
+        let more = without_summary.len() - listed.len();
+        warnings.push(format!(
+            "{} of {} points have no summary.json yet (not run, or still running): {}{}",
+            without_summary.len(),
+            points.len(),
+            listed.join(", "),
+            if more > 0 { format!(" and {more} more") } else { String::new() }
+        ));
     }
     let uneven = uneven_arrays(&numbers, &rows);
     numbers.retain(|name| !array_family(name).is_some_and(|family| uneven.contains(family)));

@@ -64,9 +64,9 @@ impl Sweep {
             CommandFailure::input(render(&SceneError::new(ErrorKind::Value, field, message).located(Some(&source))))
         };
         let folder = path.parent().unwrap_or(Path::new(""));
-        let scene = folder.join(&file.scene);
+        let scene = lexically_tidy(&folder.join(&file.scene));
         let out = out.unwrap_or_else(|| match &file.out {
-            Some(out) => folder.join(out),
+            Some(out) => lexically_tidy(&folder.join(out)),
             None => PathBuf::from("out").join(path.file_stem().unwrap_or_default()),
         });
         let mut parameters = Vec::new();
@@ -207,6 +207,23 @@ impl Sweep {
     }
 }
 
+/// `path` with each `dir/..` pair dropped (`sweeps/../out/x` → `out/x`), as messages and run commands show it. Only
+/// a `..` that follows a plain folder name goes; a leading one, or one after a root, stays.
+fn lexically_tidy(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut tidy: Vec<Component> = Vec::new();
+    for component in path.components() {
+        match (component, tidy.last()) {
+            (Component::CurDir, _) => {}
+            (Component::ParentDir, Some(Component::Normal(_))) => {
+                tidy.pop();
+            }
+            _ => tidy.push(component),
+        }
+    }
+    if tidy.is_empty() { PathBuf::from(".") } else { tidy.iter().collect() }
+}
+
 /// The plots name a parameter on x and their outputs at all.
 fn check_plots(plots: &[Plot], parameters: &[ParameterSpec]) -> Result<(), (String, String)> {
     for (k, plot) in plots.iter().enumerate() {
@@ -299,6 +316,16 @@ mod tests {
         assert!(grid(1.0, 0.0, 1.0).is_err());
         assert!(grid(0.0, 1.0, 0.0).is_err());
         assert!(grid(0.0, 1e9, 1e-3).is_err());
+    }
+
+    #[test]
+    fn paths_lose_their_folder_and_parent_pairs() {
+        let tidy = |p: &str| lexically_tidy(Path::new(p)).display().to_string();
+        assert_eq!(tidy("sweeps/../out/mill_map"), "out/mill_map");
+        assert_eq!(tidy("./sweeps/../../out"), "../out");
+        assert_eq!(tidy("../scenes/./mill.ron"), "../scenes/mill.ron");
+        assert_eq!(tidy("/a/b/../c"), "/a/c");
+        assert_eq!(tidy("a/.."), ".");
     }
 
     #[test]
