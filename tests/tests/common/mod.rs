@@ -59,25 +59,42 @@ fn load_finished_run(run: &Path, scene: &Scene) -> World {
 
 /// The members of an ensemble of a thesis-sized scene: with [`RUN_DIR_VARIABLE`] set, the final checkpoint of every
 /// directory in it whose name starts with the scene's stem (`sandpile_thesis`, `sandpile_thesis_seed2`, … made with
-/// `gc2d-rs run SCENE --seed N --out DIR/sandpile_thesis_seedN`), each checked to have reached the scene's end time,
-/// in name order; otherwise the scene run once with its own seed. Each member comes with its name.
+/// `gc2d-rs run SCENE --seed N --out DIR/sandpile_thesis_seedN`), and of every run directory inside such a directory
+/// that has none itself (the points of a sweep, `DIR/sandpile_thesis/seed=N` made by `sweeps/sandpile_thesis.ron`),
+/// each checked to have reached the scene's end time, in name order; otherwise the scene run once with its own seed.
+/// Each member comes with its path below the run directory.
 pub fn run_or_load_ensemble(file: &str) -> Vec<(String, World)> {
     let Some(dir) = run_dir() else {
         return vec![(file.to_owned(), run_scene(file).0)];
     };
     let stem = Path::new(file).file_stem().expect("a scene file name").to_string_lossy().into_owned();
-    let mut members: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("cannot list {} ({RUN_DIR_VARIABLE}): {e}", dir.display()))
-        .filter_map(|entry| entry.ok().map(|e| e.path()))
-        .filter(|path| path.file_name().is_some_and(|name| name.to_string_lossy().starts_with(&stem)))
-        .filter(|path| path.join("final.ckpt").is_file())
-        .collect();
+    let entries = |folder: &Path| -> Vec<PathBuf> {
+        std::fs::read_dir(folder)
+            .unwrap_or_else(|e| panic!("cannot list {} ({RUN_DIR_VARIABLE}): {e}", folder.display()))
+            .filter_map(|entry| entry.ok().map(|e| e.path()))
+            .collect()
+    };
+    let finished = |path: &PathBuf| path.join("final.ckpt").is_file();
+    let mut members: Vec<PathBuf> = Vec::new();
+    for path in entries(&dir) {
+        if !path.file_name().is_some_and(|name| name.to_string_lossy().starts_with(&stem)) {
+            continue;
+        }
+        if finished(&path) {
+            members.push(path);
+        } else if path.is_dir() {
+            members.extend(entries(&path).into_iter().filter(finished));
+        }
+    }
     members.sort();
-    assert!(!members.is_empty(), "no {stem}*/final.ckpt in {}", dir.display());
+    assert!(!members.is_empty(), "no {stem}*/final.ckpt or {stem}*/*/final.ckpt in {}", dir.display());
     let scene = load_scene(file);
     members
         .into_iter()
-        .map(|member| (member.file_name().unwrap().to_string_lossy().into_owned(), load_finished_run(&member, &scene)))
+        .map(|member| {
+            let name = member.strip_prefix(&dir).unwrap_or(&member).display().to_string();
+            (name, load_finished_run(&member, &scene))
+        })
         .collect()
 }
 
