@@ -115,8 +115,9 @@ fn ci_sandpile() {
 /// The thesis-sized pile (§8.3 dip-pile ensemble of nine seeds): ~2500 particles. Every member must come to rest
 /// without losses with ∫p dx = W within 2 %; the ensemble's mean flank angle must lie within 26.8° ± 3° (the port
 /// criterion of reference §10.3 item 19; the thesis's ± 2.0° is the spread of its nine seeds, printed beside it) and
-/// its mean width within 0.46 ± 0.05 m. Run the seeds with `gc2d-rs run … --seed N` as tests/README.md describes
-/// (about 1 h each on one thread); without `GC2D_REGRESSION_RUN_DIR` the test runs the scene's own seed once.
+/// its mean width within 0.46 ± 0.05 m. Run the seeds with `gc2d-rs sweep sweeps/sandpile_thesis.ron` or one by one
+/// with `gc2d-rs run … --seed N`, as tests/README.md describes (about 1 h each on one thread); without
+/// `GC2D_REGRESSION_RUN_DIR` the test runs the scene's own seed once.
 /// Measured with the scene's GAUSS size spread (seeds 1–9): mean flank 26.24° ± 1.96°, width 0.424 m. With gc2d's
 /// EQUAL spread (grains up to 1.67:1) two seeds gave 29.78° ± 0.88° and 0.410 m, steeper and narrower than the
 /// thesis's; docs/validation.md has both.

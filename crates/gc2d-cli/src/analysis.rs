@@ -1,6 +1,7 @@
 //! The scene-type analyses of a finished run, as `gc2d-rs analyze --kind …` and a sweep's collection run them: one
 //! name per kind, the file each writes, and one call that runs it.
 
+use clap::ValueEnum;
 use gc2d_analysis::{
     AnalysisError, AnalyzeOptions, FeedpipeOptions, MillOptions, SceneKind, analyze_feedpipe, analyze_mill, analyze_run,
 };
@@ -23,15 +24,9 @@ pub enum AnalysisKind {
 }
 
 impl AnalysisKind {
-    /// Its name on the command line: `pile`, `feedpipe`.
-    pub fn name(self) -> &'static str {
-        match self {
-            AnalysisKind::Auto => "auto",
-            AnalysisKind::Pile => "pile",
-            AnalysisKind::Silo => "silo",
-            AnalysisKind::Mill => "mill",
-            AnalysisKind::Feedpipe => "feedpipe",
-        }
+    /// Its name on the command line (`pile`, `feedpipe`), as clap derives it.
+    pub fn name(self) -> String {
+        self.to_possible_value().map(|value| value.get_name().to_owned()).unwrap_or_default()
     }
 
     /// The report the analysis writes into the run directory: `analysis/analysis.json` for piles and silos,
@@ -91,4 +86,15 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
         AnalyzeOptions { scene, window_half_width: settings.window_half_width_m, grid_cell: settings.grid_cell_m };
     let report = analyze_run(run_dir, &options).map_err(failed)?;
     as_json(serde_json::to_string_pretty(&report))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_are_named_as_on_the_command_line() {
+        let names: Vec<String> = AnalysisKind::value_variants().iter().map(|k| k.name()).collect();
+        assert_eq!(names, ["auto", "pile", "silo", "mill", "feedpipe"]);
+    }
 }

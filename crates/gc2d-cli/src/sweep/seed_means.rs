@@ -6,6 +6,7 @@ use super::collect::{Table, number};
 use super::plots::mean_and_sd;
 use crate::failure::CommandFailure;
 use gc2d_analysis::particle_state::csv::quoted;
+use std::collections::HashMap;
 use std::path::Path;
 
 /// One group of points: the same parameter values, different seeds.
@@ -24,14 +25,16 @@ pub struct SeedGroup {
 /// left out: an interrupted or failed run's numbers are not its point's result.
 pub fn seed_groups(table: &Table) -> Vec<SeedGroup> {
     let mut groups: Vec<(Vec<String>, Vec<usize>)> = Vec::new();
+    let mut group_of: HashMap<&[String], usize> = HashMap::new();
     for (index, row) in table.rows.iter().enumerate() {
         if row.outcome.as_deref() != Some("completed") {
             continue;
         }
-        match groups.iter_mut().find(|(values, _)| *values == row.parameters) {
-            Some((_, members)) => members.push(index),
-            None => groups.push((row.parameters.clone(), vec![index])),
-        }
+        let group = *group_of.entry(&row.parameters).or_insert_with(|| {
+            groups.push((row.parameters.clone(), Vec::new()));
+            groups.len() - 1
+        });
+        groups[group].1.push(index);
     }
     groups
         .into_iter()
@@ -86,7 +89,6 @@ pub fn write_means_csv(table: &Table, groups: &[SeedGroup], path: &Path) -> Resu
 mod tests {
     use super::*;
     use crate::sweep::collect::Row;
-    use std::collections::HashMap;
 
     fn row(mu: &str, seed: u64, outcome: &str, angle: Option<f64>) -> Row {
         Row {
