@@ -669,7 +669,7 @@ impl World {
     }
 
     /// Gives back the spare room of the body columns, the broadphase's per-body buffers and its pair list, which
-    /// grow by doubling (the pairs by a quarter) while bodies and pairs are added. Scene builds and checkpoint loads
+    /// grow by doubling (the pairs by an eighth) while bodies and pairs are added. Scene builds and checkpoint loads
     /// call it once the World is complete; a World that goes on growing grows them again as needed. Changes no
     /// value.
     pub fn shrink_to_fit(&mut self) {
