@@ -224,8 +224,8 @@ impl GearState {
 
     /// Sets subnormal values (non-zero, below 2.2e-308 in magnitude) of derivatives 3 to 5 to zero. A particle in
     /// free flight has a constant acceleration, so these derivatives decay towards zero after its last contact and
-    /// can end up alternating between ±5e-324 for ever; arithmetic on subnormal numbers is about a hundred times
-    /// slower on x86 CPUs, and such particles made the corrector of a settled pile of squares three times as slow per
+    /// can end up alternating between ±5e-324 for ever; Intel CPUs compute with subnormal numbers through a slow
+    /// microcode path, and such particles made the corrector of a settled pile of squares three times as slow per
     /// body as usual (docs/performance.md, "Subnormal numbers in the Gear state"). A subnormal derivative is far
     /// below the last bit of every physical quantity it is added to, so zero changes no position or velocity.
     /// Derivatives 0 to 2 (position, velocity, acceleration) were never seen subnormal and are left alone.
