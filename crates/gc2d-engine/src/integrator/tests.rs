@@ -475,8 +475,8 @@ fn has_subnormal(state: &GearState) -> bool {
 }
 
 /// A particle that has just left a contact flies on with a constant acceleration: its third to fifth derivatives
-/// decay, and without the flush they end up as subnormal numbers for good (slow on Intel CPUs). With it they become zero,
-/// and the particle's positions, angles and velocities are bit for bit those of the corrector without the flush.
+/// decay, and without the flush they end up as subnormal numbers for good (slow on Intel CPUs). With it they become
+/// zero, and the particle's positions, angles and velocities are bit for bit those of the corrector without the flush.
 #[test]
 fn a_particle_in_free_flight_keeps_no_subnormal_derivatives_and_moves_as_without_the_flush() {
     let ts = TimeStep::new(3e-6).unwrap();
