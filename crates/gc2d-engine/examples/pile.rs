@@ -107,7 +107,7 @@ fn add_funnel(world: &mut World) -> Result<(), Box<dyn std::error::Error>> {
 /// Top of the highest particle below the funnel's outlet, m above the floor.
 fn pile_height(world: &World) -> f64 {
     let b = world.bodies();
-    b.particles().map(|id| b.aabb[id.index()].max.y).filter(|&top| top < FUNNEL_OUTLET_HEIGHT).fold(0.0, f64::max)
+    b.particles().map(|id| b.aabb(id.index()).max.y).filter(|&top| top < FUNNEL_OUTLET_HEIGHT).fold(0.0, f64::max)
 }
 
 /// Particles whose centre is at or above the funnel's outlet.

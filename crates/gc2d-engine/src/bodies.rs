@@ -4,6 +4,7 @@
 //! (its vertices stay in the arrays). Body-frame and world-frame vertices of all bodies sit in two flat arrays with
 //! per-body offsets, so a step transforms them without allocating.
 
+use crate::broadphase::BoxWriter;
 use crate::integrator::GearState;
 use crate::interactions::MaterialId;
 use crate::shape::{BodyShape, ShapeKind, shape_view};
@@ -103,8 +104,6 @@ pub struct Bodies {
     /// at the last such wall: every body beyond it has none, so the particles, added after the walls, do not carry
     /// 16 bytes each of a wall property. Read it with [`Bodies::surface_velocity_of`].
     pub(crate) surface_velocity: Vec<DVec2>,
-    /// Axis-aligned box around the world vertices.
-    pub aabb: Vec<Aabb>,
     /// Force accumulated this step, N.
     pub force: Vec<DVec2>,
     /// Torque accumulated this step, N·m, CCW.
@@ -136,7 +135,6 @@ impl Bodies {
         self.radius.push(shape.radius());
         self.material.push(MaterialId::default());
         self.vertices.push(range);
-        self.aabb.push(body_aabb(&self.world_vertices[range.range()], shape.radius() * pose.scale));
         self.pose.push(pose);
         self.velocity.push(DVec2::ZERO);
         self.angular_velocity.push(0.0);
@@ -179,7 +177,6 @@ impl Bodies {
         self.area.shrink_to_fit();
         self.inscribed_radius.shrink_to_fit();
         self.surface_velocity.shrink_to_fit();
-        self.aabb.shrink_to_fit();
         self.force.shrink_to_fit();
         self.torque.shrink_to_fit();
     }
@@ -207,7 +204,6 @@ impl Bodies {
             + vec_bytes(&self.area)
             + vec_bytes(&self.inscribed_radius)
             + vec_bytes(&self.surface_velocity)
-            + vec_bytes(&self.aabb)
             + vec_bytes(&self.force)
             + vec_bytes(&self.torque)
     }
@@ -284,10 +280,16 @@ impl Bodies {
         (0..self.len()).filter(|&i| self.alive[i] && self.kind[i] == BodyKind::Particle).map(|i| BodyId(i as u32))
     }
 
-    /// Recomputes world vertices and boxes of every living body from its pose, in parallel over bodies. The flat
-    /// vertex array is split at body boundaries recursively, so no allocation happens and each body's vertices are
-    /// written by exactly one task.
-    pub(crate) fn update_world_vertices(&mut self) {
+    /// Axis-aligned box around body `i`'s world vertices (grown by its scaled radius), computed from them: the
+    /// bodies keep no box column, the broadphase keeps the boxes it sorts ([`Bodies::update_world_vertices`]).
+    pub fn aabb(&self, i: usize) -> Aabb {
+        body_aabb(&self.world_vertices[self.vertices[i].range()], self.radius[i] * self.pose[i].scale)
+    }
+
+    /// Recomputes the world vertices of every living body from its pose, and writes its box through `boxes` (the
+    /// broadphase's, which must cover every slot), in parallel over bodies. The flat vertex array is split at body
+    /// boundaries recursively, so no allocation happens and each body's vertices are written by exactly one task.
+    pub(crate) fn update_world_vertices(&mut self, boxes: BoxWriter) {
         let count = self.len();
         let inputs = TransformInputs {
             ranges: &self.vertices,
@@ -296,7 +298,8 @@ impl Bodies {
             alive: &self.alive,
             radius: &self.radius,
         };
-        transform_range(0, count, &inputs, &mut self.world_vertices, &mut self.aabb);
+        debug_assert_eq!(boxes.len(), count, "the box writer covers every body slot");
+        transform_range(0, count, &inputs, &mut self.world_vertices, boxes);
     }
 }
 
@@ -333,12 +336,12 @@ struct TransformInputs<'a> {
     radius: &'a [f64],
 }
 
-/// Transforms bodies `first..last`; `world` starts at body `first`'s first vertex, `aabbs` at body `first`.
-fn transform_range(first: usize, last: usize, inputs: &TransformInputs, world: &mut [DVec2], aabbs: &mut [Aabb]) {
+/// Transforms bodies `first..last`; `world` starts at body `first`'s first vertex, `boxes` at body `first`.
+fn transform_range(first: usize, last: usize, inputs: &TransformInputs, world: &mut [DVec2], mut boxes: BoxWriter) {
     let ranges = inputs.ranges;
     if last - first <= TRANSFORM_GRAIN {
         let offset = if first < ranges.len() { ranges[first].start as usize } else { 0 };
-        for i in first..last {
+        for (slot, i) in (first..last).enumerate() {
             if !inputs.alive[i] {
                 continue;
             }
@@ -346,16 +349,16 @@ fn transform_range(first: usize, last: usize, inputs: &TransformInputs, world: &
             let local = r.start - offset..r.end - offset;
             let pose = &inputs.poses[i];
             pose.transform_into(&inputs.body[r], &mut world[local.clone()]);
-            aabbs[i - first] = body_aabb(&world[local], inputs.radius[i] * pose.scale);
+            boxes.set(slot, &body_aabb(&world[local], inputs.radius[i] * pose.scale));
         }
         return;
     }
     let mid = first + (last - first) / 2;
     let split = (ranges[mid].start - ranges[first].start) as usize;
     let (world_lo, world_hi) = world.split_at_mut(split);
-    let (aabb_lo, aabb_hi) = aabbs.split_at_mut(mid - first);
+    let (boxes_lo, boxes_hi) = boxes.split_at(mid - first);
     rayon::join(
-        || transform_range(first, mid, inputs, world_lo, aabb_lo),
-        || transform_range(mid, last, inputs, world_hi, aabb_hi),
+        || transform_range(first, mid, inputs, world_lo, boxes_lo),
+        || transform_range(mid, last, inputs, world_hi, boxes_hi),
     );
 }

@@ -30,7 +30,7 @@ mod bodies;
 mod box_query;
 mod pair_set;
 
-pub use bodies::BodyKind;
+pub use bodies::{BodyKind, BoxWriter};
 pub use pair_set::PairEntry;
 
 use crate::bodies::vec_bytes;
@@ -77,7 +77,12 @@ pub struct BroadphaseStats {
 const END_BIT: u32 = 1 << 31;
 
 /// One bound of one body's interval on one axis.
+///
+/// Packed to 12 bytes (4-byte aligned) instead of 16: the two axes hold four endpoints per body, so this is 16 bytes
+/// per body less. The fields are only ever read and written by value, which the compiler does with unaligned loads
+/// and stores (as fast as aligned ones on current x86-64 and AArch64 cores, docs/performance.md).
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[repr(C, packed(4))]
 struct Endpoint {
     value: f64,
     /// Body id, with [`END_BIT`] set for an end. Comparing keys puts begins before ends, then orders by body.
@@ -172,7 +177,7 @@ pub struct SortAndSweep<T> {
 enum PairChange {
     /// The boxes of the two bodies now touch: add the pair if it is not listed yet.
     Add(u32, u32),
-    /// The intervals stopped overlapping on one axis and the boxes touched before: end the pair if it is listed.
+    /// The intervals stopped overlapping on one axis: end the pair if it is listed.
     Remove(u32, u32),
 }
 
@@ -258,17 +263,38 @@ impl<T: Default> SortAndSweep<T> {
     /// Box queries ([`any_box_meeting`](Self::any_box_meeting)) after this update walk a whole axis; use
     /// [`update_for_queries`](Self::update_for_queries) where they will be asked.
     pub fn update(&mut self, aabbs: &[Aabb]) {
-        self.update_measuring::<false>(aabbs);
+        self.bodies.take_boxes(aabbs);
+        self.update_measuring::<false>();
     }
 
     /// [`update`](Self::update), also measuring the widest dynamic box, which lets the box queries asked before the
-    /// next update look at the bodies near the query box only. The measurement costs about 2 % of an update, so
+    /// next update look at the bodies near the query box only. The measurement is one more pass over the boxes, so
     /// the engine asks for it only in steps of worlds with sources or inlets.
     pub fn update_for_queries(&mut self, aabbs: &[Aabb]) {
-        self.update_measuring::<true>(aabbs);
+        self.bodies.take_boxes(aabbs);
+        self.update_measuring::<true>();
     }
 
-    fn update_measuring<const MEASURE_EXTENT: bool>(&mut self, aabbs: &[Aabb]) {
+    /// A writer for the new boxes of body slots `0..len`, for a caller that computes the boxes itself (the engine's
+    /// vertex transform): it writes them in place, with no box column of its own, then calls
+    /// [`update_written`](Self::update_written). Slots it leaves alone keep their box. Between the writing and
+    /// that update the broadphase holds the new boxes but the old order, so box queries wait for the update.
+    pub fn box_writer(&mut self, len: usize) -> BoxWriter<'_> {
+        self.bodies.box_writer(len)
+    }
+
+    /// [`update`](Self::update) with the boxes written through [`box_writer`](Self::box_writer) since the last one.
+    pub fn update_written(&mut self) {
+        self.update_measuring::<false>();
+    }
+
+    /// [`update_for_queries`](Self::update_for_queries) with the boxes written through
+    /// [`box_writer`](Self::box_writer) since the last one.
+    pub fn update_written_for_queries(&mut self) {
+        self.update_measuring::<true>();
+    }
+
+    fn update_measuring<const MEASURE_EXTENT: bool>(&mut self) {
         self.ended.drain(..self.reported);
         self.stats = std::mem::take(&mut self.carried);
         if self.has_removed_endpoints {
@@ -278,7 +304,8 @@ impl<T: Default> SortAndSweep<T> {
             }
             self.has_removed_endpoints = false;
         }
-        self.dynamic_extent = self.bodies.advance::<MEASURE_EXTENT>(aabbs);
+        self.dynamic_extent =
+            if MEASURE_EXTENT { self.bodies.dynamic_extent() } else { box_query::unmeasured_extent() };
         if self.static_bodies.is_none() {
             self.static_bodies = Some(self.bodies.static_slots());
         }
@@ -451,8 +478,9 @@ fn refresh_values(endpoints: &mut [Endpoint], intervals: &[Interval]) {
 ///
 /// An addition is recorded only if the boxes touch with their *new* values on both axes, so a pair is added only if
 /// it exists at the end of the update; this keeps the list exact whichever axis's changes are applied first. A
-/// removal needs no test, but a pair whose boxes did not touch at the previous update cannot be in the list, so it
-/// is not recorded.
+/// removal needs no test: applying it looks the pair up in the list, and a pair that is not there (its boxes did
+/// not touch at the previous update) is left alone. The previous boxes, which could filter those out here, are not
+/// kept: 64 bytes per body for a filter the list's lookup already is.
 #[inline(never)]
 fn sink(endpoints: &mut [Endpoint], moving: Endpoint, bodies: &Bodies, changes: &mut Vec<PairChange>) -> u64 {
     let mut j = endpoints.len() - 1;
@@ -466,7 +494,7 @@ fn sink(endpoints: &mut [Endpoint], moving: Endpoint, bodies: &Bodies, changes: 
             if bodies.may_pair(m, n) {
                 changes.push(PairChange::Add(m, n));
             }
-        } else if !passed.is_end() && moving.is_end() && bodies.met_before(m, n) {
+        } else if !passed.is_end() && moving.is_end() {
             // b_m e_n ⇒ e_n b_m: the intervals stop overlapping on this axis.
             changes.push(PairChange::Remove(m, n));
         }
@@ -571,6 +599,13 @@ mod tests {
 
     fn interval_box(begin: f64, end: f64) -> Aabb {
         Aabb { min: DVec2::new(begin, 0.0), max: DVec2::new(end, 1.0) }
+    }
+
+    /// Four endpoints per body: packed, they take 48 bytes of it instead of 64 (docs/performance.md, "Memory per
+    /// particle").
+    #[test]
+    fn an_endpoint_takes_12_bytes() {
+        assert_eq!(std::mem::size_of::<Endpoint>(), 12);
     }
 
     fn x_order(sweep: &SortAndSweep<u32>) -> Vec<(bool, u32)> {

@@ -419,7 +419,8 @@ mod tests {
         for y in [0.0, 1.0 + gap] {
             bodies.push(BodyKind::Particle, &(&shape).into(), Pose::new(DVec2::new(0.0, y), 0.0), 1.0, 1.0 / 6.0);
         }
-        bodies.update_world_vertices();
+        let mut broadphase = crate::broadphase::SortAndSweep::<()>::new();
+        bodies.update_world_vertices(broadphase.box_writer(bodies.len()));
         bodies
     }
 

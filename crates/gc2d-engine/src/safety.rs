@@ -6,7 +6,7 @@ use crate::integrator::max_stable_time_step_elongated;
 use crate::interactions::{ContactModel, InteractionTable};
 use crate::shape::{ShapeKind, flat_contact_ratio};
 use gc2d_contact::{AreaFormulation, PairProperties};
-use gc2d_geometry::{DVec2, area_contact};
+use gc2d_geometry::{Aabb, DVec2, area_contact};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -463,13 +463,14 @@ pub const INITIAL_OVERLAP_TOLERANCE: f64 = 1e-12;
 /// walls. Meant to run once before the first step: a sweep along x over the boxes sorted by their lower x bound, so it
 /// allocates.
 pub fn deepest_initial_overlap(bodies: &Bodies, tolerance: f64) -> Option<(BodyId, BodyId, f64)> {
+    let boxes: Vec<Aabb> = (0..bodies.len()).map(|i| bodies.aabb(i)).collect();
     let mut order: Vec<usize> = (0..bodies.len()).filter(|&i| bodies.alive[i]).collect();
-    order.sort_by(|&i, &j| bodies.aabb[i].min.x.total_cmp(&bodies.aabb[j].min.x));
+    order.sort_by(|&i, &j| boxes[i].min.x.total_cmp(&boxes[j].min.x));
     let mut deepest: Option<(BodyId, BodyId, f64)> = None;
     for (k, &i) in order.iter().enumerate() {
-        for &j in order[k + 1..].iter().take_while(|&&j| bodies.aabb[j].min.x <= bodies.aabb[i].max.x) {
+        for &j in order[k + 1..].iter().take_while(|&&j| boxes[j].min.x <= boxes[i].max.x) {
             let both_walls = bodies.kind[i] == BodyKind::Wall && bodies.kind[j] == BodyKind::Wall;
-            if both_walls || !bodies.aabb[i].overlaps(&bodies.aabb[j]) {
+            if both_walls || !boxes[i].overlaps(&boxes[j]) {
                 continue;
             }
             let (a, b) = (BodyId(i.min(j) as u32), BodyId(i.max(j) as u32));

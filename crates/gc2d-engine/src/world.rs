@@ -555,7 +555,7 @@ impl World {
 
     fn insert_into_broadphase(&mut self, id: BodyId, kind: broadphase::BodyKind) {
         // Ids are dense slots far below the broadphase limit of 2^31, and each slot is inserted once.
-        let inserted = self.broadphase.insert(id.0, self.bodies.aabb[id.index()], kind);
+        let inserted = self.broadphase.insert(id.0, self.bodies.aabb(id.index()), kind);
         debug_assert!(inserted.is_ok());
     }
 
@@ -669,7 +669,7 @@ impl World {
     }
 
     /// Gives back the spare room of the body columns, the broadphase's per-body buffers and its pair list, which
-    /// grow by doubling (the pairs by an eighth) while bodies and pairs are added. Scene builds and checkpoint loads
+    /// grow by doubling (the pairs by a sixteenth) while bodies and pairs are added. Scene builds and checkpoint loads
     /// call it once the World is complete; a World that goes on growing grows them again as needed. Changes no
     /// value.
     pub fn shrink_to_fit(&mut self) {
@@ -758,12 +758,12 @@ impl World {
         }
         self.predict(t_next);
         self.lap(Stage::Predict);
-        self.bodies.update_world_vertices();
+        self.bodies.update_world_vertices(self.broadphase.box_writer(self.bodies.len()));
         self.lap(Stage::Vertices);
         if self.stages.sources || self.stages.inlets {
-            self.broadphase.update_for_queries(&self.bodies.aabb);
+            self.broadphase.update_written_for_queries();
         } else {
-            self.broadphase.update(&self.bodies.aabb);
+            self.broadphase.update_written();
         }
         self.close_ended_pairs(t_next);
         self.lap(Stage::Broadphase);
@@ -1224,7 +1224,7 @@ impl World {
         let b = &self.bodies;
         self.broadphase.any_box_meeting(&aabb, |body| {
             let i = body as usize;
-            b.alive[i] && b.aabb[i].overlaps(&aabb) && area_contact(shape, b.shape_view(BodyId(body))).is_some()
+            b.alive[i] && b.aabb(i).overlaps(&aabb) && area_contact(shape, b.shape_view(BodyId(body))).is_some()
         })
     }
 

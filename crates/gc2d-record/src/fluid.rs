@@ -85,6 +85,6 @@ pub fn drawn_region(world: &World) -> Option<Aabb> {
     let b = world.bodies();
     (0..b.len())
         .filter(|&i| b.alive[i])
-        .map(|i| b.aabb[i])
+        .map(|i| b.aabb(i))
         .reduce(|x, y| Aabb { min: x.min.min(y.min), max: x.max.max(y.max) })
 }

@@ -1,7 +1,8 @@
-//! The broadphase's per-body table: state flags and the current and previous box of every body slot.
+//! The broadphase's per-body table: state flags and the current box of every body slot.
 //!
 //! Boxes are kept per axis as compact (lower, upper) intervals, so the sort, which reads one axis of bodies in
-//! scattered order, touches 16 bytes per body rather than a whole record.
+//! scattered order, touches 16 bytes per body rather than a whole record. The box of the previous update is not
+//! kept (64 bytes per body): the sort's removals are checked against the pair list instead (`sink`).
 
 use crate::bodies::vec_bytes;
 use gc2d_geometry::Aabb;
@@ -62,14 +63,50 @@ impl Interval {
     }
 }
 
+/// Where the vertex transform writes the bodies' new boxes for the next update, straight into the broadphase's
+/// intervals (the bodies keep no box column of their own: 32 bytes per body less). It covers a run of body slots
+/// and splits like a slice, so parallel tasks write disjoint runs. Get one from
+/// [`SortAndSweep::box_writer`](super::SortAndSweep::box_writer).
+pub struct BoxWriter<'a> {
+    x: &'a mut [Interval],
+    y: &'a mut [Interval],
+}
+
+impl BoxWriter<'_> {
+    /// Number of body slots covered.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+
+    /// True when no slot is covered.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+
+    /// The writers of slots `..mid` and `mid..` of this one (indices restart at 0 in the second).
+    #[inline]
+    pub fn split_at(self, mid: usize) -> (Self, Self) {
+        let (x_low, x_high) = self.x.split_at_mut(mid);
+        let (y_low, y_high) = self.y.split_at_mut(mid);
+        (BoxWriter { x: x_low, y: y_low }, BoxWriter { x: x_high, y: y_high })
+    }
+
+    /// Sets the box of slot `index` (of this writer's run); NaN bounds are made safe to sort as at insertion.
+    #[inline]
+    pub fn set(&mut self, index: usize, aabb: &Aabb) {
+        self.x[index] = Interval::sanitised(aabb.min.x, aabb.max.x);
+        self.y[index] = Interval::sanitised(aabb.min.y, aabb.max.y);
+    }
+}
+
 /// All body slots, indexed by body id.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub(super) struct Bodies {
     flags: Vec<Flags>,
-    /// The box of the current update, x and y.
+    /// The box of the current update, x and y (for bodies inserted since, their first box).
     current: [Vec<Interval>; 2],
-    /// The box of the previous update (for bodies merged since, their first box).
-    previous: [Vec<Interval>; 2],
 }
 
 impl Bodies {
@@ -82,12 +119,12 @@ impl Bodies {
     /// Gives back the spare room of the flags and intervals.
     pub(super) fn shrink_to_fit(&mut self) {
         self.flags.shrink_to_fit();
-        self.current.iter_mut().chain(&mut self.previous).for_each(Vec::shrink_to_fit);
+        self.current.iter_mut().for_each(Vec::shrink_to_fit);
     }
 
-    /// Heap bytes of the flags and the current and previous intervals, from their capacities.
+    /// Heap bytes of the flags and the intervals, from their capacities.
     pub(super) fn heap_bytes(&self) -> usize {
-        vec_bytes(&self.flags) + self.current.iter().chain(&self.previous).map(vec_bytes).sum::<usize>()
+        vec_bytes(&self.flags) + self.current.iter().map(vec_bytes).sum::<usize>()
     }
 
     /// The state of `body`; ids beyond the table are absent.
@@ -111,61 +148,69 @@ impl Bodies {
         self.flags[body as usize].fresh = fresh;
     }
 
-    /// Makes `body` a pending slot of `kind` with box `aabb` (as current and previous box), growing the table.
-    pub(super) fn make_pending(&mut self, body: u32, kind: BodyKind, aabb: &Aabb) {
-        let index = body as usize;
-        if index >= self.flags.len() {
+    /// Grows the table to `len` slots; the new ones are absent.
+    fn grow_to(&mut self, len: usize) {
+        if len > self.flags.len() {
             let absent = Flags { state: SlotState::Absent, kind: BodyKind::Dynamic, fresh: false };
-            self.flags.resize(index + 1, absent);
-            for axis in 0..2 {
-                self.current[axis].resize(index + 1, Interval::default());
-                self.previous[axis].resize(index + 1, Interval::default());
+            self.flags.resize(len, absent);
+            for axis in &mut self.current {
+                axis.resize(len, Interval::default());
             }
-        }
-        self.flags[index] = Flags { state: SlotState::Pending, kind, fresh: false };
-        for axis in 0..2 {
-            let interval = Interval::sanitised(aabb.min[axis], aabb.max[axis]);
-            self.current[axis][index] = interval;
-            self.previous[axis][index] = interval;
         }
     }
 
-    /// Starts an update: every box becomes the previous box, and bodies covered by `aabbs` take their new box.
-    /// With `MEASURE_EXTENT`, returns the largest width and height of a dynamic body's new box (0 when there is
-    /// none), which bounds how far before a query box a meeting box can begin (`box_query`): measured here, in the
-    /// pass that reads every box anyway, so that a query needs no pass of its own. Without, returns +∞ (unknown).
-    pub(super) fn advance<const MEASURE_EXTENT: bool>(&mut self, aabbs: &[Aabb]) -> [f64; 2] {
-        std::mem::swap(&mut self.current, &mut self.previous);
-        let mut extent = [f64::INFINITY; 2];
-        for (axis, extent) in extent.iter_mut().enumerate() {
-            let flags = &self.flags;
-            // The new interval of slot `index`, and its width where it is measured (0 where not).
-            let refresh = |(index, (current, previous)): (usize, (&mut Interval, &Interval))| {
-                let f = flags[index];
-                match aabbs.get(index) {
-                    Some(aabb) if f.state != SlotState::Absent => {
-                        *current = Interval::sanitised(aabb.min[axis], aabb.max[axis]);
-                        if MEASURE_EXTENT && f.kind == BodyKind::Dynamic { current.upper - current.lower } else { 0.0 }
-                    }
-                    _ => {
-                        *current = *previous;
-                        0.0
-                    }
+    /// Makes `body` a pending slot of `kind` with box `aabb`, growing the table.
+    pub(super) fn make_pending(&mut self, body: u32, kind: BodyKind, aabb: &Aabb) {
+        let index = body as usize;
+        self.grow_to(index + 1);
+        self.flags[index] = Flags { state: SlotState::Pending, kind, fresh: false };
+        for (axis, intervals) in self.current.iter_mut().enumerate() {
+            intervals[index] = Interval::sanitised(aabb.min[axis], aabb.max[axis]);
+        }
+    }
+
+    /// A writer for the boxes of slots `0..len` (the table grows to `len` slots if it is shorter).
+    pub(super) fn box_writer(&mut self, len: usize) -> BoxWriter<'_> {
+        self.grow_to(len);
+        let [x, y] = &mut self.current;
+        BoxWriter { x: &mut x[..len], y: &mut y[..len] }
+    }
+
+    /// Bodies covered by `aabbs` take their new box, the others keep theirs.
+    pub(super) fn take_boxes(&mut self, aabbs: &[Aabb]) {
+        let flags = &self.flags;
+        for (axis, current) in self.current.iter_mut().enumerate() {
+            let take = |(index, (current, aabb)): (usize, (&mut Interval, &Aabb))| {
+                if flags[index].state != SlotState::Absent {
+                    *current = Interval::sanitised(aabb.min[axis], aabb.max[axis]);
                 }
             };
-            let (current, previous) = (&mut self.current[axis], &self.previous[axis]);
-            // The maximum ignores NaN widths (from infinite boxes) in any order, so it is the same on any thread count.
-            let widest = if current.len() >= 2 * SLOTS_PER_TASK {
-                let slots = current.par_iter_mut().zip(previous.par_iter()).enumerate().with_min_len(SLOTS_PER_TASK);
-                slots.map(refresh).reduce(|| 0.0, f64::max)
+            if current.len().min(aabbs.len()) >= 2 * SLOTS_PER_TASK {
+                current.par_iter_mut().zip(aabbs).enumerate().with_min_len(SLOTS_PER_TASK).for_each(take);
             } else {
-                current.iter_mut().zip(previous).enumerate().map(refresh).fold(0.0, f64::max)
-            };
-            if MEASURE_EXTENT {
-                *extent = widest;
+                current.iter_mut().zip(aabbs).enumerate().for_each(take);
             }
         }
-        extent
+    }
+
+    /// The largest width and height of a dynamic body's box (0 when there is none), which bounds how far before a
+    /// query box a meeting box can begin (`box_query`). The maximum ignores NaN widths (from infinite boxes) in any
+    /// order, so it is the same on any thread count.
+    pub(super) fn dynamic_extent(&self) -> [f64; 2] {
+        let flags = &self.flags;
+        [0, 1].map(|axis| {
+            let width = |(index, interval): (usize, &Interval)| {
+                let f = flags[index];
+                let measured = f.state != SlotState::Absent && f.kind == BodyKind::Dynamic;
+                if measured { interval.upper - interval.lower } else { 0.0 }
+            };
+            let current = &self.current[axis];
+            if current.len() >= 2 * SLOTS_PER_TASK {
+                current.par_iter().enumerate().with_min_len(SLOTS_PER_TASK).map(width).reduce(|| 0.0, f64::max)
+            } else {
+                current.iter().enumerate().map(width).fold(0.0, f64::max)
+            }
+        })
     }
 
     /// Whether `body` moves; the kind it was inserted with.
@@ -206,12 +251,5 @@ impl Bodies {
     pub(super) fn box_meets(&self, body: u32, query: [Interval; 2]) -> bool {
         let index = body as usize;
         self.current[0][index].meets(query[0]) && self.current[1][index].meets(query[1])
-    }
-
-    /// True when the pair could have existed before this update: the previous boxes overlapped or touched.
-    #[inline]
-    pub(super) fn met_before(&self, a: u32, b: u32) -> bool {
-        let (a, b) = (a as usize, b as usize);
-        self.previous[0][a].meets(self.previous[0][b]) && self.previous[1][a].meets(self.previous[1][b])
     }
 }

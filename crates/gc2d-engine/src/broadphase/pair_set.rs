@@ -1,8 +1,9 @@
 //! The persistent list of candidate pairs K^B (reference §4.2, footnote 9: a list, never an N×N matrix).
 //!
 //! Entries live in one dense `Vec`, so the narrowphase can run over them with `par_iter_mut`. A small open-addressing
-//! table (linear probing, a fixed multiplicative hash, backward-shift deletion) finds an entry by its two body ids in
-//! O(1). Nothing here depends on a random seed or on memory addresses, so the same sequence of insertions and removals
+//! table (linear probing, a fixed multiplicative hash, backward-shift deletion, at most three quarters full) finds an
+//! entry by its two body ids in O(1). The table is not saved in checkpoints: loading rebuilds it from the entries.
+//! Nothing here depends on a random seed or on memory addresses, so the same sequence of insertions and removals
 //! gives the same entry order on every run.
 //!
 //! The entries are kept roughly in body order (sorted by (a, b)) so that the narrowphase, which walks them in list
@@ -45,8 +46,16 @@ use crate::bodies::vec_bytes;
 /// Marks an unused slot of the index table.
 const EMPTY: u32 = u32::MAX;
 
-/// The smallest index table; it doubles whenever it would become more than half full.
+/// The smallest index table; it doubles whenever it would become more than three quarters full.
 const MIN_SLOTS: usize = 64;
+
+/// The index table is kept at most `MAX_LOAD_NUMERATOR / MAX_LOAD_DENOMINATOR` full. Three quarters rather than a
+/// half: the table then takes 5–11 bytes per pair instead of 8–16 (about 13 bytes less per grain of a dense 7-gon
+/// pile), while a lookup of a listed pair still probes 2.5 slots on average and one of a pair not listed about 8
+/// (linear probing), within one or two cache lines of 16 slots. Lookups happen only where pairs start or stop
+/// touching, not for every pair and step.
+const MAX_LOAD_NUMERATOR: usize = 3;
+const MAX_LOAD_DENOMINATOR: usize = 4;
 
 /// The list is sorted again once it holds more than one descent (an entry whose key is below its predecessor's) per
 /// this many entries: the list stays within a few per cent of body order, and a settled pile, whose pairs hardly
@@ -55,15 +64,43 @@ const SORT_WHEN_DESCENTS_EXCEED: usize = 16;
 
 /// Dense pair entries plus an index from (a, b) to the entry's position.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(from = "SavedPairSet<T>")]
 pub(crate) struct PairSet<T> {
     entries: Vec<PairEntry<T>>,
-    /// Open-addressing table of entry positions; its length is zero or a power of two.
+    /// Open-addressing table of entry positions; its length is zero or a power of two. Rebuilt on loading.
+    #[serde(skip)]
     slots: Vec<u32>,
     /// The number of descents in `entries` (positions whose key is below the one before), kept up to date by every
     /// change; `None` after loading a checkpoint until the next [`sort_if_disordered`](Self::sort_if_disordered)
     /// counts them.
     #[serde(skip)]
     descents: Option<usize>,
+}
+
+/// What a checkpoint holds of a [`PairSet`]: its entries, in list order (the layout of the serialized `PairSet`,
+/// whose other fields are skipped).
+#[derive(Deserialize)]
+struct SavedPairSet<T> {
+    entries: Vec<PairEntry<T>>,
+}
+
+impl<T> From<SavedPairSet<T>> for PairSet<T> {
+    /// The loaded list with its index table built at the smallest size that holds it; its descents are counted at
+    /// the next [`sort_if_disordered`](PairSet::sort_if_disordered).
+    fn from(saved: SavedPairSet<T>) -> Self {
+        let mut set = Self { entries: saved.entries, slots: Vec::new(), descents: None };
+        set.rebuild_index(index_size_for(set.entries.len()));
+        set
+    }
+}
+
+/// The smallest index table (a power of two, at least [`MIN_SLOTS`]) that holds `entries` within the load limit.
+fn index_size_for(entries: usize) -> usize {
+    let mut size = MIN_SLOTS;
+    while entries * MAX_LOAD_DENOMINATOR > size * MAX_LOAD_NUMERATOR {
+        size *= 2;
+    }
+    size
 }
 
 impl<T> Default for PairSet<T> {
@@ -124,9 +161,14 @@ impl<T: Default> PairSet<T> {
         vec_bytes(&self.entries) + vec_bytes(&self.slots)
     }
 
-    /// Gives back the spare room of the entries (the index table keeps its power-of-two size).
+    /// Gives back the spare room of the entries, and shrinks the index table to the smallest size that holds them.
     pub(crate) fn shrink_to_fit(&mut self) {
         self.entries.shrink_to_fit();
+        let size = index_size_for(self.entries.len());
+        if size < self.slots.len() {
+            self.rebuild_index(size);
+            self.slots.shrink_to_fit();
+        }
     }
 
     /// The entry of the pair {a, b}, if present.
@@ -147,7 +189,7 @@ impl<T: Default> PairSet<T> {
     /// (its payload is kept) or when `a == b`.
     pub(crate) fn insert(&mut self, a: u32, b: u32) -> bool {
         let Some((a, b)) = ordered(a, b) else { return false };
-        if (self.entries.len() + 1) * 2 > self.slots.len() {
+        if (self.entries.len() + 1) * MAX_LOAD_DENOMINATOR > self.slots.len() * MAX_LOAD_NUMERATOR {
             self.grow();
         }
         match self.find(a, b) {
@@ -155,10 +197,11 @@ impl<T: Default> PairSet<T> {
             Err(empty) => {
                 self.slots[empty] = self.entries.len() as u32;
                 if self.entries.len() == self.entries.capacity() {
-                    // Grow by an eighth rather than the doubling of `Vec::push`: the entries carry the contact
-                    // records and are most of a World's memory (an eighth of spare room is 48 B per grain of a
-                    // dense 7-gon pile, a quarter was 96), and an eighth keeps insertion amortised O(1).
-                    self.entries.reserve_exact(self.entries.capacity() / 8 + MIN_SLOTS);
+                    // Grow by a sixteenth rather than the doubling of `Vec::push`: the entries carry the contact
+                    // records and are most of a World's memory (a sixteenth of spare room is 24 B per grain of a
+                    // dense 7-gon pile, an eighth was 48, a quarter 96), and a fixed fraction keeps insertion
+                    // amortised O(1): each entry is copied about 16 times while a list grows from empty.
+                    self.entries.reserve_exact(self.entries.capacity() / 16 + MIN_SLOTS);
                 }
                 let descent = self.entries.last().is_some_and(|last| last.key() > (a, b));
                 self.entries.push(PairEntry { a, b, payload: T::default() });
@@ -295,7 +338,9 @@ impl<T: Default> PairSet<T> {
     fn grow(&mut self) {
         self.rebuild_index((self.slots.len() * 2).max(MIN_SLOTS));
     }
+}
 
+impl<T> PairSet<T> {
     /// Fills an index table of `size` slots (a power of two) with every entry's position.
     fn rebuild_index(&mut self, size: usize) {
         self.slots.clear();
