@@ -98,7 +98,7 @@ fn exported_rows_are_the_worlds_state_in_every_format() {
         let (fn_, ft) = (value("normal_force_n"), value("tangential_force_n"));
         assert!((fn_.hypot(ft) - contact.force_on_a.length()).abs() <= 1e-9 * contact.force_on_a.length());
         assert!(fn_ > 0.0, "a soft contact pushes the bodies apart: {row:?}");
-        assert_eq!(value("overlap_fraction"), contact.overlap_fraction);
+        assert_eq!(value("overlap_fraction"), world.overlap_fraction(*a, *b, contact));
     }
 
     // Parquet: the same rows, read with the parquet crate's own reader.

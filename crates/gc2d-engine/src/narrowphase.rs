@@ -76,9 +76,6 @@ pub struct PairContact {
     /// Force application point, m: the midpoint of the contact chord (overlap-area law) or the contact point midway
     /// between the two surfaces (penetration laws).
     pub point: DVec2,
-    /// How deep the bodies overlap: for the overlap-area law the overlap area as a fraction of the smaller
-    /// particle's area, for penetration laws the depth as a fraction of the smaller particle's diameter.
-    pub overlap_fraction: f64,
     /// Energy dissipated in the contact this step by damping and sliding, J (≥ 0): what the contact events add up
     /// per episode. The ledger's own terms are summed in the narrowphase pass and not kept per pair
     /// (`pair_sums.rs`).
@@ -225,6 +222,22 @@ impl PairContext<'_> {
         normal.map(|n| (i, j, n))
     }
 
+    /// How deep the pair {a, b} overlaps after its last evaluation: for the overlap-area law the overlap area as a
+    /// fraction of the smaller particle's area, for penetration laws the depth as a fraction of the smaller
+    /// particle's diameter; 0 when it does not touch. Read from the contact's history (the law keeps the area or
+    /// depth it saw) rather than kept in every pair record: 8 bytes per pair (docs/performance.md, "Memory per
+    /// particle").
+    pub fn overlap_fraction(&self, a: u32, b: u32, contact: &PairContact) -> f64 {
+        if !contact.touching {
+            return 0.0;
+        }
+        let (a, b) = (BodyId(a), BodyId(b));
+        match contact.state {
+            ContactHistory::OverlapArea(state) => state.previous_area / self.smaller_particle_area(a, b),
+            ContactHistory::Penetration(state) => state.previous_depth / (2.0 * self.smaller_radius(a, b)),
+        }
+    }
+
     /// A penetration law for the pair (i, j), i the particle when one body is a wall.
     fn evaluate_penetration(
         &self,
@@ -269,8 +282,6 @@ impl PairContext<'_> {
         contact.dissipated = energy.dissipation();
         contact.touching = geometry.is_touching();
         contact.point = if contact.touching { position_i + geometry.arm_i } else { DVec2::ZERO };
-        contact.overlap_fraction =
-            if contact.touching { geometry.depth / (2.0 * self.smaller_radius(i, j)) } else { 0.0 };
         contact.passes = 0;
         contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
         energy
@@ -316,7 +327,6 @@ impl PairContext<'_> {
             contact.dissipated = energy.dissipation();
             contact.touching = overlap.is_some();
             contact.point = overlap.map_or(DVec2::ZERO, |g| g.point);
-            contact.overlap_fraction = overlap.map_or(0.0, |g| g.area / self.smaller_particle_area(i, j));
             contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
             energy
         };
@@ -406,10 +416,11 @@ mod tests {
     /// particle"): 264 bytes with a warm start of machine-word feature indices, 240 with byte indices and a
     /// two-byte pass count, 208 with the ledger's terms alone instead of all energy terms and the wall work, 192
     /// with the chatter watch's history in single precision, 160 with the ledger's terms summed in the narrowphase
-    /// pass (`pair_sums.rs`) and only the dissipation kept.
+    /// pass (`pair_sums.rs`) and only the dissipation kept, 152 with the overlap fraction read from the history
+    /// ([`PairContext::overlap_fraction`]).
     #[test]
-    fn pair_record_is_at_most_160_bytes() {
-        assert!(std::mem::size_of::<PairContact>() <= 160, "{} bytes", std::mem::size_of::<PairContact>());
+    fn pair_record_is_at_most_152_bytes() {
+        assert!(std::mem::size_of::<PairContact>() <= 152, "{} bytes", std::mem::size_of::<PairContact>());
     }
 
     /// Two unit squares, the second `gap` above the first (negative: overlapping).
@@ -445,7 +456,8 @@ mod tests {
         assert_eq!(contact.passes, 0);
         assert_eq!(contact.force_on_a, first_force, "same overlap, same elastic force");
         assert!(contact.point.x == 0.0 && (0.49..=0.5).contains(&contact.point.y), "{:?}", contact.point);
-        assert!((contact.overlap_fraction - 0.01).abs() < 1e-12);
+        let context = PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 };
+        assert!((context.overlap_fraction(0, 1, &contact) - 0.01).abs() < 1e-12);
 
         PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
         assert!(!contact.touching && contact.passes >= 1, "a pair that separated asks the query again");

@@ -67,9 +67,10 @@ pub(crate) struct PairSums {
 }
 
 impl PairSums {
-    /// Adds the pair {a, b} (a < b) that was just evaluated: its record and the ledger terms its evaluation returned.
+    /// Adds the pair {a, b} (a < b) that was just evaluated: its record, the ledger terms its evaluation returned and
+    /// its overlap fraction ([`crate::narrowphase::PairContext::overlap_fraction`]; 0 when it does not touch).
     #[inline]
-    pub fn add_pair(&mut self, a: u32, b: u32, contact: &PairContact, energy: &LedgerTerms) {
+    pub fn add_pair(&mut self, a: u32, b: u32, contact: &PairContact, energy: &LedgerTerms, overlap_fraction: f64) {
         self.contact_stored += contact.stored_energy;
         let [previous, before_previous] = contact.earlier_forces.map(|force| force.as_dvec2());
         // Only steps with a force now and two steps ago count: the first two steps of a contact and the steps after
@@ -84,7 +85,7 @@ impl PairSums {
         self.energy.add(energy);
         if contact.touching {
             self.contacts += 1;
-            self.max_overlap_fraction = self.max_overlap_fraction.max(contact.overlap_fraction);
+            self.max_overlap_fraction = self.max_overlap_fraction.max(overlap_fraction);
             self.touching_bodies.include(a, b);
         }
     }
@@ -106,13 +107,12 @@ impl PairSums {
 mod tests {
     use super::*;
 
-    fn touching_pair(force: f64, stored_energy: f64, overlap_fraction: f64) -> PairContact {
+    fn touching_pair(force: f64, stored_energy: f64) -> PairContact {
         PairContact {
             touching: true,
             force_on_a: DVec2::new(force, 0.0),
             earlier_forces: [glam::Vec2::new(force as f32, 0.0); 2],
             stored_energy,
-            overlap_fraction,
             ..PairContact::default()
         }
     }
@@ -120,18 +120,18 @@ mod tests {
     /// Sums by chunks equal the plain sums wherever the values add exactly, and counts and maxima are exact always.
     #[test]
     fn chunk_sums_add_up_to_the_sums_over_all_pairs() {
-        let pairs: Vec<_> =
-            (0..1000).map(|k| touching_pair(f64::from(k), 0.25 * f64::from(k), 1e-4 * f64::from(k))).collect();
+        let pairs: Vec<_> = (0..1000).map(|k| touching_pair(f64::from(k), 0.25 * f64::from(k))).collect();
+        let fraction = |k: usize| 1e-4 * k as f64;
         let terms = LedgerTerms { normal_damping: 0.5, sliding: 0.25, ..LedgerTerms::default() };
         let ids = |k: usize| (k as u32, 2 * k as u32 + 1);
         let mut whole = PairSums::default();
-        pairs.iter().enumerate().for_each(|(k, pair)| whole.add_pair(ids(k).0, ids(k).1, pair, &terms));
+        pairs.iter().enumerate().for_each(|(k, pair)| whole.add_pair(ids(k).0, ids(k).1, pair, &terms, fraction(k)));
         let mut by_chunks = PairSums::default();
         for (c, chunk) in pairs.chunks(PAIRS_PER_CHUNK).enumerate() {
             let mut sums = PairSums::default();
             for (k, pair) in chunk.iter().enumerate() {
                 let (a, b) = ids(c * PAIRS_PER_CHUNK + k);
-                sums.add_pair(a, b, pair, &terms);
+                sums.add_pair(a, b, pair, &terms, fraction(c * PAIRS_PER_CHUNK + k));
             }
             by_chunks.add(&sums);
         }
@@ -150,10 +150,10 @@ mod tests {
         let terms = LedgerTerms::default();
         let mut sums = PairSums::default();
         assert!(!sums.touching_bodies.meets(0, u32::MAX), "an empty chunk meets no range");
-        sums.add_pair(3, 900, &PairContact::default(), &terms);
+        sums.add_pair(3, 900, &PairContact::default(), &terms, 0.0);
         assert!(!sums.touching_bodies.meets(0, u32::MAX), "pairs apart are not in the span");
-        sums.add_pair(10, 40, &touching_pair(1.0, 0.0, 0.0), &terms);
-        sums.add_pair(12, 25, &touching_pair(1.0, 0.0, 0.0), &terms);
+        sums.add_pair(10, 40, &touching_pair(1.0, 0.0), &terms, 0.0);
+        sums.add_pair(12, 25, &touching_pair(1.0, 0.0), &terms, 0.0);
         assert!(sums.touching_bodies.meets(40, 41) && sums.touching_bodies.meets(0, 11));
         assert!(!sums.touching_bodies.meets(41, 100) && !sums.touching_bodies.meets(0, 10));
     }

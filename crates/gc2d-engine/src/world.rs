@@ -707,6 +707,15 @@ impl World {
         self.pairs().filter(|(_, _, c)| c.touching)
     }
 
+    /// How deep the pair {a, b} with record `contact` overlaps: for the overlap-area law the overlap area as a
+    /// fraction of the smaller particle's area, for penetration laws the depth as a fraction of the smaller
+    /// particle's diameter; 0 when it does not touch. Computed from the contact's history, as of the last step.
+    pub fn overlap_fraction(&self, a: BodyId, b: BodyId, contact: &PairContact) -> f64 {
+        let context =
+            PairContext { bodies: &self.bodies, interactions: &self.config.interactions, dt: self.config.time_step };
+        context.overlap_fraction(a.0, b.0, contact)
+    }
+
     /// The largest stable Δt of the particles now in the World, each against the stiffest contact model its material
     /// meets ([`safety::particle_time_step`]).
     pub fn stable_time_step(&self) -> Option<f64> {
@@ -923,7 +932,7 @@ impl World {
                 touching: c.touching,
                 force_on_a: c.force_on_a,
                 point: c.point,
-                overlap_fraction: c.overlap_fraction,
+                overlap_fraction: context.overlap_fraction(pair.a(), pair.b(), c),
                 dissipated: c.dissipated,
             };
             if c.touching && !open {
@@ -948,7 +957,8 @@ impl World {
             *sums = PairSums::default();
             for pair in chunk {
                 let energy = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
-                sums.add_pair(pair.a(), pair.b(), &pair.payload, &energy);
+                let overlap_fraction = context.overlap_fraction(pair.a(), pair.b(), &pair.payload);
+                sums.add_pair(pair.a(), pair.b(), &pair.payload, &energy, overlap_fraction);
             }
         };
         if self.bodies.len() >= PARALLEL_MIN_BODIES {
@@ -1279,10 +1289,11 @@ impl World {
         // approach before it.
         let approach = (point_velocity(a) - point_velocity(b)).dot(normal).abs();
         let (i, j) = (a.index(), b.index());
+        let fraction = self.overlap_fraction(a, b, contact);
         let depth = match contact.state {
             ContactHistory::OverlapArea(state) if state.previous_chord > 0.0 => {
                 let smaller = bodies.overlap_reference_area(i).min(bodies.overlap_reference_area(j));
-                contact.overlap_fraction * smaller / state.previous_chord
+                fraction * smaller / state.previous_chord
             }
             ContactHistory::Penetration(state) => state.previous_depth,
             ContactHistory::OverlapArea(_) => {
@@ -1290,7 +1301,7 @@ impl World {
                     BodyKind::Particle => bodies.contact_radius(k),
                     BodyKind::Wall => f64::INFINITY,
                 };
-                contact.overlap_fraction * 2.0 * radius(i).min(radius(j))
+                fraction * 2.0 * radius(i).min(radius(j))
             }
         };
         (approach, depth)
@@ -1315,8 +1326,10 @@ impl World {
             .into());
         }
         if self.stats.max_overlap_fraction > limits.max_overlap_fraction
-            && let Some((a, bb, c)) =
-                self.contacts().max_by(|x, y| x.2.overlap_fraction.total_cmp(&y.2.overlap_fraction))
+            && let Some((a, bb, c, overlap_fraction)) = self
+                .contacts()
+                .map(|(a, b, c)| (a, b, c, self.overlap_fraction(a, b, c)))
+                .max_by(|x, y| x.3.total_cmp(&y.3))
         {
             let (approach_speed_m_s, depth) = self.approach_and_depth(a, bb, c);
             return Err(SafetyError::ExcessiveOverlap {
@@ -1324,7 +1337,7 @@ impl World {
                 step: self.steps,
                 a: a.0,
                 b: bb.0,
-                percent: 100.0 * c.overlap_fraction,
+                percent: 100.0 * overlap_fraction,
                 limit_percent: 100.0 * limits.max_overlap_fraction,
                 approach_speed_m_s,
                 approach_per_step: approach_speed_m_s * self.config.time_step / depth,
@@ -1532,7 +1545,7 @@ mod tests {
             .chunks(PAIRS_PER_CHUNK)
             .map(|chunk| {
                 let mut sums = PairSums::default();
-                chunk.iter().for_each(|p| sums.add_pair(p.a(), p.b(), &p.payload, &LedgerTerms::default()));
+                chunk.iter().for_each(|p| sums.add_pair(p.a(), p.b(), &p.payload, &LedgerTerms::default(), 0.0));
                 sums
             })
             .collect();

@@ -87,7 +87,7 @@ pub fn contact_rows(world: &World) -> Vec<ContactRow> {
                 normal_force_n: force.dot(normal),
                 tangential_force_n: force.dot(normal.perp()),
                 force_on_a: force,
-                overlap_fraction: contact.overlap_fraction,
+                overlap_fraction: world.overlap_fraction(a, b, contact),
                 law,
             }
         })
