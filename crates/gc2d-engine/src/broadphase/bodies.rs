@@ -2,7 +2,7 @@
 //!
 //! Boxes are kept per axis as compact (lower, upper) intervals, so the sort, which reads one axis of bodies in
 //! scattered order, touches 16 bytes per body rather than a whole record. The box of the previous update is not
-//! kept (64 bytes per body): the sort's removals are checked against the pair list instead (`sink`).
+//! kept (32 bytes per body): the sort's removals are checked against the pair list instead (`sink`).
 
 use crate::bodies::vec_bytes;
 use gc2d_geometry::Aabb;
@@ -244,6 +244,12 @@ impl Bodies {
         (self.flags[a].kind == BodyKind::Dynamic || self.flags[b].kind == BodyKind::Dynamic)
             && self.current[0][a].meets(self.current[0][b])
             && self.current[1][a].meets(self.current[1][b])
+    }
+
+    /// True when the current intervals of `a` and `b` on `axis` overlap or touch.
+    #[inline]
+    pub(super) fn meet_on(&self, axis: usize, a: u32, b: u32) -> bool {
+        self.current[axis][a as usize].meets(self.current[axis][b as usize])
     }
 
     /// True when the current box of `body` meets (overlaps or touches) the box `query` (x and y intervals).
