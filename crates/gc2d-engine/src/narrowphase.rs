@@ -226,7 +226,8 @@ impl PairContext<'_> {
     /// fraction of the smaller particle's area, for penetration laws the depth as a fraction of the smaller
     /// particle's diameter; 0 when it does not touch. Read from the contact's history (the law keeps the area or
     /// depth it saw) rather than kept in every pair record: 8 bytes per pair (docs/performance.md, "Memory per
-    /// particle").
+    /// particle"). An overlap the overlap-area law refused (zero characteristic length, docs/model.md "Overlap
+    /// fraction") reads 0, as the law saw it.
     pub fn overlap_fraction(&self, a: u32, b: u32, contact: &PairContact) -> f64 {
         if !contact.touching {
             return 0.0;
