@@ -37,6 +37,11 @@ pub struct BenchArgs {
     /// Particle-steps per measurement: the timed steps are this divided by the particles (at least 20).
     #[arg(long, default_value_t = 20_000_000)]
     pub particle_steps: u64,
+    /// Timed steps per measurement, the same for every size (instead of `--particle-steps`): to compare sizes over
+    /// the same stretch of simulated time after settling, where the budget of particle-steps would time a small
+    /// pile for many more steps than a large one.
+    #[arg(long)]
+    pub steps: Option<u64>,
     /// Simulated time each pile settles before it is measured, s [default: the pile's own, e.g. 0.06 s for dense7].
     #[arg(long)]
     pub settle_time: Option<f64>,
@@ -76,8 +81,8 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
     if let Some(zero) = args.size.iter().chain(&args.threads).find(|&&n| n == 0) {
         return Err(CommandFailure::input(format!("--size and --threads take counts of at least 1, got {zero}")));
     }
-    if args.particle_steps == 0 {
-        return Err(CommandFailure::input("--particle-steps must be at least 1"));
+    if args.particle_steps == 0 || args.steps == Some(0) {
+        return Err(CommandFailure::input("--particle-steps and --steps must be at least 1"));
     }
     if let Some(t) = args.settle_time
         && !(t.is_finite() && t >= 0.0)
@@ -101,7 +106,7 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
             let mut world = settled(pile, particles, settle_time, cores, cache.as_deref(), args.quiet)?;
             let first_row = rows.len();
             for &n in &threads {
-                let steps = (args.particle_steps / particles as u64).max(MIN_TIMED_STEPS);
+                let steps = args.steps.unwrap_or((args.particle_steps / particles as u64).max(MIN_TIMED_STEPS));
                 let measurement = measure(&mut world, n, steps, args.stages).map_err(|e| {
                     CommandFailure::failed(format!("{} pile of {particles} blew up while measured: {e}", pile.name()))
                 })?;

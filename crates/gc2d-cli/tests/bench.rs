@@ -143,4 +143,15 @@ fn bench_refuses_unknown_piles_and_zero_counts() {
     );
     assert!(refusal(&["--threads", "1,0"]).contains("at least 1, got 0"));
     assert!(refusal(&["--settle-time=-1"]).contains("--settle-time must be a time in seconds"));
+    assert!(refusal(&["--steps", "0"]).contains("--particle-steps and --steps must be at least 1"));
+}
+
+/// `--steps` times every size for the same number of steps, whatever the particle-step budget, even below the
+/// budget's floor of 20 steps.
+#[test]
+fn bench_steps_fix_the_timed_steps_for_every_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_, _, rows) = small_bench(&dir.path().join("cache"), &dir.path().join("steps.csv"), &["--steps", "7"]);
+    assert_eq!(rows.len(), 4);
+    assert!(rows.iter().all(|row| row.steps == 7), "{rows:?}");
 }
