@@ -1228,13 +1228,12 @@ impl World {
     }
 
     /// True when the particle outline `shape` (world frame) overlaps any living body: a broadphase query for the
-    /// bodies whose boxes meet its box, then the exact overlap test on each.
+    /// bodies whose boxes meet its box (the broadphase tests the box, which is the one `Bodies::aabb` would compute
+    /// from the same world vertices), then the exact overlap test on each.
     fn overlaps_any(&self, shape: ShapeView) -> bool {
-        let aabb = shape.aabb();
         let b = &self.bodies;
-        self.broadphase.any_box_meeting(&aabb, |body| {
-            let i = body as usize;
-            b.alive[i] && b.aabb(i).overlaps(&aabb) && area_contact(shape, b.shape_view(BodyId(body))).is_some()
+        self.broadphase.any_box_meeting(&shape.aabb(), |body| {
+            b.alive[body as usize] && area_contact(shape, b.shape_view(BodyId(body))).is_some()
         })
     }
 
