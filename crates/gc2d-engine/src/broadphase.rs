@@ -26,6 +26,7 @@
 //! the next [`SortAndSweep::update`]: their endpoints are sorted (O(k log k)), merged into the axes in one pass, and
 //! their pairs found with one sweep, so building the first state of N bodies costs O(N log N), never N² swaps.
 
+mod bands;
 mod bodies;
 mod box_query;
 mod pair_set;
@@ -34,6 +35,7 @@ pub use bodies::{BodyKind, BoxWriter};
 pub use pair_set::PairEntry;
 
 use crate::bodies::vec_bytes;
+use bands::YBands;
 use bodies::{Bodies, Interval, SlotState};
 use box_query::PendingIndex;
 use gc2d_geometry::Aabb;
@@ -136,8 +138,10 @@ impl Endpoint {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SortAndSweep<T> {
     bodies: Bodies,
-    /// Sorted endpoints of the x axis (index 0) and the y axis (index 1).
+    /// Sorted endpoints of the x axis (index 0) and the y axis (index 1; empty where `bands` holds the y axis).
     axes: [Vec<Endpoint>; 2],
+    /// The y axis split into bands of x, in a scene much wider than high ([`bands`]); `None`: one y axis.
+    bands: Option<YBands>,
     /// Bodies inserted since the last update, in insertion order.
     pending: Vec<u32>,
     /// Whether removed bodies still have endpoints in the axes.
@@ -187,6 +191,7 @@ impl<T: Default> Default for SortAndSweep<T> {
         Self {
             bodies: Bodies::default(),
             axes: [Vec::new(), Vec::new()],
+            bands: None,
             pending: Vec::new(),
             has_removed_endpoints: false,
             pairs: PairSet::default(),
@@ -303,6 +308,9 @@ impl<T: Default> SortAndSweep<T> {
             for axis in &mut self.axes {
                 axis.retain(|e| bodies.state(e.body()) == SlotState::Active);
             }
+            if let Some(bands) = &mut self.bands {
+                bands.retain_active(bodies);
+            }
             self.has_removed_endpoints = false;
         }
         self.dynamic_extent =
@@ -355,6 +363,9 @@ impl<T: Default> SortAndSweep<T> {
     /// buffers keep theirs, which the next update would otherwise allocate again.
     pub fn shrink_to_fit(&mut self) {
         self.axes.iter_mut().for_each(Vec::shrink_to_fit);
+        if let Some(bands) = &mut self.bands {
+            bands.shrink_to_fit();
+        }
         self.bodies.shrink_to_fit();
         self.pairs.shrink_to_fit();
     }
@@ -364,6 +375,7 @@ impl<T: Default> SortAndSweep<T> {
     /// the index of bodies inserted since the last update, and the scratch buffers.
     pub fn heap_bytes(&self) -> usize {
         self.axes.iter().map(vec_bytes).sum::<usize>()
+            + self.bands.as_ref().map_or(0, YBands::heap_bytes)
             + vec_bytes(&self.pending)
             + self.static_bodies.as_ref().map_or(0, vec_bytes)
             + self.pending_index.as_ref().map_or(0, PendingIndex::heap_bytes)
@@ -382,18 +394,58 @@ impl<T: Default> SortAndSweep<T> {
         self.bodies.state(body) != SlotState::Absent
     }
 
+    /// Splits the y axis into bands of x where the dynamic bodies (active or pending) span at least four bands 64
+    /// widest dynamic boxes wide ([`bands`]: in a scene much wider than high the single y axis costs time per body
+    /// that grows with the width). Returns whether it did; a broadphase already in bands, or one too narrow, is left
+    /// as it is. The engine asks once, before its first step; the bands stay for the life of the broadphase and
+    /// change the order in which pairs are found, never which pairs there are.
+    pub fn band_y_axis_if_wide(&mut self) -> bool {
+        if self.bands.is_none() {
+            self.bands = YBands::for_wide_scene(&self.bodies, &self.axes[1]);
+            self.take_y_axis_into_bands();
+        }
+        self.bands.is_some()
+    }
+
+    /// Splits the y axis into bands `width` wide over the x extent of the dynamic bodies (at most 65,536 of them;
+    /// see [`band_y_axis_if_wide`](Self::band_y_axis_if_wide)). Returns whether the y axis is in bands now; an
+    /// extent narrower than two bands keeps one axis.
+    pub fn band_y_axis(&mut self, width: f64) -> bool {
+        if self.bands.is_none() {
+            self.bands = YBands::with_width(&self.bodies, &self.axes[1], width);
+            self.take_y_axis_into_bands();
+        }
+        self.bands.is_some()
+    }
+
+    /// The number of bands of the y axis: 1 where it is one axis.
+    pub fn y_bands(&self) -> usize {
+        self.bands.as_ref().map_or(1, YBands::count)
+    }
+
+    /// Frees the single y axis once the bands hold its endpoints.
+    fn take_y_axis_into_bands(&mut self) {
+        if self.bands.is_some() {
+            self.axes[1] = Vec::new();
+        }
+    }
+
     /// Re-sorts both axes (in parallel where they are long), then applies the pair-list changes their swaps found: the
-    /// x axis's, then the y axis's, each in the order found.
+    /// x axis's, then the y axis's, each in the order found (with bands: each band's in band order, then the
+    /// rechecks of the bodies that changed bands, [`bands`]).
     fn sort_axes(&mut self) {
         let bodies = &self.bodies;
         let ([x, y], [x_changes, y_changes]) = (&mut self.axes, &mut self.changes);
-        let (x_swaps, y_swaps) = if x.len() >= 2 * ENDPOINTS_PER_TASK {
-            rayon::join(|| insertion_sort(x, 0, bodies, x_changes), || insertion_sort(y, 1, bodies, y_changes))
-        } else {
-            (insertion_sort(x, 0, bodies, x_changes), insertion_sort(y, 1, bodies, y_changes))
+        let (x_swaps, y_swaps) = match &mut self.bands {
+            Some(bands) => rayon::join(|| insertion_sort(x, 0, bodies, x_changes), || bands.sort(bodies)),
+            None if x.len() >= 2 * ENDPOINTS_PER_TASK => {
+                rayon::join(|| insertion_sort(x, 0, bodies, x_changes), || insertion_sort(y, 1, bodies, y_changes))
+            }
+            None => (insertion_sort(x, 0, bodies, x_changes), insertion_sort(y, 1, bodies, y_changes)),
         };
         self.stats.swaps += x_swaps + y_swaps;
-        for change in x_changes.drain(..).chain(y_changes.drain(..)) {
+        let band_changes = self.bands.iter_mut().flat_map(YBands::changes);
+        for change in x_changes.drain(..).chain(y_changes.drain(..)).chain(band_changes) {
             match change {
                 PairChange::Add(m, n) => {
                     if self.pairs.insert(m, n) {
@@ -417,12 +469,21 @@ impl<T: Default> SortAndSweep<T> {
             self.bodies.set_fresh(body, true);
         }
         for axis in 0..2 {
-            self.merge_buffer.clear();
             for &body in &self.pending {
                 let interval = self.bodies.interval(axis, body);
                 if self.bodies.kind(body) == BodyKind::Dynamic {
                     self.dynamic_extent[axis] = self.dynamic_extent[axis].max(interval.upper - interval.lower);
                 }
+            }
+            if axis == 1
+                && let Some(bands) = &mut self.bands
+            {
+                bands.merge_pending(&self.pending, &self.bodies);
+                continue;
+            }
+            self.merge_buffer.clear();
+            for &body in &self.pending {
+                let interval = self.bodies.interval(axis, body);
                 self.merge_buffer.push(Endpoint::begin(body, interval.lower));
                 self.merge_buffer.push(Endpoint::end(body, interval.upper));
             }

@@ -697,6 +697,12 @@ impl World {
             + self.insertions.heap_bytes()
     }
 
+    /// The number of bands the broadphase's y axis is split into: more than 1 in a scene much wider than high
+    /// (decided at the first step, docs/model.md "Broadphase"), else 1.
+    pub fn y_bands(&self) -> usize {
+        self.broadphase.y_bands()
+    }
+
     /// Every pair of bodies whose boxes touch, with its contact record (`a < b`).
     pub fn pairs(&self) -> impl Iterator<Item = (BodyId, BodyId, &PairContact)> {
         self.broadphase.pairs().iter().map(|p| (BodyId(p.a()), BodyId(p.b()), &p.payload))
@@ -750,6 +756,9 @@ impl World {
             {
                 return Err(SafetyError::InitialOverlap { a: a.0, b: b.0, percent: 100.0 * fraction }.into());
             }
+            // A scene much wider than high sorts its y axis in bands of x (broadphase::bands); decided once, here,
+            // from the bodies the scene starts with, so a resumed run keeps the choice its checkpoint saved.
+            self.broadphase.band_y_axis_if_wide();
             self.started = true;
             self.ledger.contact_stored = self.contact_stored_energy();
             self.refresh_stored_energies();

@@ -348,7 +348,8 @@ fn a_payload_that_passes_the_checksum_but_is_not_a_world_is_an_error() {
 /// (files with the full column still load). Format 13 dropped the broadphase's previous boxes (32 bytes per body
 /// written), the pair list's index table, which loading rebuilds from the entries, and the bodies' box column
 /// (the broadphase's boxes are the only ones now): 18,567 bytes. Format 14 dropped the pair record's overlap
-/// fraction, which is read from the contact's history now: 18,535 bytes.
+/// fraction, which is read from the contact's history now: 18,535 bytes. Format 15 added the broadphase's bands of
+/// the y axis (`None` here, one byte): 18,536 bytes.
 #[test]
 fn checkpoint_layout_is_pinned() {
     let mut world = scene();
@@ -356,7 +357,7 @@ fn checkpoint_layout_is_pinned() {
     assert!(world.contacts().count() > 0, "the pin must cover a pair record");
     let payload = checkpoint_bytes(&world).len() - payload_offset();
     assert_eq!(
-        payload, 18535,
+        payload, 18536,
         "the checkpoint layout changed: bump CHECKPOINT_FORMAT_VERSION (now {CHECKPOINT_FORMAT_VERSION}) and pin the \
          new payload length"
     );

@@ -16,6 +16,7 @@
 //! The engine's per-body boxes (`Bodies::aabb`) change only in the same place, just before the update, so the query
 //! finds exactly the bodies whose box a scan over `Bodies::aabb` would find.
 
+use super::bands::FromTop;
 use super::bodies::Interval;
 use super::{BodyKind, Endpoint, SlotState, SortAndSweep};
 use gc2d_geometry::Aabb;
@@ -61,9 +62,16 @@ impl<T: Default> SortAndSweep<T> {
         if pending_hit {
             return true;
         }
-        let windows = [0, 1].map(|axis| self.window(axis, query[axis]));
-        let axis = if windows[0].len() <= windows[1].len() { 0 } else { 1 };
-        self.axes[axis][windows[axis].clone()]
+        let x_window = self.window(0, query[0]);
+        let (axis, window) = match &self.bands {
+            // In bands ([`super::bands`]) the y axis is no one sorted array to search.
+            Some(_) => (0, x_window),
+            None => {
+                let y_window = self.window(1, query[1]);
+                if x_window.len() <= y_window.len() { (0, x_window) } else { (1, y_window) }
+            }
+        };
+        self.axes[axis][window]
             .iter()
             .filter(|e| !e.is_end())
             .map(|e| e.body())
@@ -73,11 +81,14 @@ impl<T: Default> SortAndSweep<T> {
 
     /// The dynamic bodies of the axes from the highest box top down, each with its top (y), as of the last update;
     /// bodies inserted since are not among them (see [`pending`](Self::pending)). Walks the sorted y axis from its
-    /// end, so a caller looking for the highest body that passes a test stops after the first few.
+    /// end, so a caller looking for the highest body that passes a test stops after the first few (with the y axis in
+    /// bands, [`super::bands`], it merges the bands' ends, looking at every band for each body).
     pub fn dynamic_bodies_from_top(&self) -> impl Iterator<Item = (u32, f64)> + '_ {
-        self.axes[1]
-            .iter()
-            .rev()
+        let endpoints = match &self.bands {
+            None => YFromTop::Axis(self.axes[1].iter().rev()),
+            Some(bands) => YFromTop::Bands(bands.endpoints_from_top()),
+        };
+        endpoints
             .filter(|e| e.is_end())
             .filter(|e| {
                 self.bodies.state(e.body()) == SlotState::Active && self.bodies.kind(e.body()) == BodyKind::Dynamic
@@ -99,6 +110,23 @@ impl<T: Default> SortAndSweep<T> {
         let start = endpoints.partition_point(|e: &Endpoint| e.value < low);
         let end = start + endpoints[start..].partition_point(|e: &Endpoint| e.value <= query.upper);
         start..end
+    }
+}
+
+/// The y endpoints from the highest down: of the one y axis, or merged from its bands.
+enum YFromTop<'a> {
+    Axis(std::iter::Rev<std::slice::Iter<'a, Endpoint>>),
+    Bands(FromTop<'a>),
+}
+
+impl Iterator for YFromTop<'_> {
+    type Item = Endpoint;
+
+    fn next(&mut self) -> Option<Endpoint> {
+        match self {
+            Self::Axis(endpoints) => endpoints.next().copied(),
+            Self::Bands(endpoints) => endpoints.next(),
+        }
     }
 }
 
@@ -182,6 +210,7 @@ mod tests {
             late in 0usize..10,
             queries in prop::collection::vec((-1.2..1.2f64, -1.2..1.2f64, 0.0..0.2f64, 0.0..0.2f64), 1..20),
             reload in any::<bool>(),
+            banded in any::<bool>(),
         ) {
             let mut aabbs: Vec<Aabb> = boxes.iter().map(|&(x, y, w, h)| aabb(x, y, w, h)).collect();
             let is_wall = |i: usize| walls.contains(&i);
@@ -195,6 +224,9 @@ mod tests {
             let mut sweep = SortAndSweep::<()>::new();
             for (i, b) in aabbs.iter().enumerate().take(settled) {
                 sweep.insert(i as u32, *b, kind(i)).unwrap();
+            }
+            if banded {
+                sweep.band_y_axis(0.3);
             }
             sweep.update_for_queries(&aabbs);
             // The particles move (and turn, changing their boxes' sizes) before the next update.
@@ -255,5 +287,34 @@ mod tests {
         sweep.update(&boxes);
         let order: Vec<u32> = sweep.dynamic_bodies_from_top().map(|(body, _)| body).collect();
         assert_eq!(order, [1, 0, 3]);
+    }
+
+    /// With the y axis in bands the bands' ends are merged: every dynamic body once (body 1 lies in two bands), from
+    /// the highest top down, with its top, exactly as from one axis (bodies 2 and 5 tie at 0.6: the larger id first).
+    #[test]
+    fn dynamic_bodies_come_from_the_top_down_out_of_bands() {
+        let boxes = [
+            aabb(0.0, 0.0, 0.1, 0.3),
+            aabb(0.95, 0.2, 0.1, 0.2),
+            aabb(2.5, 0.1, 0.1, 0.5),
+            aabb(-5.0, 0.4, 10.0, 0.1),
+            aabb(3.9, 0.6, 0.1, 0.05),
+            aabb(1.5, 0.4, 0.1, 0.2),
+        ];
+        let kinds = |i: usize| if i == 3 { BodyKind::Static } else { BodyKind::Dynamic };
+        let order = |banded: bool| {
+            let mut sweep = SortAndSweep::<()>::new();
+            for (i, b) in boxes.iter().enumerate() {
+                sweep.insert(i as u32, *b, kinds(i)).unwrap();
+            }
+            if banded {
+                assert!(sweep.band_y_axis(1.0));
+                assert_eq!(sweep.y_bands(), 4);
+            }
+            sweep.update(&boxes);
+            sweep.dynamic_bodies_from_top().collect::<Vec<_>>()
+        };
+        assert_eq!(order(true), order(false));
+        assert_eq!(order(true).iter().map(|&(body, _)| body).collect::<Vec<_>>(), [4, 5, 2, 1, 0]);
     }
 }

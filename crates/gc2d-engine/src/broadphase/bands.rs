@@ -1,0 +1,385 @@
+//! The y axis split into bands of x, for scenes much wider than high.
+//!
+//! One y axis over a layer 300 m wide and 1 cm deep (10⁶ grains) orders 2·10⁶ endpoints within 1 cm, so a grain that
+//! moves up by δ passes every endpoint in that height across the whole width: its swaps, and the box reads each swap
+//! makes, grow with the width, i.e. with N. Split into bands, each band keeps the y endpoints of the bodies whose x
+//! interval reaches into it, and a grain only passes the endpoints of its own band(s): the work per grain no longer
+//! depends on the width (docs/performance.md, "The y axis in bands").
+//!
+//! **Why the pair list stays exact.** Bodies whose x intervals meet share a band (a point of both intervals lies in
+//! some band, and both reach into it). A pair whose boxes start or stop meeting either changes its x overlap (the x
+//! axis, still one axis over the whole width, sees the swap) or keeps its x overlap and changes its y overlap. In the
+//! latter case the two share a band now, and, if neither body changed its bands in this update, they shared that
+//! band before: its insertion sort swaps their endpoints (it swaps exactly the endpoint pairs whose order changed)
+//! and records the change of Table 2.3, as the single axis did. A body that changed its bands ("mover") is checked
+//! against every body of its bands once the bands are sorted ([`YBands::sort`], the recheck): a pair whose boxes
+//! meet is added, one whose x intervals meet and y intervals do not is ended. Every recorded change is true of the
+//! new boxes, and adding or ending a pair twice does nothing, so bodies in two bands do no harm.
+//!
+//! The bands are fixed once chosen (origin, width and count are saved in checkpoints); bodies beyond the outer
+//! bands' edges belong to the outer bands. The changes are applied in a fixed order (the x axis's, then each band's
+//! in band order, then the rechecks in body order), so the pair list is the same for any thread count.
+
+use super::bodies::{Bodies, BodyKind, Interval, SlotState};
+use super::{Endpoint, PairChange, insertion_sort, merge_sorted};
+use crate::bodies::vec_bytes;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// A band is this many times as wide as the widest dynamic box when [`YBands::for_wide_scene`] chooses the bands: wide
+/// enough that few bodies straddle two bands or change bands in a step, narrow enough that a band of a layer ten
+/// grains deep holds about a thousand bodies.
+const BAND_WIDTH_IN_BOXES: f64 = 64.0;
+
+/// [`YBands::for_wide_scene`] splits the y axis only where the dynamic bodies span at least this many bands.
+const MIN_BANDS: usize = 4;
+
+/// The most bands; a wider scene gets wider bands. Bounds the copies of a wall that spans the whole scene.
+const MAX_BANDS: usize = 1 << 16;
+
+/// Bands below this many per task are sorted on one thread.
+const BANDS_PER_TASK: usize = 4;
+
+/// The bands a body's x interval reaches into: `first..=last`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+struct BandRange {
+    first: u32,
+    last: u32,
+}
+
+impl BandRange {
+    fn bands(self) -> std::ops::RangeInclusive<usize> {
+        self.first as usize..=self.last as usize
+    }
+
+    fn contains(self, band: usize) -> bool {
+        self.bands().contains(&band)
+    }
+}
+
+/// A body whose bands changed in the current update, with the bands it had before.
+#[derive(Debug, Clone, Copy)]
+struct Mover {
+    body: u32,
+    before: BandRange,
+}
+
+/// An endpoint to be merged into a band.
+#[derive(Debug, Clone, Copy)]
+struct Arrival {
+    band: u32,
+    endpoint: Endpoint,
+}
+
+/// The y axis as bands of x: per band the sorted y endpoints of the bodies reaching into it.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub(super) struct YBands {
+    /// x of the left edge of band 0.
+    origin: f64,
+    /// Width of a band, m.
+    width: f64,
+    /// Per band, its sorted y endpoints.
+    axes: Vec<Vec<Endpoint>>,
+    /// Per body slot, the bands it is in (for bodies in the axes).
+    ranges: Vec<BandRange>,
+    /// Scratch: per band, the pair-list changes its sort found in the current update.
+    #[serde(skip)]
+    changes: Vec<Vec<PairChange>>,
+    /// Scratch: the changes the recheck of the movers found.
+    #[serde(skip)]
+    rechecks: Vec<PairChange>,
+    /// Scratch: the bodies whose bands changed in the current update, in body order.
+    #[serde(skip)]
+    movers: Vec<Mover>,
+    /// Scratch: the bands a mover left, to be cleaned.
+    #[serde(skip)]
+    left: Vec<u32>,
+    /// Scratch: endpoints to merge into the bands.
+    #[serde(skip)]
+    arrivals: Vec<Arrival>,
+    /// Scratch: one band's sorted arrivals.
+    #[serde(skip)]
+    merge_buffer: Vec<Endpoint>,
+}
+
+impl YBands {
+    /// Bands of `width` starting at `origin`, `count` of them, holding the endpoints of `y_axis` (the sorted y axis of
+    /// the bodies in the axes).
+    fn new(bodies: &Bodies, y_axis: &[Endpoint], origin: f64, width: f64, count: usize) -> Self {
+        let mut bands = Self {
+            origin,
+            width,
+            axes: vec![Vec::new(); count],
+            ranges: vec![BandRange::default(); bodies.len()],
+            changes: Vec::new(),
+            rechecks: Vec::new(),
+            movers: Vec::new(),
+            left: Vec::new(),
+            arrivals: Vec::new(),
+            merge_buffer: Vec::new(),
+        };
+        for body in 0..bodies.len() as u32 {
+            if bodies.state(body) == SlotState::Active {
+                bands.ranges[body as usize] = bands.range_of(bodies.interval(0, body));
+            }
+        }
+        // Each band takes its bodies' endpoints in axis order, so it is sorted too.
+        for &endpoint in y_axis {
+            for band in bands.ranges[endpoint.body() as usize].bands() {
+                bands.axes[band].push(endpoint);
+            }
+        }
+        bands
+    }
+
+    /// Bands of `width` over the x extent of the dynamic bodies (active or pending), or `None` where that extent is
+    /// not finite or holds fewer than two bands.
+    pub(super) fn with_width(bodies: &Bodies, y_axis: &[Endpoint], width: f64) -> Option<Self> {
+        let extent = dynamic_x_extent(bodies)?;
+        let count = ((extent.upper - extent.lower) / width).ceil();
+        if !(width > 0.0 && count >= 2.0) {
+            return None;
+        }
+        let count = (count as usize).min(MAX_BANDS);
+        let width = width.max((extent.upper - extent.lower) / count as f64);
+        Some(Self::new(bodies, y_axis, extent.lower, width, count))
+    }
+
+    /// Bands [`BAND_WIDTH_IN_BOXES`] widest dynamic boxes wide, where the dynamic bodies span at least [`MIN_BANDS`]
+    /// of them; `None` for a scene that is not that wide (one y axis is then as fast).
+    pub(super) fn for_wide_scene(bodies: &Bodies, y_axis: &[Endpoint]) -> Option<Self> {
+        let widest = widest_dynamic_box(bodies);
+        let width = BAND_WIDTH_IN_BOXES * widest;
+        let extent = dynamic_x_extent(bodies)?;
+        let wide = (extent.upper - extent.lower) >= MIN_BANDS as f64 * width;
+        if wide { Self::with_width(bodies, y_axis, width) } else { None }
+    }
+
+    /// Number of bands.
+    pub(super) fn count(&self) -> usize {
+        self.axes.len()
+    }
+
+    /// The band holding x (the outer bands hold everything beyond their edges).
+    fn band_of(&self, x: f64) -> u32 {
+        let band = ((x - self.origin) / self.width).floor();
+        // NaN (not possible for sanitised intervals) goes to band 0 with `as`.
+        band.clamp(0.0, (self.axes.len() - 1) as f64) as u32
+    }
+
+    fn range_of(&self, x: Interval) -> BandRange {
+        BandRange { first: self.band_of(x.lower), last: self.band_of(x.upper) }
+    }
+
+    /// Drops the endpoints of bodies no longer in the broadphase.
+    pub(super) fn retain_active(&mut self, bodies: &Bodies) {
+        for axis in &mut self.axes {
+            axis.retain(|e| bodies.state(e.body()) == SlotState::Active);
+        }
+    }
+
+    /// Moves the bodies that changed bands, re-sorts every band (in parallel), and rechecks the movers; the changes
+    /// found are then read with [`changes`](Self::changes). Returns the number of swaps.
+    pub(super) fn sort(&mut self, bodies: &Bodies) -> u64 {
+        self.find_movers(bodies);
+        self.leave_bands();
+        self.changes.resize_with(self.axes.len(), Vec::new);
+        let sort_band = |(axis, changes): (&mut Vec<Endpoint>, &mut Vec<PairChange>)| {
+            changes.clear();
+            insertion_sort(axis, 1, bodies, changes)
+        };
+        let swaps = if self.axes.len() >= 2 * BANDS_PER_TASK {
+            self.axes.par_iter_mut().zip(self.changes.par_iter_mut()).with_min_len(BANDS_PER_TASK).map(sort_band).sum()
+        } else {
+            self.axes.iter_mut().zip(self.changes.iter_mut()).map(sort_band).sum()
+        };
+        self.join_bands(bodies);
+        self.recheck_movers(bodies);
+        swaps
+    }
+
+    /// The changes of the last [`sort`](Self::sort): each band's in band order, then the rechecks.
+    pub(super) fn changes(&mut self) -> impl Iterator<Item = PairChange> + '_ {
+        self.changes.iter_mut().flat_map(|changes| changes.drain(..)).chain(self.rechecks.drain(..))
+    }
+
+    /// Records the bodies in the axes whose x interval now reaches into other bands, and gives them their new bands.
+    fn find_movers(&mut self, bodies: &Bodies) {
+        self.movers.clear();
+        self.ranges.resize(bodies.len(), BandRange::default());
+        for (body, &x) in bodies.intervals(0).iter().enumerate() {
+            if bodies.state(body as u32) != SlotState::Active {
+                continue;
+            }
+            let now = self.range_of(x);
+            let before = self.ranges[body];
+            if now != before {
+                self.movers.push(Mover { body: body as u32, before });
+                self.ranges[body] = now;
+            }
+        }
+    }
+
+    /// Takes the movers' endpoints out of the bands they left.
+    fn leave_bands(&mut self) {
+        self.left.clear();
+        for mover in &self.movers {
+            let now = self.ranges[mover.body as usize];
+            self.left.extend(mover.before.bands().filter(|&band| !now.contains(band)).map(|band| band as u32));
+        }
+        self.left.sort_unstable();
+        self.left.dedup();
+        for &band in &self.left {
+            let band = band as usize;
+            let ranges = &self.ranges;
+            self.axes[band].retain(|e| ranges[e.body() as usize].contains(band));
+        }
+    }
+
+    /// Merges the movers' endpoints into the bands they joined.
+    fn join_bands(&mut self, bodies: &Bodies) {
+        self.arrivals.clear();
+        for mover in &self.movers {
+            let now = self.ranges[mover.body as usize];
+            let y = bodies.interval(1, mover.body);
+            for band in now.bands().filter(|&band| !mover.before.contains(band)) {
+                self.arrivals.push(Arrival { band: band as u32, endpoint: Endpoint::begin(mover.body, y.lower) });
+                self.arrivals.push(Arrival { band: band as u32, endpoint: Endpoint::end(mover.body, y.upper) });
+            }
+        }
+        self.merge_arrivals();
+    }
+
+    /// Puts the bodies being merged into the broadphase (`pending`, in the axes from now on) into their bands.
+    pub(super) fn merge_pending(&mut self, pending: &[u32], bodies: &Bodies) {
+        self.ranges.resize(bodies.len(), BandRange::default());
+        self.arrivals.clear();
+        for &body in pending {
+            let range = self.range_of(bodies.interval(0, body));
+            self.ranges[body as usize] = range;
+            let y = bodies.interval(1, body);
+            for band in range.bands() {
+                self.arrivals.push(Arrival { band: band as u32, endpoint: Endpoint::begin(body, y.lower) });
+                self.arrivals.push(Arrival { band: band as u32, endpoint: Endpoint::end(body, y.upper) });
+            }
+        }
+        self.merge_arrivals();
+    }
+
+    /// Merges `arrivals` into their bands, band by band.
+    fn merge_arrivals(&mut self) {
+        self.arrivals
+            .sort_unstable_by(|a, b| a.band.cmp(&b.band).then_with(|| Endpoint::order(&a.endpoint, &b.endpoint)));
+        let mut start = 0;
+        while let Some(first) = self.arrivals.get(start) {
+            let band = first.band;
+            let end = start + self.arrivals[start..].partition_point(|a| a.band == band);
+            self.merge_buffer.clear();
+            self.merge_buffer.extend(self.arrivals[start..end].iter().map(|a| a.endpoint));
+            merge_sorted(&mut self.axes[band as usize], &self.merge_buffer);
+            start = end;
+        }
+    }
+
+    /// Checks every mover against every body of its bands: adds the pairs whose boxes meet, ends those whose x
+    /// intervals meet and y intervals do not (those whose x intervals do not meet are the x axis's to end).
+    fn recheck_movers(&mut self, bodies: &Bodies) {
+        self.rechecks.clear();
+        for mover in &self.movers {
+            let m = mover.body;
+            for band in self.ranges[m as usize].bands() {
+                for other in self.axes[band].iter().filter(|e| !e.is_end() && e.body() != m) {
+                    let n = other.body();
+                    if bodies.may_pair(m, n) {
+                        self.rechecks.push(PairChange::Add(m, n));
+                    } else if bodies.meet_on(0, m, n) {
+                        self.rechecks.push(PairChange::Remove(m, n));
+                    }
+                }
+            }
+        }
+    }
+
+    /// All endpoints of the bands from the highest down (value, then the axis order), each once.
+    pub(super) fn endpoints_from_top(&self) -> FromTop<'_> {
+        FromTop { axes: &self.axes, cursors: self.axes.iter().map(Vec::len).collect(), last: None }
+    }
+
+    /// Gives back the spare room of the bands and the per-body ranges.
+    pub(super) fn shrink_to_fit(&mut self) {
+        self.axes.iter_mut().for_each(Vec::shrink_to_fit);
+        self.axes.shrink_to_fit();
+        self.ranges.shrink_to_fit();
+    }
+
+    /// Heap bytes of the bands, the ranges and the scratch buffers.
+    pub(super) fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.axes)
+            + self.axes.iter().map(vec_bytes).sum::<usize>()
+            + vec_bytes(&self.ranges)
+            + vec_bytes(&self.changes)
+            + self.changes.iter().map(vec_bytes).sum::<usize>()
+            + vec_bytes(&self.rechecks)
+            + vec_bytes(&self.movers)
+            + vec_bytes(&self.left)
+            + vec_bytes(&self.arrivals)
+            + vec_bytes(&self.merge_buffer)
+    }
+}
+
+/// The x extent (lowest lower, highest upper bound) of the dynamic bodies in the broadphase, active or pending;
+/// `None` when there are none or it is not finite.
+fn dynamic_x_extent(bodies: &Bodies) -> Option<Interval> {
+    let mut extent = Interval { lower: f64::INFINITY, upper: f64::NEG_INFINITY };
+    for body in dynamic_bodies(bodies) {
+        let x = bodies.interval(0, body);
+        extent.lower = extent.lower.min(x.lower);
+        extent.upper = extent.upper.max(x.upper);
+    }
+    (extent.lower.is_finite() && extent.upper.is_finite()).then_some(extent)
+}
+
+/// The width of the widest dynamic box (x), 0 when there is none.
+fn widest_dynamic_box(bodies: &Bodies) -> f64 {
+    dynamic_bodies(bodies).map(|body| bodies.interval(0, body)).map(|x| x.upper - x.lower).fold(0.0, f64::max)
+}
+
+fn dynamic_bodies(bodies: &Bodies) -> impl Iterator<Item = u32> + '_ {
+    (0..bodies.len() as u32)
+        .filter(|&body| bodies.state(body) != SlotState::Absent && bodies.kind(body) == BodyKind::Dynamic)
+}
+
+/// The endpoints of all bands merged from the highest down; an endpoint held by two bands (a body in both) comes
+/// once. Each step looks at every band's next endpoint, so it is meant for walks that stop after a few (the sources'
+/// highest-particle search), not for a whole axis.
+pub(super) struct FromTop<'a> {
+    axes: &'a [Vec<Endpoint>],
+    /// Per band, how many of its endpoints are still to come.
+    cursors: Vec<usize>,
+    /// The last endpoint given, to skip its copies in other bands.
+    last: Option<Endpoint>,
+}
+
+impl Iterator for FromTop<'_> {
+    type Item = Endpoint;
+
+    fn next(&mut self) -> Option<Endpoint> {
+        loop {
+            let mut highest: Option<(usize, Endpoint)> = None;
+            for (band, (&cursor, axis)) in self.cursors.iter().zip(self.axes).enumerate() {
+                if let Some(&candidate) = cursor.checked_sub(1).and_then(|k| axis.get(k))
+                    && highest.is_none_or(|(_, best)| best.precedes(candidate))
+                {
+                    highest = Some((band, candidate));
+                }
+            }
+            let (band, endpoint) = highest?;
+            self.cursors[band] -= 1;
+            let repeated = self.last.is_some_and(|last| !last.precedes(endpoint) && !endpoint.precedes(last));
+            if !repeated {
+                self.last = Some(endpoint);
+                return Some(endpoint);
+            }
+        }
+    }
+}
