@@ -162,9 +162,9 @@ impl YBands {
 
     /// The band holding x (the outer bands hold everything beyond their edges).
     fn band_of(&self, x: f64) -> u32 {
-        let band = ((x - self.origin) / self.width).floor();
-        // NaN (not possible for sanitised intervals) goes to band 0 with `as`.
-        band.clamp(0.0, (self.axes.len() - 1) as f64) as u32
+        // Clamped to [0, last] first, so `as` (which truncates) floors; without a call to libm's `floor` (0.6 % of a
+        // 100,000-grain layer's step). NaN (not possible for sanitised intervals) goes to band 0.
+        ((x - self.origin) / self.width).clamp(0.0, (self.axes.len() - 1) as f64) as u32
     }
 
     fn range_of(&self, x: Interval) -> BandRange {
