@@ -281,7 +281,7 @@ impl Bodies {
     }
 
     /// Axis-aligned box around body `i`'s world vertices (grown by its scaled radius), computed from them: the
-    /// bodies keep no box column, the broadphase keeps the boxes it sorts ([`Bodies::update_world_vertices`]).
+    /// bodies keep no box column, the broadphase keeps the boxes it sorts (`Bodies::update_world_vertices`).
     pub fn aabb(&self, i: usize) -> Aabb {
         body_aabb(&self.world_vertices[self.vertices[i].range()], self.radius[i] * self.pose[i].scale)
     }

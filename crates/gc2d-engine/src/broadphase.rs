@@ -22,6 +22,10 @@
 //! in the order found: the same sequence of insertions and removals as sorting x and then y with the list changed at
 //! once, so the list is a pure function of the input and the same for any thread count.
 //!
+//! **In a scene much wider than high the y axis is split into bands of x** (`broadphase::bands`, docs/model.md "The y
+//! axis in bands of x"): one y axis over the whole width would make every grain swap with endpoints across the whole
+//! width.
+//!
 //! Bodies are inserted and removed at any time (drop sources, particles leaving the domain). Insertions are merged at
 //! the next [`SortAndSweep::update`]: their endpoints are sorted (O(k log k)), merged into the axes in one pass, and
 //! their pairs found with one sweep, so building the first state of N bodies costs O(N log N), never N² swaps.
@@ -140,7 +144,7 @@ pub struct SortAndSweep<T> {
     bodies: Bodies,
     /// Sorted endpoints of the x axis (index 0) and the y axis (index 1; empty where `bands` holds the y axis).
     axes: [Vec<Endpoint>; 2],
-    /// The y axis split into bands of x, in a scene much wider than high ([`bands`]); `None`: one y axis.
+    /// The y axis split into bands of x, in a scene much wider than high (`broadphase::bands`); `None`: one y axis.
     bands: Option<YBands>,
     /// Bodies inserted since the last update, in insertion order.
     pending: Vec<u32>,
@@ -395,10 +399,11 @@ impl<T: Default> SortAndSweep<T> {
     }
 
     /// Splits the y axis into bands of x where the dynamic bodies (active or pending) span at least four bands 64
-    /// widest dynamic boxes wide ([`bands`]: in a scene much wider than high the single y axis costs time per body
-    /// that grows with the width). Returns whether it did; a broadphase already in bands, or one too narrow, is left
-    /// as it is. The engine asks once, before its first step; the bands stay for the life of the broadphase and
-    /// change the order in which pairs are found, never which pairs there are.
+    /// widest dynamic boxes wide (`broadphase::bands`, docs/model.md "The y axis in bands of x": in a scene much wider
+    /// than high the single y axis costs time per body that grows with the width). Returns whether the y axis is in
+    /// bands; a broadphase already in bands, or one too narrow, is left as it is. The engine asks once, before its
+    /// first step; the bands stay for the life of the broadphase and change the order in which pairs are found, never
+    /// which pairs there are.
     pub fn band_y_axis_if_wide(&mut self) -> bool {
         if self.bands.is_none() {
             self.bands = YBands::for_wide_scene(&self.bodies, &self.axes[1]);
@@ -432,7 +437,7 @@ impl<T: Default> SortAndSweep<T> {
 
     /// Re-sorts both axes (in parallel where they are long), then applies the pair-list changes their swaps found: the
     /// x axis's, then the y axis's, each in the order found (with bands: each band's in band order, then the
-    /// rechecks of the bodies that changed bands, [`bands`]).
+    /// rechecks of the bodies that changed bands, `bands`).
     fn sort_axes(&mut self) {
         let bodies = &self.bodies;
         let ([x, y], [x_changes, y_changes]) = (&mut self.axes, &mut self.changes);

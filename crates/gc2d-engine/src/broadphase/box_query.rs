@@ -8,7 +8,8 @@
 //! [`SortAndSweep::update_for_queries`] in the pass that reads the boxes anyway (after a plain update `w` is
 //! unknown and a query walks a whole axis). A query then binary-searches both axes for the endpoints in the window
 //! `[a − w, b]`, walks the axis whose window holds fewer (above a pile a source's box meets few falling particles on
-//! y; a wide flood of falling particles is sparse on x), and tests the walls one by one. The bodies inserted since
+//! y; a wide flood of falling particles is sparse on x; with the y axis in bands, `broadphase::bands`, the x axis),
+//! and tests the walls one by one. The bodies inserted since
 //! the last update are not in the axes yet; a source can insert thousands in one step, so they are kept ordered by
 //! the left ends of their boxes ([`PendingIndex`]) and queried the same way.
 //!
@@ -64,7 +65,7 @@ impl<T: Default> SortAndSweep<T> {
         }
         let x_window = self.window(0, query[0]);
         let (axis, window) = match &self.bands {
-            // In bands ([`super::bands`]) the y axis is no one sorted array to search.
+            // In bands (`broadphase::bands`) the y axis is no one sorted array to search.
             Some(_) => (0, x_window),
             None => {
                 let y_window = self.window(1, query[1]);
@@ -82,7 +83,7 @@ impl<T: Default> SortAndSweep<T> {
     /// The dynamic bodies of the axes from the highest box top down, each with its top (y), as of the last update;
     /// bodies inserted since are not among them (see [`pending`](Self::pending)). Walks the sorted y axis from its
     /// end, so a caller looking for the highest body that passes a test stops after the first few (with the y axis in
-    /// bands, [`super::bands`], it merges the bands' ends, looking at every band for each body).
+    /// bands, `broadphase::bands`, it merges the bands' ends, looking at every band for each body).
     pub fn dynamic_bodies_from_top(&self) -> impl Iterator<Item = (u32, f64)> + '_ {
         let endpoints = match &self.bands {
             None => YFromTop::Axis(self.axes[1].iter().rev()),
