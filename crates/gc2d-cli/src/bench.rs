@@ -185,7 +185,8 @@ fn settled(
     {
         match World::load_checkpoint_file(file) {
             Ok(world) => {
-                console::err(&format!("{} {particles}: settled state from {}", pile.name(), file.display()));
+                let (name, file) = (pile.name(), file.display());
+                console::err(&format!("{name} {particles}: settled state from {file}{}", bands_note(&world)));
                 return Ok(world);
             }
             Err(e) => console::err(&format!("{}: {e}; settling again", file.display())),
@@ -207,10 +208,11 @@ fn settled(
         CommandFailure::failed(format!("{} pile of {particles} blew up while settling: {e}", pile.name()))
     })?;
     console::err(&format!(
-        "{} {particles}: built and settled {settle_time} s ({} steps) in {:.1} s on {threads} threads",
+        "{} {particles}: built and settled {settle_time} s ({} steps) in {:.1} s on {threads} threads{}",
         pile.name(),
         world.steps(),
-        started.elapsed().as_secs_f64()
+        started.elapsed().as_secs_f64(),
+        bands_note(&world)
     ));
     if let Some(file) = &file {
         let saved = std::fs::create_dir_all(file.parent().unwrap_or(Path::new(".")))
@@ -221,6 +223,15 @@ fn settled(
         }
     }
     Ok(world)
+}
+
+/// "; y axis in N bands" for a pile wide enough for the broadphase to split its y axis (docs/model.md, "The y axis
+/// in bands of x"), which explains a broadphase stage that does not grow with the width; nothing for the others.
+fn bands_note(world: &World) -> String {
+    match world.y_bands() {
+        1 => String::new(),
+        bands => format!("; y axis in {bands} bands"),
+    }
 }
 
 /// The progress bar of a settling run, hidden with `quiet`.

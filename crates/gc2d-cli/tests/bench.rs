@@ -155,3 +155,27 @@ fn bench_steps_fix_the_timed_steps_for_every_size() {
     assert_eq!(rows.len(), 4);
     assert!(rows.iter().all(|row| row.steps == 7), "{rows:?}");
 }
+
+/// A layer wide enough for the broadphase's y axis in bands (docs/model.md, "The y axis in bands of x") says how many
+/// bands it has, fresh and from the cache; a dense pile, which has one y axis, says nothing.
+#[test]
+fn bench_names_the_bands_of_a_wide_layer() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |pile: &str, size: &str| {
+        let output = Command::cargo_bin("gc2d-rs")
+            .unwrap()
+            .args(["bench", "--pile", pile, "--size", size, "--threads", "1", "--steps", "2"])
+            .args(["--settle-time", "0.0001", "--quiet", "--cache"])
+            .arg(dir.path())
+            .output()
+            .unwrap();
+        assert!(output.status.success(), "{output:?}");
+        String::from_utf8(output.stderr).unwrap()
+    };
+    let fresh = run("layer", "4000");
+    assert!(fresh.contains("layer 4000: built and settled") && fresh.contains("; y axis in 15 bands"), "{fresh}");
+    let cached = run("layer", "4000");
+    assert!(cached.contains("layer 4000: settled state from") && cached.contains("; y axis in 15 bands"), "{cached}");
+    let dense = run("dense7", "60");
+    assert!(dense.contains("dense7 60: built and settled") && !dense.contains("bands"), "{dense}");
+}
