@@ -1225,7 +1225,7 @@ impl World {
             .iter()
             .filter_map(|&body| centroid_within(body))
             .fold(f64::NEG_INFINITY, f64::max);
-        for (body, top) in self.broadphase.dynamic_bodies_from_top() {
+        for (body, top) in self.broadphase.dynamic_bodies_from_top(x - half_width, x + half_width) {
             if top < highest {
                 break;
             }

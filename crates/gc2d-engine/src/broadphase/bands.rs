@@ -300,9 +300,11 @@ impl YBands {
         }
     }
 
-    /// All endpoints of the bands from the highest down (value, then the axis order), each once.
-    pub(super) fn endpoints_from_top(&self) -> FromTop<'_> {
-        FromTop { axes: &self.axes, cursors: self.axes.iter().map(Vec::len).collect(), last: None }
+    /// The endpoints of the bands that `x` reaches into, from the highest down (value, then the axis order), each
+    /// once: among them those of every body whose x interval meets `x`.
+    pub(super) fn endpoints_from_top(&self, x: Interval) -> FromTop<'_> {
+        let axes = &self.axes[self.range_of(x).bands()];
+        FromTop { axes, cursors: axes.iter().map(Vec::len).collect(), last: None }
     }
 
     /// Gives back the spare room of the bands and the per-body ranges.

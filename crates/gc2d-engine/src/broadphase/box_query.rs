@@ -80,14 +80,16 @@ impl<T: Default> SortAndSweep<T> {
             .any(|body| offered(body, &mut hit))
     }
 
-    /// The dynamic bodies of the axes from the highest box top down, each with its top (y), as of the last update;
-    /// bodies inserted since are not among them (see [`pending`](Self::pending)). Walks the sorted y axis from its
-    /// end, so a caller looking for the highest body that passes a test stops after the first few (with the y axis in
-    /// bands, `broadphase::bands`, it merges the bands' ends, looking at every band for each body).
-    pub fn dynamic_bodies_from_top(&self) -> impl Iterator<Item = (u32, f64)> + '_ {
+    /// The dynamic bodies of the axes from the highest box top down, each with its top (y), as of the last update:
+    /// every one whose box meets `x_min..=x_max` in x, and possibly others (the caller tests them). Bodies inserted
+    /// since are not among them (see [`pending`](Self::pending)). Walks the sorted y axis from its end, so a caller
+    /// looking for the highest body that passes a test stops after the first few; with the y axis in bands
+    /// (`broadphase::bands`) it merges the ends of the bands that `x_min..=x_max` reaches into, looking at each of
+    /// them for every body.
+    pub fn dynamic_bodies_from_top(&self, x_min: f64, x_max: f64) -> impl Iterator<Item = (u32, f64)> + '_ {
         let endpoints = match &self.bands {
             None => YFromTop::Axis(self.axes[1].iter().rev()),
-            Some(bands) => YFromTop::Bands(bands.endpoints_from_top()),
+            Some(bands) => YFromTop::Bands(bands.endpoints_from_top(Interval::sanitised(x_min, x_max))),
         };
         endpoints
             .filter(|e| e.is_end())
@@ -286,12 +288,13 @@ mod tests {
             sweep.insert(i as u32, *b, kind).unwrap();
         }
         sweep.update(&boxes);
-        let order: Vec<u32> = sweep.dynamic_bodies_from_top().map(|(body, _)| body).collect();
+        let order: Vec<u32> = sweep.dynamic_bodies_from_top(-1.0, 1.0).map(|(body, _)| body).collect();
         assert_eq!(order, [1, 0, 3]);
     }
 
     /// With the y axis in bands the bands' ends are merged: every dynamic body once (body 1 lies in two bands), from
-    /// the highest top down, with its top, exactly as from one axis (bodies 2 and 5 tie at 0.6: the larger id first).
+    /// the highest top down, with its top, exactly as from one axis (bodies 2 and 5 tie at 0.6: the larger id first);
+    /// a walk over part of the width merges only the bands it reaches into.
     #[test]
     fn dynamic_bodies_come_from_the_top_down_out_of_bands() {
         let boxes = [
@@ -313,9 +316,15 @@ mod tests {
                 assert_eq!(sweep.y_bands(), 4);
             }
             sweep.update(&boxes);
-            sweep.dynamic_bodies_from_top().collect::<Vec<_>>()
+            let all = sweep.dynamic_bodies_from_top(0.0, 4.0).collect::<Vec<_>>();
+            // Over x in [1.2, 1.6] (band 1 of 4): the bodies of band 1 only when in bands, body 5 among them.
+            let near = sweep.dynamic_bodies_from_top(1.2, 1.6).map(|(body, _)| body).collect::<Vec<_>>();
+            (all, near)
         };
-        assert_eq!(order(true), order(false));
-        assert_eq!(order(true).iter().map(|&(body, _)| body).collect::<Vec<_>>(), [4, 5, 2, 1, 0]);
+        let ((banded, near_banded), (single, near_single)) = (order(true), order(false));
+        assert_eq!(banded, single);
+        assert_eq!(banded.iter().map(|&(body, _)| body).collect::<Vec<_>>(), [4, 5, 2, 1, 0]);
+        assert_eq!(near_banded, [5, 1]);
+        assert_eq!(near_single, [4, 5, 2, 1, 0]);
     }
 }
