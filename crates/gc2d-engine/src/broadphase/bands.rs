@@ -37,6 +37,10 @@ const MIN_BANDS: usize = 4;
 /// The most bands; a wider scene gets wider bands. Bounds the copies of a wall that spans the whole scene.
 const MAX_BANDS: usize = 1 << 16;
 
+/// Room the arrivals buffer keeps after a merge of new bodies: plenty for a step's movers, far less than the first
+/// merge of a large scene needed.
+const ARRIVALS_KEPT: usize = 4096;
+
 /// Bands below this many per task are sorted on one thread.
 const BANDS_PER_TASK: usize = 4;
 
@@ -264,6 +268,9 @@ impl YBands {
             }
         }
         self.merge_arrivals();
+        // The first merge of a scene holds every body (32 bytes per grain); the movers of a step need far less.
+        self.arrivals.clear();
+        self.arrivals.shrink_to(ARRIVALS_KEPT);
     }
 
     /// Merges `arrivals` into their bands, band by band.
@@ -276,7 +283,13 @@ impl YBands {
             let end = start + self.arrivals[start..].partition_point(|a| a.band == band);
             self.merge_buffer.clear();
             self.merge_buffer.extend(self.arrivals[start..end].iter().map(|a| a.endpoint));
-            merge_sorted(&mut self.axes[band as usize], &self.merge_buffer);
+            let axis = &mut self.axes[band as usize];
+            if axis.capacity() - axis.len() < self.merge_buffer.len() {
+                // A sixteenth to spare, not `Vec`'s doubling, which would leave every band a body moved into half
+                // empty (24 bytes per grain of a layer).
+                axis.reserve_exact(self.merge_buffer.len() + axis.len() / 16);
+            }
+            merge_sorted(axis, &self.merge_buffer);
             start = end;
         }
     }
