@@ -27,8 +27,8 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// A band is this many times as wide as the widest dynamic box when [`YBands::for_wide_scene`] chooses the bands: wide
-/// enough that few bodies straddle two bands or change bands in a step, narrow enough that a band of a layer ten
-/// grains deep holds about a thousand bodies.
+/// enough that few bodies straddle two bands or change bands in a step, narrow enough that a band of a shallow layer
+/// holds some hundreds of bodies (about 270 in the benchmark layer, 1 cm deep).
 const BAND_WIDTH_IN_BOXES: f64 = 64.0;
 
 /// [`YBands::for_wide_scene`] splits the y axis only where the dynamic bodies span at least this many bands.
