@@ -150,7 +150,7 @@ impl YBands {
     }
 
     /// Bands [`BAND_WIDTH_IN_BOXES`] widest dynamic boxes wide, where the dynamic bodies span at least [`MIN_BANDS`]
-    /// of them; `None` for a scene that is not that wide (one y axis is then as fast).
+    /// of them; `None` for a scene that is not that wide (its one y axis passes few endpoints of bodies far away).
     pub(super) fn for_wide_scene(bodies: &Bodies, y_axis: &[Endpoint]) -> Option<Self> {
         let widest = widest_dynamic_box(bodies);
         let width = BAND_WIDTH_IN_BOXES * widest;
