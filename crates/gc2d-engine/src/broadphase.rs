@@ -405,22 +405,14 @@ impl<T: Default> SortAndSweep<T> {
     /// first step; the bands stay for the life of the broadphase and change the order in which pairs are found, never
     /// which pairs there are.
     pub fn band_y_axis_if_wide(&mut self) -> bool {
-        if self.bands.is_none() {
-            self.bands = YBands::for_wide_scene(&self.bodies, &self.axes[1]);
-            self.take_y_axis_into_bands();
-        }
-        self.bands.is_some()
+        self.band_y_axis_by(YBands::for_wide_scene)
     }
 
     /// Splits the y axis into bands `width` wide over the x extent of the dynamic bodies (at most 65,536 of them;
     /// see [`band_y_axis_if_wide`](Self::band_y_axis_if_wide)). Returns whether the y axis is in bands now; an
     /// extent narrower than two bands keeps one axis.
     pub fn band_y_axis(&mut self, width: f64) -> bool {
-        if self.bands.is_none() {
-            self.bands = YBands::with_width(&self.bodies, &self.axes[1], width);
-            self.take_y_axis_into_bands();
-        }
-        self.bands.is_some()
+        self.band_y_axis_by(|bodies, y_axis| YBands::with_width(bodies, y_axis, width))
     }
 
     /// The number of bands of the y axis: 1 where it is one axis.
@@ -428,11 +420,16 @@ impl<T: Default> SortAndSweep<T> {
         self.bands.as_ref().map_or(1, YBands::count)
     }
 
-    /// Frees the single y axis once the bands hold its endpoints.
-    fn take_y_axis_into_bands(&mut self) {
-        if self.bands.is_some() {
-            self.axes[1] = Vec::new();
+    /// Splits the one y axis into the bands `choose` makes of it, if it makes any, and frees the axis; a broadphase
+    /// already in bands is left as it is. Returns whether the y axis is in bands.
+    fn band_y_axis_by(&mut self, choose: impl FnOnce(&Bodies, &[Endpoint]) -> Option<YBands>) -> bool {
+        if self.bands.is_none() {
+            self.bands = choose(&self.bodies, &self.axes[1]);
+            if self.bands.is_some() {
+                self.axes[1] = Vec::new();
+            }
         }
+        self.bands.is_some()
     }
 
     /// Re-sorts both axes (in parallel where they are long), then applies the pair-list changes their swaps found: the

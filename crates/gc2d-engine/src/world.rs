@@ -430,8 +430,7 @@ impl World {
     /// the normal force on `a`), by the query the pair's contact model uses; `None` when they do not overlap. For
     /// exports and diagnostics: it repeats a query the step made.
     pub fn contact_normal(&self, a: BodyId, b: BodyId) -> Option<DVec2> {
-        let context =
-            PairContext { bodies: &self.bodies, interactions: &self.config.interactions, dt: self.config.time_step };
+        let context = pair_context(&self.bodies, &self.config);
         let (low, high) = if a.0 < b.0 { (a.0, b.0) } else { (b.0, a.0) };
         context.contact_normal(low, high).map(|(i, _, n)| if i == a { n } else { -n })
     }
@@ -717,8 +716,7 @@ impl World {
     /// fraction of the smaller particle's area, for penetration laws the depth as a fraction of the smaller
     /// particle's diameter; 0 when it does not touch. Computed from the contact's history, as of the last step.
     pub fn overlap_fraction(&self, a: BodyId, b: BodyId, contact: &PairContact) -> f64 {
-        let context =
-            PairContext { bodies: &self.bodies, interactions: &self.config.interactions, dt: self.config.time_step };
+        let context = pair_context(&self.bodies, &self.config);
         context.overlap_fraction(a.0, b.0, contact)
     }
 
@@ -924,8 +922,7 @@ impl World {
     /// contact normal, at the predicted state the contact law saw.
     fn log_contact_events(&mut self, time: f64) {
         let Some(log) = &mut self.events else { return };
-        let context =
-            PairContext { bodies: &self.bodies, interactions: &self.config.interactions, dt: self.config.time_step };
+        let context = pair_context(&self.bodies, &self.config);
         let b = &self.bodies;
         for pair in self.broadphase.pairs() {
             let c = &pair.payload;
@@ -958,8 +955,7 @@ impl World {
     /// Narrowphase and contact law for every pair, in parallel; each pair writes only its own record, and each
     /// fixed chunk of pairs its own [`PairSums`] (the ledger's terms, the chatter watch, the statistics).
     fn evaluate_pairs(&mut self) {
-        let context =
-            PairContext { bodies: &self.bodies, interactions: &self.config.interactions, dt: self.config.time_step };
+        let context = pair_context(&self.bodies, &self.config);
         let pairs = self.broadphase.pairs_mut();
         self.pair_sums.resize(pairs.len().div_ceil(PAIRS_PER_CHUNK), PairSums::default());
         let evaluate_chunk = |(chunk, sums): (&mut [PairEntry<PairContact>], &mut PairSums)| {
@@ -1390,6 +1386,12 @@ impl World {
             suggested_dt: suggested_dt.min(0.5 * dt * fraction * inscribed_radius / travel),
         }
     }
+}
+
+/// What a pair evaluation (or a query repeating one) reads: the bodies and the configuration's contact models and Δt.
+/// Takes the two fields rather than the World, so the step can borrow the pair list mutably beside it.
+fn pair_context<'a>(bodies: &'a Bodies, config: &'a WorldConfig) -> PairContext<'a> {
+    PairContext { bodies, interactions: &config.interactions, dt: config.time_step }
 }
 
 /// Sets `forces` and `torques`, the rows of bodies `first`, `first + 1`, …, to the sum of the contact forces and

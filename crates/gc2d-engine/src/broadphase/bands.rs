@@ -75,6 +75,15 @@ struct Arrival {
     endpoint: Endpoint,
 }
 
+impl Arrival {
+    /// Adds both y endpoints of `body` (its interval `y`) for `band` to `arrivals`.
+    fn push_both(arrivals: &mut Vec<Arrival>, band: usize, body: u32, y: Interval) {
+        let band = band as u32;
+        arrivals.push(Arrival { band, endpoint: Endpoint::begin(body, y.lower) });
+        arrivals.push(Arrival { band, endpoint: Endpoint::end(body, y.upper) });
+    }
+}
+
 /// The y axis as bands of x: per band the sorted y endpoints of the bodies reaching into it.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub(super) struct YBands {
@@ -139,7 +148,22 @@ impl YBands {
     /// Bands of `width` over the x extent of the dynamic bodies (active or pending), or `None` where that extent is
     /// not finite or holds fewer than two bands.
     pub(super) fn with_width(bodies: &Bodies, y_axis: &[Endpoint], width: f64) -> Option<Self> {
+        Self::over(bodies, y_axis, dynamic_x_extent(bodies)?, width)
+    }
+
+    /// Bands [`BAND_WIDTH_IN_BOXES`] widest dynamic boxes wide, where the dynamic bodies span at least [`MIN_BANDS`]
+    /// of them; `None` for a scene that is not that wide (its one y axis passes few endpoints of bodies far away).
+    pub(super) fn for_wide_scene(bodies: &Bodies, y_axis: &[Endpoint]) -> Option<Self> {
+        let [widest, _] = bodies.dynamic_extent();
+        let width = BAND_WIDTH_IN_BOXES * widest;
         let extent = dynamic_x_extent(bodies)?;
+        let wide = (extent.upper - extent.lower) >= MIN_BANDS as f64 * width;
+        if wide { Self::over(bodies, y_axis, extent, width) } else { None }
+    }
+
+    /// Bands of `width` over `extent` (at most [`MAX_BANDS`]: then as wide as it takes), or `None` where it holds
+    /// fewer than two.
+    fn over(bodies: &Bodies, y_axis: &[Endpoint], extent: Interval, width: f64) -> Option<Self> {
         let count = ((extent.upper - extent.lower) / width).ceil();
         if !(width > 0.0 && count >= 2.0) {
             return None;
@@ -147,16 +171,6 @@ impl YBands {
         let count = (count as usize).min(MAX_BANDS);
         let width = width.max((extent.upper - extent.lower) / count as f64);
         Some(Self::new(bodies, y_axis, extent.lower, width, count))
-    }
-
-    /// Bands [`BAND_WIDTH_IN_BOXES`] widest dynamic boxes wide, where the dynamic bodies span at least [`MIN_BANDS`]
-    /// of them; `None` for a scene that is not that wide (its one y axis passes few endpoints of bodies far away).
-    pub(super) fn for_wide_scene(bodies: &Bodies, y_axis: &[Endpoint]) -> Option<Self> {
-        let widest = widest_dynamic_box(bodies);
-        let width = BAND_WIDTH_IN_BOXES * widest;
-        let extent = dynamic_x_extent(bodies)?;
-        let wide = (extent.upper - extent.lower) >= MIN_BANDS as f64 * width;
-        if wide { Self::with_width(bodies, y_axis, width) } else { None }
     }
 
     /// Number of bands.
@@ -247,8 +261,7 @@ impl YBands {
             let now = self.ranges[mover.body as usize];
             let y = bodies.interval(1, mover.body);
             for band in now.bands().filter(|&band| !mover.before.contains(band)) {
-                self.arrivals.push(Arrival { band: band as u32, endpoint: Endpoint::begin(mover.body, y.lower) });
-                self.arrivals.push(Arrival { band: band as u32, endpoint: Endpoint::end(mover.body, y.upper) });
+                Arrival::push_both(&mut self.arrivals, band, mover.body, y);
             }
         }
         self.merge_arrivals();
@@ -263,8 +276,7 @@ impl YBands {
             self.ranges[body as usize] = range;
             let y = bodies.interval(1, body);
             for band in range.bands() {
-                self.arrivals.push(Arrival { band: band as u32, endpoint: Endpoint::begin(body, y.lower) });
-                self.arrivals.push(Arrival { band: band as u32, endpoint: Endpoint::end(body, y.upper) });
+                Arrival::push_both(&mut self.arrivals, band, body, y);
             }
         }
         self.merge_arrivals();
@@ -346,22 +358,13 @@ impl YBands {
 /// `None` when there are none or it is not finite.
 fn dynamic_x_extent(bodies: &Bodies) -> Option<Interval> {
     let mut extent = Interval { lower: f64::INFINITY, upper: f64::NEG_INFINITY };
-    for body in dynamic_bodies(bodies) {
+    let dynamic = |&body: &u32| bodies.state(body) != SlotState::Absent && bodies.kind(body) == BodyKind::Dynamic;
+    for body in (0..bodies.len() as u32).filter(dynamic) {
         let x = bodies.interval(0, body);
         extent.lower = extent.lower.min(x.lower);
         extent.upper = extent.upper.max(x.upper);
     }
     (extent.lower.is_finite() && extent.upper.is_finite()).then_some(extent)
-}
-
-/// The width of the widest dynamic box (x), 0 when there is none.
-fn widest_dynamic_box(bodies: &Bodies) -> f64 {
-    dynamic_bodies(bodies).map(|body| bodies.interval(0, body)).map(|x| x.upper - x.lower).fold(0.0, f64::max)
-}
-
-fn dynamic_bodies(bodies: &Bodies) -> impl Iterator<Item = u32> + '_ {
-    (0..bodies.len() as u32)
-        .filter(|&body| bodies.state(body) != SlotState::Absent && bodies.kind(body) == BodyKind::Dynamic)
 }
 
 /// The endpoints of all bands merged from the highest down; an endpoint held by two bands (a body in both) comes
