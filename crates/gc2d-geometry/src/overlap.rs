@@ -6,14 +6,19 @@
 //! chain c2→c1, and the normal `perp(c2 − c1)/|c2 − c1|` (perp(v) = (−v.y, v.x)) points from `b` towards `a`. It is
 //! also −∂A/∂x_a / |∂A/∂x_a|: moving `a` along it shrinks the overlap fastest, at the rate |c2 − c1|.
 //!
-//! The overlap polygon is built by Sutherland–Hodgman clipping of `a` by the edges of `b` whose lines cut `a`, in
-//! fixed stack buffers sized by the vertex counts; see `docs/model.md` (“Contact geometry”) for the tie rule and the
-//! policies for degenerate, deep and contained overlaps.
+//! Where the outlines cross exactly twice, properly (almost every contact of a pile), the overlap is built from
+//! its two crossings (module `two_crossings`); every other overlap by Sutherland–Hodgman clipping of `a` by the
+//! edges of `b` that face it (module `clip`), in fixed stack buffers sized by the vertex counts. See `docs/model.md`
+//! (“Contact geometry”) for the tie rule and the policies for degenerate, deep and contained overlaps.
 
 mod clip;
+mod facing;
+mod two_crossings;
 
 use crate::{DVec2, MAX_VERTICES, cross};
 use clip::{Label, Ring, RingVertex};
+use facing::Facing;
+use two_crossings::{TwoCrossings, two_crossings};
 
 /// A chord shorter than this fraction of √A carries no direction: the overlap is treated as a containment.
 /// A genuine chord is that short only when `a`'s outline barely leaves `b` (or the reverse), i.e. one polygon is
@@ -139,10 +144,23 @@ fn checked_total_vertices(a: &[DVec2], b: &[DVec2]) -> Option<usize> {
 }
 
 fn overlap_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2], out: &mut OverlapPolygon) {
+    let Some(facing) = Facing::of(a, b) else { return };
+    if let Some(overlap) = two_crossings(a, b, &facing) {
+        let mut len = 0;
+        overlap.for_each_vertex(|vertex| {
+            if let Some(slot) = out.vertices.get_mut(len) {
+                *slot = vertex;
+                len += 1;
+            }
+        });
+        out.len = len;
+        out.area = overlap.area();
+        return;
+    }
     let (mut first, mut second) = (Ring::<CAP>::new(), Ring::<CAP>::new());
-    let Some(ring) = clip::clip(a, b, &mut first, &mut second) else { return };
+    let Some(ring) = clip::clip(a, b, &facing, &mut first, &mut second) else { return };
     let area = 0.5 * ring.twice_area();
-    if area.is_finite() && area > 0.0 {
+    if positive_area(area) {
         for (slot, vertex) in out.vertices.iter_mut().zip(ring.vertices()) {
             *slot = vertex.point;
         }
@@ -151,16 +169,43 @@ fn overlap_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2], out: &mut O
     }
 }
 
+/// A finite, positive area: non-finite input (infinite coordinates) can give a NaN or infinite one, which is no
+/// contact.
+fn positive_area(area: f64) -> bool {
+    area.is_finite() && area > 0.0
+}
+
+/// The two-crossing walk where it applies (almost every contact), else the clipper.
 fn contact_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2], with_centroid: bool) -> Option<ContactGeometry> {
+    let facing = Facing::of(a, b)?;
+    if let Some(overlap) = two_crossings(a, b, &facing) {
+        return Some(two_crossing_contact(&overlap, with_centroid));
+    }
     let (mut first, mut second) = (Ring::<CAP>::new(), Ring::<CAP>::new());
-    let ring = clip::clip(a, b, &mut first, &mut second)?;
+    let ring = clip::clip(a, b, &facing, &mut first, &mut second)?;
     let area = 0.5 * ring.twice_area();
-    // Non-finite input (infinite coordinates) can give a NaN or infinite area: no contact.
-    if !area.is_finite() || area <= 0.0 {
+    if !positive_area(area) {
         return None;
     }
     let contact = contact_from_overlap(ring.vertices(), area, a, b);
     Some(ContactGeometry { centroid: with_centroid.then(|| ring_centroid(ring.vertices())), ..contact })
+}
+
+/// The contact of a two-crossing overlap: a plain crossing whose chord runs from the entry c1 to the exit c2.
+fn two_crossing_contact(overlap: &TwoCrossings, with_centroid: bool) -> ContactGeometry {
+    let (c1, c2) = (overlap.c1(), overlap.c2());
+    let chord = c2 - c1;
+    let chord_length = chord.length();
+    ContactGeometry {
+        area: overlap.area(),
+        c1,
+        c2,
+        point: 0.5 * (c1 + c2),
+        normal: chord.perp() / chord_length,
+        chord_length,
+        kind: ContactKind::Crossing,
+        centroid: with_centroid.then(|| overlap.centroid()),
+    }
 }
 
 /// The chord rules of `docs/model.md`, applied to the labelled overlap polygon.

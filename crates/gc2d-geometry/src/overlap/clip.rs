@@ -6,6 +6,7 @@
 //! that runs along an edge of `b` in the same direction is labelled *shared*; one that runs along it in the opposite
 //! direction can only touch `b` from outside, so the overlap is empty.
 
+use super::facing::Facing;
 use crate::{DVec2, cross};
 
 /// Which outline an edge of the overlap polygon lies on.
@@ -95,17 +96,11 @@ impl<const CAP: usize> Ring<CAP> {
     }
 }
 
-/// Clips the counter-clockwise convex polygon `a` by the edges of the counter-clockwise convex polygon `b`.
+/// Clips the counter-clockwise convex polygon `a` by the edges of the counter-clockwise convex polygon `b` that
+/// `facing` keeps (the others could change nothing but round-off).
 ///
 /// Returns the ring holding `a ∩ b` (one of `first` or `second`, which are scratch buffers), or `None` when the
 /// interiors are disjoint (some edge line of `b` has all of the remaining polygon on its closed outer side).
-///
-/// Along t = mean(a) − mean(b), `b` reaches at most `top_b` and `a` at least `bottom_a`. When `top_b ≤ bottom_a`
-/// the line between them separates the polygons and nothing is clipped. Otherwise the edges of `b` with both end
-/// points below `bottom_a` are skipped: they bound `b` only where `a` is not (a ∩ b = a ∩ b ∩ {x·t ≥ bottom_a}, and
-/// the part of `b` in that half-plane is cut out by the edges that reach into it), so their clips could change
-/// nothing but round-off. In a shallow contact that leaves about half of b's edges. With t = 0 (equal vertex means)
-/// every edge is used.
 ///
 /// The edges are taken in cyclic order starting next to `b`'s vertex farthest towards `a`. In a shallow contact the
 /// first one or two clips leave a sliver of three or four vertices, so the remaining edges cost a few side tests
@@ -113,31 +108,17 @@ impl<const CAP: usize> Ring<CAP> {
 pub(crate) fn clip<'r, const CAP: usize>(
     a: &[DVec2],
     b: &[DVec2],
+    facing: &Facing,
     first: &'r mut Ring<CAP>,
     second: &'r mut Ring<CAP>,
 ) -> Option<&'r Ring<CAP>> {
     let m = b.len();
-    let towards = mean(a) - mean(b);
-    let mut reach_b = [0.0; CAP];
-    let (mut top, mut top_b) = (0, f64::NEG_INFINITY);
-    for (k, (reach, p)) in reach_b.iter_mut().zip(b).enumerate() {
-        *reach = p.dot(towards);
-        if *reach > top_b {
-            (top, top_b) = (k, *reach);
-        }
-    }
-    let reduced = towards != DVec2::ZERO;
-    let bottom_a = if reduced { a.iter().map(|p| p.dot(towards)).fold(f64::INFINITY, f64::min) } else { 0.0 };
-    if reduced && top_b <= bottom_a {
-        return None;
-    }
     first.fill_from(a);
     let (mut current, mut spare) = (first, second);
-    let mut j = if top == 0 { m - 1 } else { top - 1 };
+    let mut j = if facing.top == 0 { m - 1 } else { facing.top - 1 };
     for _ in 0..m {
         let next = if j + 1 == m { 0 } else { j + 1 };
-        let below_a = reach_b[j] < bottom_a && reach_b[next] < bottom_a;
-        if !(reduced && below_a) {
+        if !facing.skips_edge_of_b(b[j], b[next]) {
             match clip_by_line(current, spare, b[j], b[next] - b[j]) {
                 LineClip::Empty => return None,
                 LineClip::Unchanged => {}
@@ -147,10 +128,6 @@ pub(crate) fn clip<'r, const CAP: usize>(
         j = next;
     }
     Some(current)
-}
-
-fn mean(points: &[DVec2]) -> DVec2 {
-    points.iter().sum::<DVec2>() / points.len() as f64
 }
 
 enum LineClip {
