@@ -15,7 +15,7 @@
 mod contact;
 mod segments;
 
-use crate::{DVec2, cross};
+use crate::{DVec2, cross, farthest_along, vertex_mean};
 use serde::{Deserialize, Serialize};
 
 /// A feature of a polygon's boundary ring. The index is a byte (polygons have at most
@@ -139,25 +139,9 @@ impl Separation {
 /// measured along the line between the vertex means (lowest index on ties).
 fn cold_start(a: &[DVec2], b: &[DVec2]) -> FeaturePair {
     let axis = vertex_mean(b) - vertex_mean(a);
-    let a_front = extreme_index(a, axis);
-    let b_front = extreme_index(b, -axis);
+    let (a_front, _) = farthest_along(a, axis);
+    let (b_front, _) = farthest_along(b, -axis);
     FeaturePair { a: Feature::vertex(a_front), b: Feature::vertex(b_front) }
-}
-
-fn vertex_mean(points: &[DVec2]) -> DVec2 {
-    points.iter().copied().sum::<DVec2>() / points.len() as f64
-}
-
-/// Index of the point furthest along `direction`, the first one on ties.
-fn extreme_index(points: &[DVec2], direction: DVec2) -> usize {
-    let mut best = (0, f64::NEG_INFINITY);
-    for (i, p) in points.iter().enumerate() {
-        let reach = p.dot(direction);
-        if reach > best.1 {
-            best = (i, reach);
-        }
-    }
-    best.0
 }
 
 #[inline]

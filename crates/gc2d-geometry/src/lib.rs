@@ -50,3 +50,21 @@ pub use shapes::{
 pub fn cross(a: DVec2, b: DVec2) -> f64 {
     a.x * b.y - a.y * b.x
 }
+
+/// The mean of a polygon's vertices (not its area centroid): the cheap centre that orients the pair queries.
+pub(crate) fn vertex_mean(points: &[DVec2]) -> DVec2 {
+    points.iter().copied().sum::<DVec2>() / points.len() as f64
+}
+
+/// The index of the point farthest along `direction` (the first one on ties; a NaN reach never wins) and its
+/// reach `p · direction` (−∞ when none wins).
+pub(crate) fn farthest_along(points: &[DVec2], direction: DVec2) -> (usize, f64) {
+    let (mut best, mut reach) = (0, f64::NEG_INFINITY);
+    for (k, p) in points.iter().enumerate() {
+        let r = p.dot(direction);
+        if r > reach {
+            (best, reach) = (k, r);
+        }
+    }
+    (best, reach)
+}

@@ -7,7 +7,7 @@
 //! edges that reach into it. Likewise only the edges of `a` that reach below `top_b` can meet `b`. In a shallow
 //! contact that leaves about half of each outline. With t = 0 (equal vertex means) nothing is left out.
 
-use crate::DVec2;
+use crate::{DVec2, farthest_along, vertex_mean};
 
 /// Where `a` and `b` face each other along the line joining their vertex means.
 pub(crate) struct Facing {
@@ -28,12 +28,13 @@ pub(crate) struct Facing {
 impl Facing {
     /// The facing sides of `a` and `b`, or `None` when a line across t separates them.
     pub(crate) fn of(a: &[DVec2], b: &[DVec2]) -> Option<Self> {
-        let towards = mean(a) - mean(b);
-        let (top, top_b) = extreme(b, |p| p.dot(towards));
+        let towards = vertex_mean(a) - vertex_mean(b);
+        let (top, top_b) = farthest_along(b, towards);
         let reduced = towards != DVec2::ZERO;
         let (bottom, bottom_a) = if reduced {
-            let (bottom, minus_bottom_a) = extreme(a, |p| -p.dot(towards));
-            (bottom, -minus_bottom_a)
+            // p·(−t) = −(p·t) exactly, so this is the least reach along t.
+            let (bottom, reach_back) = farthest_along(a, -towards);
+            (bottom, -reach_back)
         } else {
             (0, 0.0)
         };
@@ -47,24 +48,4 @@ impl Facing {
     pub(crate) fn skips_edge_of_b(&self, p: DVec2, q: DVec2) -> bool {
         self.reduced && p.dot(self.towards) < self.bottom_a && q.dot(self.towards) < self.bottom_a
     }
-}
-
-/// Index and value of the greatest `value` over `points` (the first of equals; NaN values never win).
-fn extreme(points: &[DVec2], value: impl Fn(DVec2) -> f64) -> (usize, f64) {
-    let (mut best, mut greatest) = (0, f64::NEG_INFINITY);
-    for (k, &p) in points.iter().enumerate() {
-        let v = value(p);
-        if v > greatest {
-            (best, greatest) = (k, v);
-        }
-    }
-    (best, greatest)
-}
-
-fn mean(points: &[DVec2]) -> DVec2 {
-    let mut sum = DVec2::ZERO;
-    for &p in points {
-        sum += p;
-    }
-    sum / points.len() as f64
 }
