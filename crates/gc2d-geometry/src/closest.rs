@@ -15,7 +15,7 @@
 mod contact;
 mod segments;
 
-use crate::{DVec2, cross, farthest_along, vertex_mean};
+use crate::{DVec2, cross, cyclic_next, cyclic_previous, farthest_along, vertex_mean};
 use serde::{Deserialize, Serialize};
 
 /// A feature of a polygon's boundary ring. The index is a byte (polygons have at most
@@ -144,16 +144,6 @@ fn cold_start(a: &[DVec2], b: &[DVec2]) -> FeaturePair {
     FeaturePair { a: Feature::vertex(a_front), b: Feature::vertex(b_front) }
 }
 
-#[inline]
-fn next(i: usize, n: usize) -> usize {
-    if i + 1 == n { 0 } else { i + 1 }
-}
-
-#[inline]
-fn prev(i: usize, n: usize) -> usize {
-    if i == 0 { n - 1 } else { i - 1 }
-}
-
 /// Most passes before the walk gives up: twice the number of features of both rings. A converging walk moves
 /// monotonically around each ring and needs at most one pass per feature; only cycling on degenerate input hits this.
 fn pass_cap(n_a: usize, n_b: usize) -> u32 {
@@ -217,10 +207,10 @@ fn walk(a: &[DVec2], b: &[DVec2], start: FeaturePair) -> Separation {
 fn leave_vertex_region(poly: &[DVec2], i: usize, towards: DVec2) -> Option<Feature> {
     let n = poly.len();
     let v = poly[i];
-    if towards.dot(poly[next(i, n)] - v) > 0.0 {
+    if towards.dot(poly[cyclic_next(i, n)] - v) > 0.0 {
         return Some(Feature::edge(i));
     }
-    let i_prev = prev(i, n);
+    let i_prev = cyclic_previous(i, n);
     if towards.dot(v - poly[i_prev]) < 0.0 {
         return Some(Feature::edge(i_prev));
     }
@@ -252,7 +242,7 @@ struct Perpendicular {
 /// the polygon. A point exactly on the edge counts as inside the polygon, so touching is reported as contact.
 #[inline]
 fn edge_region(poly: &[DVec2], i: usize, x: DVec2) -> EdgeRegion {
-    let i_next = next(i, poly.len());
+    let i_next = cyclic_next(i, poly.len());
     let (v0, v1) = (poly[i], poly[i_next]);
     let d = v1 - v0;
     let offset = x - v0;
@@ -312,8 +302,8 @@ fn vertex_edge(p_poly: &[DVec2], i: usize, q_poly: &[DVec2], j: usize) -> Step {
 }
 
 fn edge_edge(a: &[DVec2], i: usize, b: &[DVec2], j: usize) -> Step {
-    let (p0, p1) = (a[i], a[next(i, a.len())]);
-    let (q0, q1) = (b[j], b[next(j, b.len())]);
+    let (p0, p1) = (a[i], a[cyclic_next(i, a.len())]);
+    let (q0, q1) = (b[j], b[cyclic_next(j, b.len())]);
     if segments::meet(p0, p1, q0, q1) {
         return Step::Contact { edge_a: i, edge_b: j };
     }

@@ -51,6 +51,18 @@ pub fn cross(a: DVec2, b: DVec2) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// The index after `k` around a ring of `len` items (0 after the last).
+#[inline]
+pub(crate) fn cyclic_next(k: usize, len: usize) -> usize {
+    if k + 1 == len { 0 } else { k + 1 }
+}
+
+/// The index before `k` around a ring of `len` items (the last before 0).
+#[inline]
+pub(crate) fn cyclic_previous(k: usize, len: usize) -> usize {
+    if k == 0 { len - 1 } else { k - 1 }
+}
+
 /// The mean of a polygon's vertices (not its area centroid): the cheap centre that orients the pair queries.
 pub(crate) fn vertex_mean(points: &[DVec2]) -> DVec2 {
     points.iter().copied().sum::<DVec2>() / points.len() as f64

@@ -15,7 +15,7 @@ mod clip;
 mod facing;
 mod two_crossings;
 
-use crate::{DVec2, MAX_VERTICES, cross};
+use crate::{DVec2, MAX_VERTICES, cross, cyclic_next};
 use clip::{Label, Ring, RingVertex};
 use facing::Facing;
 use two_crossings::{TwoCrossings, two_crossings};
@@ -347,7 +347,7 @@ fn contained_contact(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -
     let (mut low, mut high) = (0.0f64, 0.0f64);
     let n = ring.len();
     for k in 0..n {
-        let (p, q) = (ring[k].point, ring[if k + 1 == n { 0 } else { k + 1 }].point);
+        let (p, q) = (ring[k].point, ring[cyclic_next(k, n)].point);
         let (dp, dq) = (normal.dot(p - center), normal.dot(q - center));
         if (dp <= 0.0) != (dq <= 0.0) {
             let at = tangent.dot(p + (q - p) * (dp / (dp - dq)) - center);

@@ -7,8 +7,8 @@
 //! (one polygon inside the other, collinear edges of stacked rectangles, identical polygons) are reported by the
 //! vertex deepest inside the other polygon.
 
-use super::{Feature, FeaturePair, Separation, next, prev, segments};
-use crate::{DVec2, cross};
+use super::{Feature, FeaturePair, Separation, segments};
+use crate::{DVec2, cross, cyclic_next, cyclic_previous};
 
 /// Two edges whose interiors cross.
 pub(super) struct Crossing {
@@ -31,8 +31,8 @@ impl Crossing {
 /// of the other's line. Such a crossing means the interiors overlap.
 #[inline]
 pub(super) fn proper_crossing(a: &[DVec2], i: usize, b: &[DVec2], j: usize) -> Option<Crossing> {
-    let (p0, p1) = (a[i], a[next(i, a.len())]);
-    let (q0, q1) = (b[j], b[next(j, b.len())]);
+    let (p0, p1) = (a[i], a[cyclic_next(i, a.len())]);
+    let (q0, q1) = (b[j], b[cyclic_next(j, b.len())]);
     let dq = q1 - q0;
     let p0_inside = cross(dq, p0 - q0);
     let p1_inside = cross(dq, p1 - q0);
@@ -55,8 +55,8 @@ fn strictly_opposite(x: f64, y: f64) -> bool {
 /// The walk found contact near edge `edge_a` of `a` and edge `edge_b` of `b`: look for a crossing where `a` leaves
 /// `b` among those edges and their ring neighbours (a 3 × 3 block), else answer exhaustively.
 pub(super) fn resolve(a: &[DVec2], b: &[DVec2], edge_a: usize, edge_b: usize, passes: u32) -> Separation {
-    let rows = [edge_a, prev(edge_a, a.len()), next(edge_a, a.len())];
-    let columns = [edge_b, prev(edge_b, b.len()), next(edge_b, b.len())];
+    let rows = [edge_a, cyclic_previous(edge_a, a.len()), cyclic_next(edge_a, a.len())];
+    let columns = [edge_b, cyclic_previous(edge_b, b.len()), cyclic_next(edge_b, b.len())];
     for i in rows {
         for j in columns {
             if let Some(crossing) = proper_crossing(a, i, b, j).filter(|c| c.a_leaves_b) {
@@ -100,7 +100,7 @@ pub(super) fn exhaustive(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
 fn has_separating_edge(p: &[DVec2], q: &[DVec2]) -> bool {
     (0..p.len()).any(|k| {
         let v = p[k];
-        let d = p[next(k, p.len())] - v;
+        let d = p[cyclic_next(k, p.len())] - v;
         q.iter().all(|&w| cross(d, w - v) <= 0.0)
     })
 }
@@ -111,7 +111,7 @@ pub(super) fn most_exposed_edge(poly: &[DVec2], x: DVec2) -> (usize, f64) {
     let mut best = (0, f64::NEG_INFINITY);
     for k in 0..poly.len() {
         let v = poly[k];
-        let d = poly[next(k, poly.len())] - v;
+        let d = poly[cyclic_next(k, poly.len())] - v;
         let length = d.length();
         if length > 0.0 {
             let exposure = cross(x - v, d) / length;
@@ -152,10 +152,10 @@ fn nearest_edges(a: &[DVec2], b: &[DVec2], passes: u32) -> Separation {
     let vertices = FeaturePair { a: Feature::vertex(0), b: Feature::vertex(0) };
     let mut best = Separation::apart(a[0], b[0], a[0].distance(b[0]), vertices, passes);
     for i in 0..a.len() {
-        let i_next = next(i, a.len());
+        let i_next = cyclic_next(i, a.len());
         let (p0, p1) = (a[i], a[i_next]);
         for j in 0..b.len() {
-            let j_next = next(j, b.len());
+            let j_next = cyclic_next(j, b.len());
             let (q0, q1) = (b[j], b[j_next]);
             let (mut pa, mut pb) = segments::closest_between(p0, p1, q0, q1);
             if segments::meet(p0, p1, q0, q1) {

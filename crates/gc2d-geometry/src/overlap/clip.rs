@@ -7,7 +7,7 @@
 //! direction can only touch `b` from outside, so the overlap is empty.
 
 use super::facing::Facing;
-use crate::{DVec2, cross};
+use crate::{DVec2, cross, cyclic_next, cyclic_previous};
 
 /// Which outline an edge of the overlap polygon lies on.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -115,9 +115,9 @@ pub(crate) fn clip<'r, const CAP: usize>(
     let m = b.len();
     first.fill_from(a);
     let (mut current, mut spare) = (first, second);
-    let mut j = if facing.top == 0 { m - 1 } else { facing.top - 1 };
+    let mut j = cyclic_previous(facing.top, m);
     for _ in 0..m {
-        let next = if j + 1 == m { 0 } else { j + 1 };
+        let next = cyclic_next(j, m);
         if !facing.skips_edge_of_b(b[j], b[next]) {
             match clip_by_line(current, spare, b[j], b[next] - b[j]) {
                 LineClip::Empty => return None,
@@ -142,7 +142,7 @@ fn mark_shared_edges<const CAP: usize>(ring: &mut Ring<CAP>, origin: DVec2, dire
     let n = ring.len;
     let on_line = |p: DVec2| cross(direction, p - origin) == 0.0;
     for k in 0..n {
-        let next = ring.vertices[if k + 1 == n { 0 } else { k + 1 }].point;
+        let next = ring.vertices[cyclic_next(k, n)].point;
         let vertex = &mut ring.vertices[k];
         if on_line(vertex.point) {
             vertex.tied = true;

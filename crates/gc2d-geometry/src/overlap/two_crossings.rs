@@ -16,7 +16,7 @@
 
 use super::facing::Facing;
 use super::{DEGENERATE_CHORD_FRACTION, positive_area};
-use crate::{DVec2, cross};
+use crate::{DVec2, cross, cyclic_next, cyclic_previous};
 
 /// The most edges of `b` that may face `a` for the walk; a contact facing more goes to the clipper. 12 takes in
 /// whole grains of up to 12 corners, which face a long wall whole: along t = mean(a) − mean(b), from a grain to the
@@ -94,7 +94,7 @@ impl TwoCrossings<'_> {
 fn for_each_after(points: &[DVec2], from: usize, to: usize, visit: &mut impl FnMut(DVec2)) {
     let mut k = from;
     while k != to {
-        k = next(k, points.len());
+        k = cyclic_next(k, points.len());
         visit(points[k]);
     }
 }
@@ -123,7 +123,7 @@ pub(crate) fn two_crossings<'p>(a: &'p [DVec2], b: &'p [DVec2], facing: &Facing)
     let mut lines = [(DVec2::ZERO, DVec2::ZERO); MAX_FACING_EDGES];
     let mut j = edges_of_b.first;
     for line in &mut lines[..line_count] {
-        let after = next(j, m);
+        let after = cyclic_next(j, m);
         *line = (b[j], b[after] - b[j]);
         j = after;
     }
@@ -138,23 +138,18 @@ pub(crate) fn two_crossings<'p>(a: &'p [DVec2], b: &'p [DVec2], facing: &Facing)
     let (mut p_sides, mut q_sides) = ([0.0; MAX_FACING_EDGES], [0.0; MAX_FACING_EDGES]);
     sides_of(a[i], &mut p_sides);
     for _ in 0..edges_of_a.count {
-        let after = next(i, n);
+        let after = cyclic_next(i, n);
         sides_of(a[after], &mut q_sides);
         if let Some(piece) = cut(&p_sides[..line_count], &q_sides[..line_count])? {
             let (p, q) = (a[i], a[after]);
             let at = |t: f64| p + (q - p) * t;
             let edge_of_b = |line: usize| (edges_of_b.first + line) % m;
+            // A second entry or exit means more than two crossings: the clipper's case.
             if let Some(line) = piece.entry_line {
-                if entry.is_some() {
-                    return None;
-                }
-                entry = Some(Crossing { point: at(piece.entry), edge_of_a: i, edge_of_b: edge_of_b(line) });
+                first_only(&mut entry, Crossing { point: at(piece.entry), edge_of_a: i, edge_of_b: edge_of_b(line) })?;
             }
             if let Some(line) = piece.exit_line {
-                if exit.is_some() {
-                    return None;
-                }
-                exit = Some(Crossing { point: at(piece.exit), edge_of_a: i, edge_of_b: edge_of_b(line) });
+                first_only(&mut exit, Crossing { point: at(piece.exit), edge_of_a: i, edge_of_b: edge_of_b(line) })?;
             }
         }
         p_sides = q_sides;
@@ -165,7 +160,7 @@ pub(crate) fn two_crossings<'p>(a: &'p [DVec2], b: &'p [DVec2], facing: &Facing)
         // On one edge of b the chain from c2 runs forwards to c1 (no vertex of b inside a), unless it goes round
         // all of b, which only a deep overlap does.
         let j = exit.edge_of_b;
-        if (entry.point - exit.point).dot(b[next(j, m)] - b[j]) <= 0.0 {
+        if (entry.point - exit.point).dot(b[cyclic_next(j, m)] - b[j]) <= 0.0 {
             return None;
         }
     }
@@ -189,7 +184,7 @@ fn facing_edges(points: &[DVec2], start: usize, facing: impl Fn(DVec2) -> bool) 
     let len = points.len();
     let mut first = start;
     loop {
-        let before = previous(first, len);
+        let before = cyclic_previous(first, len);
         if before == start {
             return EdgeRun { first: start, count: len };
         }
@@ -199,11 +194,11 @@ fn facing_edges(points: &[DVec2], start: usize, facing: impl Fn(DVec2) -> bool) 
         first = before;
     }
     let mut last = start;
-    while facing(points[next(last, len)]) {
-        last = next(last, len);
+    while facing(points[cyclic_next(last, len)]) {
+        last = cyclic_next(last, len);
     }
     // From the edge ending at the first facing vertex to the one starting at the last.
-    EdgeRun { first: previous(first, len), count: cyclic_distance(first, last, len) + 2 }
+    EdgeRun { first: cyclic_previous(first, len), count: cyclic_distance(first, last, len) + 2 }
 }
 
 /// Where one edge of `a` lies inside `b`: its parameters of entry and exit and the facing lines it crosses there
@@ -255,17 +250,14 @@ fn cut(p_sides: &[f64], q_sides: &[f64]) -> Option<Option<EdgePiece>> {
     }
 }
 
+/// Stores `crossing` in the empty `slot`; `None` when the slot already holds one.
+fn first_only(slot: &mut Option<Crossing>, crossing: Crossing) -> Option<()> {
+    slot.is_none().then(|| *slot = Some(crossing))
+}
+
 /// How many steps forward from `from` to `to` around a polygon of `len` vertices.
 fn cyclic_distance(from: usize, to: usize, len: usize) -> usize {
     if to >= from { to - from } else { to + len - from }
-}
-
-fn next(k: usize, len: usize) -> usize {
-    if k + 1 == len { 0 } else { k + 1 }
-}
-
-fn previous(k: usize, len: usize) -> usize {
-    if k == 0 { len - 1 } else { k - 1 }
 }
 
 #[cfg(test)]
