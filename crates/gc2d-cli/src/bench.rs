@@ -98,21 +98,31 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
         console::err(&format!("note: {over} threads on {cores} cores: the threads share cores, so expect no speed-up"));
     }
     let mut rows = Vec::new();
+    // The piles whose end states differ between thread counts.
+    let mut differing = Vec::new();
     for &pile in &args.pile {
         let sizes = if args.size.is_empty() { pile.default_sizes().to_vec() } else { args.size.clone() };
         let settle_time = args.settle_time.unwrap_or(pile.settle_time());
         say(&format!("\n{} (settled {settle_time} s)\n\n{}", pile.name(), table_header("grain")))?;
         for &particles in &sizes {
-            let mut world = settled(pile, particles, settle_time, cores, cache.as_deref(), args.quiet)?;
+            let settled_state =
+                checkpoint_bytes(&settled(pile, particles, settle_time, cores, cache.as_deref(), args.quiet)?)?;
             let first_row = rows.len();
+            let steps = args.steps.unwrap_or((args.particle_steps / particles as u64).max(MIN_TIMED_STEPS));
+            let mut ends = Vec::new();
             for &n in &threads {
-                let steps = args.steps.unwrap_or((args.particle_steps / particles as u64).max(MIN_TIMED_STEPS));
-                let measurement = measure(&mut world, n, steps, args.stages).map_err(|e| {
+                let blew_up = |e| {
                     CommandFailure::failed(format!("{} pile of {particles} blew up while measured: {e}", pile.name()))
-                })?;
+                };
+                let mut world = World::load_checkpoint(settled_state.as_slice()).map_err(checkpoint_failure)?;
+                let measurement = measure(&mut world, n, steps, args.stages).map_err(blew_up)?;
+                ends.push(EndState { threads: n, checksum: world.state_checksum().map_err(checkpoint_failure)? });
                 say(&measurement.row())?;
                 rows.push(BenchRow { pile, measurement });
             }
+            let verdict = compare_end_states(&ends);
+            console::err(&format!("{} {particles}, the state after the timed steps: {}", pile.name(), verdict.text));
+            differing.extend(verdict.differs.then(|| format!("{} {particles}", pile.name())));
             if args.stages {
                 let stage_rows: Vec<String> =
                     rows[first_row..].iter().filter_map(|r| r.measurement.stage_row()).collect();
@@ -130,7 +140,60 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
         std::fs::write(path, csv(&rows))
             .map_err(|e| CommandFailure::failed(format!("cannot write {}: {e}", path.display())))?;
     }
+    if !differing.is_empty() {
+        return Err(CommandFailure::failed(format!(
+            "the results depend on the thread count (the engine promises the same bits on any): {}; please report \
+             this with the output above",
+            differing.join(", ")
+        )));
+    }
     Ok(0)
+}
+
+/// The checksum of a pile's state after the timed steps on `threads` threads.
+struct EndState {
+    threads: usize,
+    checksum: u64,
+}
+
+/// Whether every thread count ended in the same state, and the sentence that says so.
+struct Verdict {
+    differs: bool,
+    text: String,
+}
+
+/// Compares the end states of one pile measured on several thread counts from the same settled state: the engine
+/// promises bitwise-identical results for any thread count, so they must all be equal.
+fn compare_end_states(ends: &[EndState]) -> Verdict {
+    let Some(first) = ends.first() else {
+        return Verdict { differs: false, text: "not measured".into() };
+    };
+    let differing: Vec<&EndState> = ends.iter().filter(|e| e.checksum != first.checksum).collect();
+    if differing.is_empty() {
+        let text = format!("bitwise identical on {} threads (checksum {:#018x})", thread_list(ends), first.checksum);
+        Verdict { differs: false, text }
+    } else {
+        let text =
+            format!("DIFFERS: on {} threads it is not the state reached on {}", thread_list(differing), first.threads);
+        Verdict { differs: true, text }
+    }
+}
+
+/// "1, 2, 4": the thread counts of `ends`.
+fn thread_list<'e>(ends: impl IntoIterator<Item = &'e EndState>) -> String {
+    ends.into_iter().map(|e| e.threads.to_string()).collect::<Vec<_>>().join(", ")
+}
+
+/// A settled pile as checkpoint bytes, from which every thread count starts its measurement.
+fn checkpoint_bytes(world: &World) -> Result<Vec<u8>, CommandFailure> {
+    let mut bytes = Vec::new();
+    world.save_checkpoint(&mut bytes).map_err(checkpoint_failure)?;
+    Ok(bytes)
+}
+
+/// A pile's state that cannot be encoded or decoded in memory: a failure of the engine, not of the input.
+fn checkpoint_failure(error: gc2d_engine::CheckpointError) -> CommandFailure {
+    CommandFailure::failed(format!("cannot copy the pile's state in memory: {error}"))
 }
 
 /// 1, 2, 4, … below `cores`, then `cores`.
@@ -274,4 +337,23 @@ fn csv(rows: &[BenchRow]) -> String {
         out.push('\n');
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn end(threads: usize, checksum: u64) -> EndState {
+        EndState { threads, checksum }
+    }
+
+    #[test]
+    fn equal_end_states_read_identical_and_a_different_one_is_named() {
+        let same = compare_end_states(&[end(1, 7), end(2, 7), end(4, 7)]);
+        assert!(!same.differs);
+        assert_eq!(same.text, "bitwise identical on 1, 2, 4 threads (checksum 0x0000000000000007)");
+        let different = compare_end_states(&[end(1, 7), end(2, 7), end(4, 8), end(8, 9)]);
+        assert!(different.differs);
+        assert_eq!(different.text, "DIFFERS: on 4, 8 threads it is not the state reached on 1");
+    }
 }

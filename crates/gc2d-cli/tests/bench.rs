@@ -1,5 +1,6 @@
 //! `gc2d-rs bench` (issue 18 item 6): the table and CSV of every pile, size and thread count, the cache of settled
-//! piles (a cached state measures exactly as the freshly settled one did), and refusals of bad arguments.
+//! piles (a cached state measures exactly as the freshly settled one did), every thread count measured from the same
+//! settled state and ending in the same state, and refusals of bad arguments.
 
 use assert_cmd::Command;
 use std::path::Path;
@@ -95,6 +96,14 @@ fn bench_measures_every_pile_and_thread_count_and_a_cached_pile_measures_as_the_
         assert!(row.stage_s.is_empty(), "stages are timed only with --stages: {row:?}");
     }
     assert!(!stdout.contains("per step in each stage"), "{stdout}");
+    // Every thread count starts from the settled state and ends in the same one, bit for bit.
+    for pile in ["dense7", "disks"] {
+        let verdict = format!("{pile} 60, the state after the timed steps: bitwise identical on 1, 2 threads");
+        assert!(stderr.contains(&verdict), "{stderr}");
+    }
+    for pair in fresh.chunks(2) {
+        assert_eq!(pair[0].contacts_per_particle.to_bits(), pair[1].contacts_per_particle.to_bits(), "{pair:?}");
+    }
     // After 2 ms the 1 µm gaps of the deposition have closed: the grains rest on the floor and on each other.
     assert!(fresh[0].contacts_per_particle > 0.3, "{:?}", fresh[0]);
     assert!(cache.join("dense7-60-settled-0.002s-v1.ckpt").is_file());

@@ -183,6 +183,13 @@ impl World {
     pub fn load_checkpoint_file(path: impl AsRef<Path>) -> Result<World, CheckpointError> {
         World::load_checkpoint(BufReader::new(File::open(path)?))
     }
+
+    /// The checksum a checkpoint of the current state carries (FNV-1a 64 of its payload): Worlds in the same state,
+    /// bit for bit, give the same value. For checking determinism, e.g. across thread counts (`gc2d-rs bench`),
+    /// without writing the state out.
+    pub fn state_checksum(&self) -> Result<u64, CheckpointError> {
+        Ok(fnv1a64(&postcard::to_stdvec(self)?))
+    }
 }
 
 /// `<path>.tmp`, next to the target so that the final rename stays on one file system.

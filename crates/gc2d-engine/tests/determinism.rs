@@ -64,6 +64,8 @@ struct RunEnd {
     /// The ledger, printed (Debug prints the shortest decimal that reads back to the same f64, so equal strings mean
     /// equal bits).
     ledger: String,
+    /// The checksum of the whole state, pair records and broadphase included (`World::state_checksum`).
+    state: u64,
     /// The most contacts seen in one step.
     most_contacts: usize,
     /// The most box pairs seen in one step.
@@ -103,7 +105,8 @@ fn run_scene_in_pool(scene: fn() -> World, threads: usize, split_at: Option<usiz
             })
             .map(f64::to_bits)
             .collect();
-        RunEnd { bits, ledger: format!("{:?}", world.ledger()), most_contacts, most_pairs }
+        let state = world.state_checksum().unwrap();
+        RunEnd { bits, ledger: format!("{:?}", world.ledger()), state, most_contacts, most_pairs }
     })
 }
 
@@ -120,6 +123,7 @@ fn pile_is_bitwise_identical_on_1_2_and_8_threads() {
         let first_difference = one.bits.iter().zip(&other.bits).position(|(a, b)| a != b);
         assert_eq!(first_difference, None, "{threads} threads: particle {:?} differs", first_difference.map(|k| k / 6));
         assert_eq!(one.ledger, other.ledger, "{threads} threads: the ledger differs");
+        assert_eq!(one.state, other.state, "{threads} threads: the state's checksum differs");
     }
 }
 
@@ -140,5 +144,6 @@ fn a_strip_in_bands_is_bitwise_identical_on_1_2_and_8_threads_and_across_a_check
         let run = format!("{threads} threads, split at {split_at:?}");
         assert_eq!(first_difference, None, "{run}: particle {:?} differs", first_difference.map(|k| k / 6));
         assert_eq!(one.ledger, other.ledger, "{run}: the ledger differs");
+        assert_eq!(one.state, other.state, "{run}: the state's checksum differs");
     }
 }
