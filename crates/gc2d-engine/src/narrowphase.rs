@@ -180,6 +180,7 @@ pub(crate) struct PairContext<'a> {
 
 impl PairContext<'_> {
     /// The contact law's view of body `id` at the predicted state.
+    #[inline]
     pub fn motion(&self, id: BodyId) -> BodyMotion {
         let i = id.index();
         let b = self.bodies;
