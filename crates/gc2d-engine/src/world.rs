@@ -1556,8 +1556,8 @@ mod tests {
     }
 
     /// The test above on pairs that are near neighbours with probability `near`, with strays set apart where
-    /// `find_strays` says (as on more than one thread); returns how many chunks have strays and how many chunks
-    /// there are.
+    /// `find_strays` says (as on [`STRAYS_MIN_THREADS`] threads or more); returns how many chunks have strays and how
+    /// many chunks there are.
     fn forces_by_ranges_equal_one_pass(near: f64, find_strays: bool) -> (usize, usize) {
         let bodies = 3000;
         let mut rng = ChaCha8Rng::seed_from_u64(7);
