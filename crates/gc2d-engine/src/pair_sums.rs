@@ -225,7 +225,7 @@ impl PairSums {
     /// Whether leaving out at most [`MAX_STRAYS`] touching pairs could halve the chunk's span, checked in one pass
     /// of two comparisons a pair: a span [L, H] at most half as wide lies at least a quarter of the width in from one
     /// end, so at most [`MAX_STRAYS`] pairs reach into the lowest or into the highest quarter. A chunk of neighbours
-    /// fails this, and is done.
+    /// fails this, and is done; so is a span under four bodies wide, which has nothing worth setting apart.
     fn may_have_strays(&self, chunk: &[PairEntry<PairContact>]) -> bool {
         let span = self.touching_bodies;
         let quarter = span.width() / 4;
