@@ -170,8 +170,7 @@ impl PairSums {
     /// one with more far pairs than strays). A pass of two comparisons a pair settles most chunks; the rest take
     /// two more passes. A function of the chunk alone, and which pairs a range reads never changes the sums.
     pub fn set_strays_apart(&mut self, chunk: &[PairEntry<PairContact>]) {
-        self.strays = Strays::default();
-        self.core_bodies = self.touching_bodies;
+        self.keep_every_pair_in_the_core();
         if !self.may_have_strays(chunk) {
             return;
         }
