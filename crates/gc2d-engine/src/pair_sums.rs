@@ -11,10 +11,17 @@ use crate::narrowphase::{LedgerTerms, PairContact};
 use glam::DVec2;
 
 /// Pairs per chunk of the narrowphase pass. Fixed, so that the sums are grouped the same way for any thread count.
-/// A chunk is also the smallest piece of work a thread takes: 64 pairs of a dense pile take some 13 µs, so two threads
-/// on a 2,000-grain pile (70 chunks) end a step within a few per cent of each other; chunks of 256 pairs left one
-/// thread waiting for the other's last chunk and made two threads about 5 % slower there (docs/performance.md).
+/// 64 pairs of a dense pile take some 13 µs; chunks of 256 pairs made two threads about 5 % slower on a 2,000-grain
+/// pile (docs/performance.md, "The chunk size").
 pub(crate) const PAIRS_PER_CHUNK: usize = 64;
+
+/// The most chunks a thread takes at a time in the narrowphase pass. Left to itself, rayon cuts the list into about
+/// two pieces per thread (quarters on two threads) and cuts a piece further only when another thread steals it, so a
+/// thread that ends its pieces early, or runs on a core that is slower at the moment, waits for the others' last
+/// piece. Pieces of four chunks (some 50 µs of a dense pile) let the threads share the end of the pass: on two threads
+/// the dense 10,000-grain pile's narrowphase took 1,495–1,534 instead of 1,646 µs a step (docs/performance.md,
+/// "Smaller pieces of the narrowphase for the threads"). Which thread evaluates a chunk never changes a result.
+pub(crate) const CHUNKS_PER_TASK: usize = 4;
 
 /// The lowest and highest body id among a chunk's touching pairs: the force accumulation skips the chunks that touch
 /// none of the bodies it adds up.

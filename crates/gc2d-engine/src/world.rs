@@ -19,7 +19,7 @@ use crate::ledger::EnergyLedger;
 use crate::motion::WallMotion;
 use crate::narrowphase::{ContactHistory, PairContact, PairContext};
 use crate::outlets::{Outlet, OutletState};
-use crate::pair_sums::{PAIRS_PER_CHUNK, PairSums};
+use crate::pair_sums::{CHUNKS_PER_TASK, PAIRS_PER_CHUNK, PairSums};
 use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
 use crate::shape::{BodyShape, MassModel, shape_view};
@@ -976,7 +976,8 @@ impl World {
             }
         };
         if parallel {
-            pairs.par_chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.par_iter_mut()).for_each(evaluate_chunk);
+            let chunks = pairs.par_chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.par_iter_mut());
+            chunks.with_max_len(CHUNKS_PER_TASK).for_each(evaluate_chunk);
         } else {
             pairs.chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.iter_mut()).for_each(evaluate_chunk);
         }
