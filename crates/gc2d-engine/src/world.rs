@@ -1504,13 +1504,20 @@ fn state_is_finite(b: &Bodies, i: usize) -> bool {
     kinematics_finite && energy_finite
 }
 
+/// Bodies one task of the predictor or corrector takes at least. Their rows are light (10–20 ns a body), so rayon's
+/// own splitting (about two pieces per thread, more when stolen) made tasks of a few hundred bodies on 16 threads,
+/// whose start and hand-over cost more than the rows: with 1,024 the two stages of the 12,800 squares fell from
+/// 97–121 to 54–75 µs a step on 16 threads and the step by 8–10 %, unchanged on one and two threads
+/// (docs/performance.md, "Sixteen cores, a third session").
+const KINEMATICS_ROWS_PER_TASK: usize = 1024;
+
 /// The kinematic columns of one body that the predictor and corrector update.
 type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
 
 /// Calls `f(index, row)` for every body: in parallel for large worlds, on the calling thread for small ones.
 fn for_each_kinematics_row(columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
     if columns.0.len() >= PARALLEL_MIN_BODIES {
-        columns.into_par_iter().enumerate().for_each(|(i, row)| f(i, row));
+        columns.into_par_iter().enumerate().with_min_len(KINEMATICS_ROWS_PER_TASK).for_each(|(i, row)| f(i, row));
     } else {
         let (g, p, v, w, k, a) = columns;
         g.iter_mut()
