@@ -34,6 +34,7 @@ mod bands;
 mod bodies;
 mod box_query;
 mod pair_set;
+mod segments;
 
 pub use bodies::{BodyKind, BoxWriter};
 pub use pair_set::PairEntry;
@@ -45,6 +46,7 @@ use box_query::PendingIndex;
 use gc2d_geometry::Aabb;
 use pair_set::PairSet;
 use rayon::prelude::*;
+use segments::{ENDPOINTS_PER_SEGMENT, SegmentedSort};
 use serde::{Deserialize, Serialize};
 use std::cmp::Ordering;
 
@@ -115,6 +117,13 @@ impl Endpoint {
         self.key & END_BIT != 0
     }
 
+    /// Sets the value to the body's bound in `intervals` (by body id): its lower bound for a begin, upper for an end.
+    #[inline]
+    fn refresh(&mut self, intervals: &[Interval]) {
+        let interval = intervals[self.body() as usize];
+        self.value = if self.is_end() { interval.upper } else { interval.lower };
+    }
+
     /// The strict total order of the axis: value, then begin before end, then body id. Values are never NaN.
     #[inline]
     fn precedes(self, other: Endpoint) -> bool {
@@ -175,14 +184,14 @@ pub struct SortAndSweep<T> {
     /// Scratch for the sweep that finds new bodies' pairs.
     #[serde(skip)]
     sweep: SweepScratch,
-    /// Scratch: the pair-list changes each axis's sort found in the current update, in the order found.
+    /// Scratch of each axis's sort, with the pair-list changes it found in the current update.
     #[serde(skip)]
-    changes: [Vec<PairChange>; 2],
+    sorts: [SegmentedSort; 2],
 }
 
 /// A change of the pair list that a swap of the insertion sort calls for (Table 2.3), recorded by the sort and applied
 /// after both axes are sorted.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum PairChange {
     /// The boxes of the two bodies now touch: add the pair if it is not listed yet.
     Add(u32, u32),
@@ -208,7 +217,7 @@ impl<T: Default> Default for SortAndSweep<T> {
             pending_index: Some(PendingIndex::default()),
             merge_buffer: Vec::new(),
             sweep: SweepScratch::default(),
-            changes: [Vec::new(), Vec::new()],
+            sorts: Default::default(),
         }
     }
 }
@@ -390,7 +399,7 @@ impl<T: Default> SortAndSweep<T> {
             + vec_bytes(&self.sweep.open)
             + vec_bytes(&self.sweep.open_fresh)
             + vec_bytes(&self.sweep.position)
-            + self.changes.iter().map(vec_bytes).sum::<usize>()
+            + self.sorts.iter().map(SegmentedSort::heap_bytes).sum::<usize>()
     }
 
     /// True if `body` is in the broadphase (active or waiting for the next update).
@@ -432,22 +441,23 @@ impl<T: Default> SortAndSweep<T> {
         self.bands.is_some()
     }
 
-    /// Re-sorts both axes (in parallel where they are long), then applies the pair-list changes their swaps found: the
-    /// x axis's, then the y axis's, each in the order found (with bands: each band's in band order, then the
-    /// rechecks of the bodies that changed bands, `bands`).
+    /// Re-sorts both axes (in parallel where they are long, each of them in segments: `broadphase::segments`), then
+    /// applies the pair-list changes their swaps found: the x axis's, then the y axis's, each in the order one
+    /// insertion sort finds them (with bands: each band's in band order, then the rechecks of the bodies that changed
+    /// bands, `bands`).
     fn sort_axes(&mut self) {
         let bodies = &self.bodies;
-        let ([x, y], [x_changes, y_changes]) = (&mut self.axes, &mut self.changes);
+        let ([x, y], [x_sort, y_sort]) = (&mut self.axes, &mut self.sorts);
         let (x_swaps, y_swaps) = match &mut self.bands {
-            Some(bands) => rayon::join(|| insertion_sort(x, 0, bodies, x_changes), || bands.sort(bodies)),
-            None if x.len() >= 2 * ENDPOINTS_PER_TASK => {
-                rayon::join(|| insertion_sort(x, 0, bodies, x_changes), || insertion_sort(y, 1, bodies, y_changes))
+            Some(bands) => rayon::join(|| x_sort.sort(x, 0, bodies), || bands.sort(bodies)),
+            None if x.len() >= 2 * ENDPOINTS_PER_SEGMENT => {
+                rayon::join(|| x_sort.sort(x, 0, bodies), || y_sort.sort(y, 1, bodies))
             }
-            None => (insertion_sort(x, 0, bodies, x_changes), insertion_sort(y, 1, bodies, y_changes)),
+            None => (x_sort.sort(x, 0, bodies), y_sort.sort(y, 1, bodies)),
         };
         self.stats.swaps += x_swaps + y_swaps;
         let band_changes = self.bands.iter_mut().flat_map(YBands::changes);
-        for change in x_changes.drain(..).chain(y_changes.drain(..)).chain(band_changes) {
+        for change in x_sort.changes().chain(y_sort.changes()).chain(band_changes) {
             match change {
                 PairChange::Add(m, n) => {
                     if self.pairs.insert(m, n) {
@@ -503,11 +513,17 @@ impl<T: Default> SortAndSweep<T> {
     }
 }
 
-/// Refreshes the values of one axis from the bodies' new boxes, then re-sorts it by insertion sort, recording in
-/// `changes` the pair-list changes of Table 2.3 at every adjacent swap; returns the number of swaps. The common case
-/// (element already in place) stays a tight loop; moving an element is done out of line.
+/// Refreshes the values of one axis (or band) from the bodies' new boxes, then re-sorts it by insertion sort
+/// ([`sort_refreshed`]); returns the number of swaps.
 fn insertion_sort(endpoints: &mut [Endpoint], axis: usize, bodies: &Bodies, changes: &mut Vec<PairChange>) -> u64 {
     refresh_values(endpoints, bodies.intervals(axis));
+    sort_refreshed(endpoints, axis, bodies, changes)
+}
+
+/// Re-sorts an axis whose values are the new ones by insertion sort, recording in `changes` the pair-list changes of
+/// Table 2.3 at every adjacent swap; returns the number of swaps. The common case (element already in place) stays
+/// a tight loop; moving an element is done out of line.
+fn sort_refreshed(endpoints: &mut [Endpoint], axis: usize, bodies: &Bodies, changes: &mut Vec<PairChange>) -> u64 {
     let mut swaps = 0;
     for i in 1..endpoints.len() {
         let moving = endpoints[i];
@@ -518,20 +534,15 @@ fn insertion_sort(endpoints: &mut [Endpoint], axis: usize, bodies: &Bodies, chan
     swaps
 }
 
-/// Endpoints one task of [`refresh_values`] takes at least; below twice this an axis is refreshed on one thread.
-const ENDPOINTS_PER_TASK: usize = 4096;
-
-/// Sets every endpoint's value to its body's new bound on this axis (`intervals`, by body id). The axis is in
-/// coordinate order, not body order, so these reads are scattered: on a 100,000-grain layer they were most of the
-/// update's time on one thread. They are independent of each other, so they run in parallel before the (sequential)
-/// sort, which then reads the array in order; the values, and so the sort, are the same for any thread count.
+/// Sets every endpoint's value to its body's new bound on this axis (`intervals`, by body id), for an axis or a band
+/// sorted whole (an axis sorted in segments is refreshed by `segments`, which also measures each segment). The axis
+/// is in coordinate order, not body order, so these reads are scattered: on a 100,000-grain layer they were most of
+/// the update's time on one thread. They are independent of each other, so a long axis runs them in parallel before
+/// the sort, which then reads the array in order; the values, and so the sort, are the same for any thread count.
 fn refresh_values(endpoints: &mut [Endpoint], intervals: &[Interval]) {
-    let refresh = |e: &mut Endpoint| {
-        let interval = intervals[e.body() as usize];
-        e.value = if e.is_end() { interval.upper } else { interval.lower };
-    };
-    if endpoints.len() >= 2 * ENDPOINTS_PER_TASK {
-        endpoints.par_iter_mut().with_min_len(ENDPOINTS_PER_TASK).for_each(refresh);
+    let refresh = |e: &mut Endpoint| e.refresh(intervals);
+    if endpoints.len() >= 2 * ENDPOINTS_PER_SEGMENT {
+        endpoints.par_iter_mut().with_min_len(ENDPOINTS_PER_SEGMENT).for_each(refresh);
     } else {
         endpoints.iter_mut().for_each(refresh);
     }
