@@ -1507,7 +1507,7 @@ fn state_is_finite(b: &Bodies, i: usize) -> bool {
 /// Bodies one task of the predictor or corrector takes at least. Their rows are light (10–20 ns a body), so rayon's
 /// own splitting (about two pieces per thread, more when stolen) made tasks of a few hundred bodies on 16 threads,
 /// whose start and hand-over cost more than the rows: with 1,024 the two stages of the 12,800 squares fell from
-/// 97–121 to 54–75 µs a step on 16 threads and the step by 8–10 %, unchanged on one and two threads
+/// 95–121 to 54–75 µs a step on 16 threads and the step by 7–8 %, unchanged on one and two threads
 /// (docs/performance.md, "Sixteen cores, a third session").
 const KINEMATICS_ROWS_PER_TASK: usize = 1024;
 
