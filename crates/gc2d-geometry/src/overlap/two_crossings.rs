@@ -120,17 +120,14 @@ pub(crate) fn two_crossings<'p>(a: &'p [DVec2], b: &'p [DVec2], facing: &Facing)
     if line_count > MAX_FACING_EDGES {
         return None;
     }
-    let mut lines = [(DVec2::ZERO, DVec2::ZERO); MAX_FACING_EDGES];
-    let mut j = edges_of_b.first;
-    for line in &mut lines[..line_count] {
-        let after = cyclic_next(j, m);
-        *line = (b[j], b[after] - b[j]);
-        j = after;
-    }
-    let lines = &lines[..line_count];
+    // The lines are b's facing edges, walked again for each vertex rather than kept in an array of
+    // MAX_FACING_EDGES: zeroing that array (384 bytes, a call of memset) cost more than the few edges walked again.
     let sides_of = |p: DVec2, sides: &mut [f64; MAX_FACING_EDGES]| {
-        for (side, &(origin, direction)) in sides.iter_mut().zip(lines) {
-            *side = cross(direction, p - origin);
+        let mut j = edges_of_b.first;
+        for side in &mut sides[..line_count] {
+            let after = cyclic_next(j, m);
+            *side = cross(b[after] - b[j], p - b[j]);
+            j = after;
         }
     };
     let (mut entry, mut exit) = (None, None);
