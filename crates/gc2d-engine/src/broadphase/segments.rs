@@ -181,14 +181,13 @@ fn sort_groups(
 
 #[cfg(test)]
 mod tests {
-    use super::super::bodies::BodyKind;
-    use super::super::insertion_sort;
+    use super::super::bodies::{BodyKind, SlotState};
     use super::*;
     use gc2d_geometry::{Aabb, DVec2};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
-    /// `count` unit-high boxes in a row along x, some apart and some overlapping, each `width` wide.
+    /// `count` unit-high boxes in a row along x, of random widths, some apart and some overlapping.
     fn row_of_boxes(count: usize, rng: &mut ChaCha8Rng) -> Vec<Aabb> {
         (0..count)
             .map(|i| {
@@ -214,8 +213,9 @@ mod tests {
     }
 
     /// Moves of every size: most by a hundredth of a box, one in twenty by a few boxes (across segments of 16
-    /// endpoints, so segments join), about one a round by up to half the row (which joins all segments it passes); then the segmented sort must end in the same order with the same
-    /// changes in the same order as one insertion sort, for short and long segments and any thread count.
+    /// endpoints, so segments join), about one a round by up to half the row (which joins all segments it passes);
+    /// then the segmented sort must end in the same order with the same changes in the same order as one insertion
+    /// sort, for short and long segments on 1 to 4 threads.
     #[test]
     fn segments_swap_what_one_sort_swaps_in_the_same_order() {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
@@ -224,7 +224,7 @@ mod tests {
         let mut bodies = Bodies::default();
         for (body, aabb) in boxes.iter().enumerate() {
             bodies.make_pending(body as u32, BodyKind::Dynamic, aabb);
-            bodies.set_state(body as u32, super::super::bodies::SlotState::Active);
+            bodies.set_state(body as u32, SlotState::Active);
         }
         let mut axis = sorted_axis(&bodies);
         let (mut several_groups, mut joined_segments) = (0, 0);
@@ -263,7 +263,7 @@ mod tests {
         assert!(joined_segments > 100, "moves across segments should join them ({joined_segments} joined)");
     }
 
-    /// An axis shorter than a segment is one group; an empty axis sorts to nothing.
+    /// An empty axis is one empty group and sorts to nothing.
     #[test]
     fn a_short_or_empty_axis_is_one_group() {
         let mut segmented = SegmentedSort::default();
