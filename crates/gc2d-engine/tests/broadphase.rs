@@ -337,7 +337,9 @@ fn a_body_teleported_across_the_cloud_stays_exact() {
 }
 
 /// A gas of unit boxes in a square, moving at random: its pairs churn, so the pair list loses its body
-/// order and gets sorted again. Returns the boxes of each of `steps` updates.
+/// order and gets sorted again. Kicks of up to 2 % of a box per update let the list drift out of order over a few
+/// updates (at 5 % it left the one-in-64 bound at every update and was sorted every time). Returns the boxes of
+/// each of `steps` updates.
 fn churning_gas(seed: u64, count: usize, steps: usize) -> Vec<Vec<Aabb>> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let side = (count as f64).sqrt() * 1.3;
@@ -346,7 +348,7 @@ fn churning_gas(seed: u64, count: usize, steps: usize) -> Vec<Vec<Aabb>> {
     (0..steps)
         .map(|_| {
             for centre in &mut centres {
-                let kick = DVec2::new(rng.random_range(-0.05..0.05), rng.random_range(-0.05..0.05));
+                let kick = DVec2::new(rng.random_range(-0.02..0.02), rng.random_range(-0.02..0.02));
                 *centre = (*centre + kick).clamp(DVec2::ZERO, DVec2::splat(side));
             }
             centres.iter().map(|&c| unit_box(c)).collect()
@@ -376,9 +378,9 @@ fn the_pair_list_returns_to_body_order_and_a_saved_copy_sorts_on_the_same_update
         // Counted after the copy was saved: both were sorted again on these updates.
         returns_to_order += usize::from(step > 100 && sorted && !was_sorted);
         was_sorted = sorted;
-        // At most one pair in 16 is out of order after an update.
+        // At most one pair in 64 is out of order after an update.
         let descents = order.windows(2).filter(|w| w[0] > w[1]).count();
-        assert!(descents * 16 <= order.len(), "{descents} descents in {} pairs at step {step}", order.len());
+        assert!(descents * 64 <= order.len(), "{descents} descents in {} pairs at step {step}", order.len());
         if step == 100 {
             let bytes = postcard::to_allocvec(&sweep).unwrap();
             copy = Some(postcard::from_bytes::<SortAndSweep<u32>>(&bytes).unwrap());
