@@ -13,9 +13,11 @@ pub enum Stage {
     Vertices,
     /// Sort-and-sweep update of the pair list and the ended pairs' booking (sequential).
     Broadphase,
-    /// Overlap, contact law and the chunks' sums for every pair (parallel over chunks of pairs).
+    /// Overlap, contact law and the chunks' sums for every pair (parallel over chunks of pairs); on one thread also
+    /// the contact forces added to the bodies.
     Narrowphase,
-    /// Contact forces added to the bodies in pair order, the chunks' sums booked, contact events (sequential).
+    /// Contact forces added to the bodies in pair order (parallel over ranges of bodies; on one thread in the
+    /// narrowphase instead), the chunks' sums booked, contact events (sequential).
     Accumulation,
     /// Gravity, drag springs and fluid drag.
     BodyForces,

@@ -783,9 +783,9 @@ impl World {
         }
         self.close_ended_pairs(t_next);
         self.lap(Stage::Broadphase);
-        self.evaluate_pairs();
+        let forces_added = self.evaluate_pairs();
         self.lap(Stage::Narrowphase);
-        self.accumulate_contact_forces();
+        self.accumulate_contact_forces(forces_added);
         if self.stages.rotors {
             let drive = self.rotor_power();
             self.rotor_work.from_torque += drive.power_from_torque * dt;
@@ -954,44 +954,66 @@ impl World {
 
     /// Narrowphase and contact law for every pair, in parallel; each pair writes only its own record, and each
     /// fixed chunk of pairs its own [`PairSums`] (the ledger's terms, the chatter watch, the statistics).
-    fn evaluate_pairs(&mut self) {
+    ///
+    /// Where the pass runs on one thread (a small World, or a pool of one thread) it also adds each touching pair's
+    /// forces to its bodies right after evaluating it, while the record is in cache, and returns
+    /// [`ForcesAdded::InNarrowphase`]: the same additions in the same order as [`add_contact_forces`], so the same
+    /// sums bit for bit, without reading the pair list a second time (docs/performance.md, "The forces added in the
+    /// narrowphase on one thread").
+    fn evaluate_pairs(&mut self) -> ForcesAdded {
+        let parallel = self.bodies.len() >= PARALLEL_MIN_BODIES;
+        if !parallel || rayon::current_num_threads() == 1 {
+            self.evaluate_pairs_adding_forces();
+            return ForcesAdded::InNarrowphase;
+        }
         let context = pair_context(&self.bodies, &self.config);
         let pairs = self.broadphase.pairs_mut();
         self.pair_sums.resize(pairs.len().div_ceil(PAIRS_PER_CHUNK), PairSums::default());
-        let parallel = self.bodies.len() >= PARALLEL_MIN_BODIES;
         // Which pairs a range of the force accumulation reads never changes the sums, so finding strays is a matter
         // of speed alone: see STRAYS_MIN_THREADS.
-        let find_strays = parallel && rayon::current_num_threads() >= STRAYS_MIN_THREADS;
+        let find_strays = rayon::current_num_threads() >= STRAYS_MIN_THREADS;
         let evaluate_chunk = |(chunk, sums): (&mut [PairEntry<PairContact>], &mut PairSums)| {
-            *sums = PairSums::default();
-            for pair in chunk.iter_mut() {
-                let energy = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
-                let overlap_fraction = context.overlap_fraction(pair.a(), pair.b(), &pair.payload);
-                sums.add_pair(pair.a(), pair.b(), &pair.payload, &energy, overlap_fraction);
-            }
+            evaluate_chunk(&context, chunk, sums, |_| {});
             if find_strays {
                 sums.set_strays_apart(chunk);
             } else {
                 sums.keep_every_pair_in_the_core();
             }
         };
-        if parallel {
-            let chunks = pairs.par_chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.par_iter_mut());
-            chunks.with_max_len(CHUNKS_PER_TASK).for_each(evaluate_chunk);
-        } else {
-            pairs.chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.iter_mut()).for_each(evaluate_chunk);
+        let chunks = pairs.par_chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.par_iter_mut());
+        chunks.with_max_len(CHUNKS_PER_TASK).for_each(evaluate_chunk);
+        ForcesAdded::Later
+    }
+
+    /// [`Self::evaluate_pairs`] on the calling thread, adding each touching pair's forces to its bodies as it goes.
+    fn evaluate_pairs_adding_forces(&mut self) {
+        // The pair context reads the bodies while the forces are written: the two force columns are taken out of
+        // the store for the pass (it reads neither) and put back after it.
+        let mut forces = std::mem::take(&mut self.bodies.force);
+        let mut torques = std::mem::take(&mut self.bodies.torque);
+        forces.fill(DVec2::ZERO);
+        torques.fill(0.0);
+        let context = pair_context(&self.bodies, &self.config);
+        let pairs = self.broadphase.pairs_mut();
+        self.pair_sums.resize(pairs.len().div_ceil(PAIRS_PER_CHUNK), PairSums::default());
+        for (chunk, sums) in pairs.chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.iter_mut()) {
+            evaluate_chunk(&context, chunk, sums, |pair| add_pair_forces(pair, 0, &mut forces, &mut torques));
+            sums.keep_every_pair_in_the_core();
         }
+        self.bodies.force = forces;
+        self.bodies.torque = torques;
     }
 
     /// Adds the contact forces to the bodies, each body's in pair order (so independent of the thread count), in
-    /// parallel over ranges of bodies; then books the chunks' sums in chunk order: the contacts' energy terms, the
-    /// energy they store (kept by the ledger until the next step: pairs of particles removed later in this step still
-    /// hold it, and their ending books it as opening residual then), the chatter watch and the statistics.
-    fn accumulate_contact_forces(&mut self) {
+    /// parallel over ranges of bodies, unless the narrowphase pass added them (`forces_added`, on one thread); then
+    /// books the chunks' sums in chunk order: the contacts' energy terms, the energy they store (kept by the ledger
+    /// until the next step: pairs of particles removed later in this step still hold it, and their ending books it as
+    /// opening residual then), the chatter watch and the statistics.
+    fn accumulate_contact_forces(&mut self, forces_added: ForcesAdded) {
         let pairs = self.broadphase.pairs();
         let chunk_sums = &self.pair_sums;
         let b = &mut self.bodies;
-        if b.len() >= PARALLEL_MIN_BODIES {
+        if forces_added == ForcesAdded::Later {
             // One range of bodies per thread: a range reads every chunk of pairs whose touching bodies reach into
             // it, which in a pile numbered in space order is little more than its share of the list, and in one
             // numbered otherwise (a wide layer deposited in passes) can be most of it: more ranges would read the
@@ -1001,8 +1023,6 @@ impl World {
             ranges.enumerate().for_each(|(range, (forces, torques))| {
                 add_contact_forces(pairs, chunk_sums, range * per_range, forces, torques);
             });
-        } else {
-            add_contact_forces(pairs, chunk_sums, 0, &mut b.force, &mut b.torque);
         }
         let mut sums = PairSums::default();
         self.pair_sums.iter().for_each(|chunk| sums.add(chunk));
@@ -1404,6 +1424,26 @@ fn pair_context<'a>(bodies: &'a Bodies, config: &'a WorldConfig) -> PairContext<
     PairContext { bodies, interactions: &config.interactions, dt: config.time_step }
 }
 
+/// Evaluates the pairs of `chunk` in list order, writing their records and the chunk's `sums`, and calls `touching`
+/// with each pair that touches, right after its evaluation.
+#[inline]
+fn evaluate_chunk(
+    context: &PairContext,
+    chunk: &mut [PairEntry<PairContact>],
+    sums: &mut PairSums,
+    mut touching: impl FnMut(&PairEntry<PairContact>),
+) {
+    *sums = PairSums::default();
+    for pair in chunk.iter_mut() {
+        let energy = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
+        let overlap_fraction = context.overlap_fraction(pair.a(), pair.b(), &pair.payload);
+        sums.add_pair(pair.a(), pair.b(), &pair.payload, &energy, overlap_fraction);
+        if pair.payload.touching {
+            touching(pair);
+        }
+    }
+}
+
 /// Sets `forces` and `torques`, the rows of bodies `first`, `first + 1`, …, to the sum of the contact forces and
 /// torques the touching pairs exert on them, adding each body's terms in pair order: the same sums, bit for bit, as
 /// one pass over the pairs in list order, whatever range a body falls in. `chunk_sums` are the narrowphase's sums of
@@ -1419,21 +1459,8 @@ fn add_contact_forces(
 ) {
     forces.fill(DVec2::ZERO);
     torques.fill(0.0);
-    let len = forces.len();
-    let end = first + len;
-    // Below `first` the subtraction wraps to a huge index: one comparison tells whether the body is in the range.
-    let local = |body: u32| Some((body as usize).wrapping_sub(first)).filter(|&i| i < len);
-    let mut add = |pair: &PairEntry<PairContact>| {
-        let c = &pair.payload;
-        if let Some(i) = local(pair.a()) {
-            forces[i] += c.force_on_a;
-            torques[i] += c.torque_on_a;
-        }
-        if let Some(j) = local(pair.b()) {
-            forces[j] -= c.force_on_a;
-            torques[j] += c.torque_on_b;
-        }
-    };
+    let end = first + forces.len();
+    let mut add = |pair: &PairEntry<PairContact>| add_pair_forces(pair, first, forces, torques);
     let (first, end) = (first as u32, end as u32);
     for (chunk, sums) in pairs.chunks(PAIRS_PER_CHUNK).zip(chunk_sums) {
         if sums.core_bodies.meets(first, end) {
@@ -1442,6 +1469,33 @@ fn add_contact_forces(
             sums.strays.positions().iter().for_each(|&k| add(&chunk[usize::from(k)]));
         }
     }
+}
+
+/// Adds the force and torques of the touching `pair` to those of its bodies that lie in the rows `forces` and
+/// `torques` of bodies `first`, `first + 1`, ….
+#[inline]
+fn add_pair_forces(pair: &PairEntry<PairContact>, first: usize, forces: &mut [DVec2], torques: &mut [f64]) {
+    let len = forces.len();
+    // Below `first` the subtraction wraps to a huge index: one comparison tells whether the body is in the range.
+    let local = |body: u32| Some((body as usize).wrapping_sub(first)).filter(|&i| i < len);
+    let c = &pair.payload;
+    if let Some(i) = local(pair.a()) {
+        forces[i] += c.force_on_a;
+        torques[i] += c.torque_on_a;
+    }
+    if let Some(j) = local(pair.b()) {
+        forces[j] -= c.force_on_a;
+        torques[j] += c.torque_on_b;
+    }
+}
+
+/// Where a step's contact forces are added to the bodies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ForcesAdded {
+    /// Pair by pair in the narrowphase pass, which ran on one thread.
+    InNarrowphase,
+    /// By the force accumulation, in parallel over ranges of bodies.
+    Later,
 }
 
 /// The normal approach speed and the tangential speed of the contact points of pair {a, b} at `point`, m/s, at the

@@ -1,6 +1,7 @@
 //! Determinism across thread counts (ARCHITECTURE.md, "Decisions already taken"): the same World stepped inside
 //! rayon pools of 1, 2 and 8 threads ends bitwise identical, positions, velocities and ledger alike; also a strip
-//! wide enough for the broadphase's y axis in bands, and across a checkpoint split.
+//! wide enough for the broadphase's y axis in bands, and across a checkpoint split. The pool of one thread adds the
+//! contact forces in the narrowphase pass, the others by ranges of bodies afterwards, so they compare the two ways.
 
 mod common;
 
