@@ -1558,12 +1558,23 @@ fn state_is_finite(b: &Bodies, i: usize) -> bool {
     kinematics_finite && energy_finite
 }
 
-/// Bodies one task of the predictor or corrector takes at least. Their rows are light (10–20 ns a body), so rayon's
-/// own splitting (about two pieces per thread, more when stolen) made tasks of a few hundred bodies on 16 threads,
-/// whose start and hand-over cost more than the rows: with 1,024 the two stages of the 12,800 squares fell from
-/// 95–121 to 54–75 µs a step on 16 threads and the step by 7–8 %, unchanged on one and two threads
-/// (docs/performance.md, "Sixteen cores, a third session").
+/// Bodies one task of the predictor or corrector takes at least, in Worlds of 2,048 bodies or more. Their rows are
+/// light (10–20 ns a body), so rayon's own splitting (about two pieces per thread, more when stolen) made tasks of a
+/// few hundred bodies on 16 threads, whose start and hand-over cost more than the rows: with 1,024 the two stages of
+/// the 12,800 squares fell from 95–121 to 54–75 µs a step on 16 threads and the step by 7–8 %, unchanged on one and
+/// two threads (docs/performance.md, "Sixteen cores, a third session"). Smaller Worlds: [`kinematics_rows_per_task`].
 const KINEMATICS_ROWS_PER_TASK: usize = 1024;
+
+/// Bodies one task of the predictor or corrector takes at least in a World of `bodies` bodies:
+/// [`KINEMATICS_ROWS_PER_TASK`], but at most half of them, rounded down (rayon cuts a piece only while each half holds
+/// at least this many), so that a World of 512 to 2,047 bodies is still cut in two. As one task its rows ran on the
+/// calling thread, which took back every cache line of the poses and velocities the other thread had read in the
+/// narrowphase, and the other thread, idle meanwhile, had to be woken again in the vertex transform: the 800 squares on
+/// two threads 172–179 → 145–148 µs a step, one thread unchanged (docs/performance.md, "The predictor and corrector of
+/// small Worlds in two").
+fn kinematics_rows_per_task(bodies: usize) -> usize {
+    KINEMATICS_ROWS_PER_TASK.min(bodies / 2)
+}
 
 /// The kinematic columns of one body that the predictor and corrector update.
 type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
@@ -1571,7 +1582,8 @@ type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mu
 /// Calls `f(index, row)` for every body: in parallel for large worlds, on the calling thread for small ones.
 fn for_each_kinematics_row(columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
     if columns.0.len() >= PARALLEL_MIN_BODIES {
-        columns.into_par_iter().enumerate().with_min_len(KINEMATICS_ROWS_PER_TASK).for_each(|(i, row)| f(i, row));
+        let rows_per_task = kinematics_rows_per_task(columns.0.len());
+        columns.into_par_iter().enumerate().with_min_len(rows_per_task).for_each(|(i, row)| f(i, row));
     } else {
         let (g, p, v, w, k, a) = columns;
         g.iter_mut()
