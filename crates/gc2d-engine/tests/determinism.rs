@@ -18,14 +18,14 @@ const RADIUS: f64 = 1.5e-3;
 /// Lattice spacing: two largest radii plus 0.1 mm, so nothing overlaps at the start.
 const SPACING: f64 = 2.0 * 1.1 * RADIUS + 1e-4;
 const STEPS: usize = 3000;
-// The closing ledger pass must have more than one of its chunks of 1,024 bodies.
-const _: () = assert!(COLUMNS * ROWS > 1024);
+// The closing ledger pass must have more than one of its chunks of 512 bodies.
+const _: () = assert!(COLUMNS * ROWS > 512);
 
 /// 1,080 random RAND1 7-gons on a lattice in a closed box, flying in random directions at up to 1 m/s, so that
 /// about 160 contacts are active by the end of the 6 ms run and the pair list holds more than eight of the
 /// narrowphase's chunks of 64 pairs, whose sums are added in chunk order (docs/model.md, "Narrowphase and ledger
 /// shortcuts"). More than the engine's 512-body threshold for parallel stages, and more than one of the closing
-/// ledger pass's fixed chunks of 1,024 bodies, whose sums are also added in chunk order.
+/// ledger pass's fixed chunks of 512 bodies, whose sums are also added in chunk order.
 fn random_pile() -> World {
     random_lattice(COLUMNS, ROWS, 0.0)
 }
