@@ -324,7 +324,8 @@ pub(crate) type KinematicsColumns<'a> =
 /// Per-body columns the corrector reads: force, torque, inverse mass, inverse inertia.
 pub(crate) type ForceColumns<'a> = (&'a [DVec2], &'a [f64], &'a [f64], &'a [f64]);
 
-/// Bodies below this many per task are transformed sequentially.
+/// Bodies below this many per task are transformed sequentially (and all of them in a pool of one thread, where
+/// cutting the work into tasks gains nothing).
 const TRANSFORM_GRAIN: usize = 512;
 
 /// The columns [`transform_range`] reads.
@@ -339,7 +340,7 @@ struct TransformInputs<'a> {
 /// Transforms bodies `first..last`; `world` starts at body `first`'s first vertex, `boxes` at body `first`.
 fn transform_range(first: usize, last: usize, inputs: &TransformInputs, world: &mut [DVec2], mut boxes: BoxWriter) {
     let ranges = inputs.ranges;
-    if last - first <= TRANSFORM_GRAIN {
+    if last - first <= TRANSFORM_GRAIN || rayon::current_num_threads() == 1 {
         let offset = if first < ranges.len() { ranges[first].start as usize } else { 0 };
         for (slot, i) in (first..last).enumerate() {
             if !inputs.alive[i] {

@@ -6,7 +6,7 @@ use crate::integrator::TimeStep;
 use crate::ledger::EnergyLedger;
 use crate::schedules::DragSpring;
 use crate::shape::{MassModel, ShapeKind};
-use crate::world::PARALLEL_MIN_BODIES;
+use crate::world::steps_in_parallel;
 use gc2d_fluid::drag::{buoyancy_force, drag_force, equivalent_radius};
 use gc2d_fluid::{DragCoefficient, FluidField, FluidProperties, ImmersedBody, OutsideField};
 use gc2d_geometry::DVec2;
@@ -148,7 +148,7 @@ impl BodyForce {
                 // One addition per body: the same bits in any order, so parallel where the World is, in pieces large
                 // enough that handing them out costs less than the additions (rayon's finest split made this stage
                 // three to five times slower on 16 threads, docs/performance.md).
-                if force.len() >= PARALLEL_MIN_BODIES {
+                if steps_in_parallel(force.len()) {
                     force.par_chunks_mut(GRAVITY_BODIES_PER_TASK).enumerate().for_each(pull);
                 } else {
                     force.chunks_mut(GRAVITY_BODIES_PER_TASK).enumerate().for_each(pull);

@@ -961,8 +961,7 @@ impl World {
     /// sums bit for bit, without reading the pair list a second time (docs/performance.md, "The forces added in the
     /// narrowphase on one thread").
     fn evaluate_pairs(&mut self) -> ForcesAdded {
-        let parallel = self.bodies.len() >= PARALLEL_MIN_BODIES;
-        if !parallel || rayon::current_num_threads() == 1 {
+        if !steps_in_parallel(self.bodies.len()) {
             self.evaluate_pairs_adding_forces();
             return ForcesAdded::InNarrowphase;
         }
@@ -1285,7 +1284,7 @@ impl World {
         let b = &self.bodies;
         self.body_sums.resize(b.len().div_ceil(BODIES_PER_CHUNK), BodySums::default());
         let sum_chunk = |(k, sums): (usize, &mut BodySums)| *sums = pass.chunk(b, k * BODIES_PER_CHUNK);
-        if b.len() >= PARALLEL_MIN_BODIES {
+        if steps_in_parallel(b.len()) {
             self.body_sums.par_iter_mut().enumerate().for_each(sum_chunk);
         } else {
             self.body_sums.iter_mut().enumerate().for_each(sum_chunk);
@@ -1544,6 +1543,12 @@ pub(crate) const STRAYS_MIN_THREADS: usize = 8;
 /// more than it saves. Results are bitwise the same either way (every parallel task writes only its own data).
 pub(crate) const PARALLEL_MIN_BODIES: usize = 512;
 
+/// Whether a World of `bodies` bodies hands its stages to the thread pool: from [`PARALLEL_MIN_BODIES`] bodies on,
+/// and only in a pool of more than one thread (in a pool of one, handing out tasks costs time and gains none).
+pub(crate) fn steps_in_parallel(bodies: usize) -> bool {
+    bodies >= PARALLEL_MIN_BODIES && rayon::current_num_threads() > 1
+}
+
 /// True when body `i`'s pose and velocities are finite and, for a particle, so is its kinetic energy (a finite
 /// velocity can still overflow ½mv², which would poison the ledger).
 fn state_is_finite(b: &Bodies, i: usize) -> bool {
@@ -1579,9 +1584,10 @@ fn kinematics_rows_per_task(bodies: usize) -> usize {
 /// The kinematic columns of one body that the predictor and corrector update.
 type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
 
-/// Calls `f(index, row)` for every body: in parallel for large worlds, on the calling thread for small ones.
+/// Calls `f(index, row)` for every body: in parallel where the World steps in parallel ([`steps_in_parallel`]), else
+/// on the calling thread.
 fn for_each_kinematics_row(columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
-    if columns.0.len() >= PARALLEL_MIN_BODIES {
+    if steps_in_parallel(columns.0.len()) {
         let rows_per_task = kinematics_rows_per_task(columns.0.len());
         columns.into_par_iter().enumerate().with_min_len(rows_per_task).for_each(|(i, row)| f(i, row));
     } else {
