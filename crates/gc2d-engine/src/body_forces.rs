@@ -4,9 +4,9 @@
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::integrator::TimeStep;
 use crate::ledger::EnergyLedger;
+use crate::parallel::steps_in_parallel;
 use crate::schedules::DragSpring;
 use crate::shape::{MassModel, ShapeKind};
-use crate::world::steps_in_parallel;
 use gc2d_fluid::drag::{buoyancy_force, drag_force, equivalent_radius};
 use gc2d_fluid::{DragCoefficient, FluidField, FluidProperties, ImmersedBody, OutsideField};
 use gc2d_geometry::DVec2;

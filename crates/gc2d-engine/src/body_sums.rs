@@ -9,7 +9,7 @@ use crate::bodies::{Bodies, BodyKind};
 use crate::safety;
 
 /// Bodies per chunk of the closing pass. Fixed, so that the energies are grouped the same way for any thread count.
-/// 512, the fewest bodies a World steps in parallel ([`crate::world::PARALLEL_MIN_BODIES`]), so that every such World
+/// 512, the fewest bodies a World steps in parallel ([`crate::parallel::PARALLEL_MIN_BODIES`]), so that every such World
 /// gives the second thread a share: with 1,024 a World of fewer bodies summed them on the calling thread alone, and its
 /// other thread, idle through the end of the step, had to be woken again in the next step's predictor (the 800 squares
 /// and the 1,000-grain layer 3–4 % faster on two threads, docs/performance.md "The predictor and corrector of small

@@ -40,6 +40,7 @@ pub use bodies::{BodyKind, BoxWriter};
 pub use pair_set::PairEntry;
 
 use crate::bodies::vec_bytes;
+use crate::parallel::steps_in_parallel;
 use bands::YBands;
 use bodies::{Bodies, Interval, SlotState};
 use box_query::PendingIndex;
@@ -441,16 +442,20 @@ impl<T: Default> SortAndSweep<T> {
         self.bands.is_some()
     }
 
-    /// Re-sorts both axes (in parallel where they are long, each of them in segments: `broadphase::segments`), then
-    /// applies the pair-list changes their swaps found: the x axis's, then the y axis's, each in the order one
-    /// insertion sort finds them (with bands: each band's in band order, then the rechecks of the bodies that changed
-    /// bands, `bands`).
+    /// Re-sorts both axes (each on its own thread where the World steps in parallel, a long axis in segments:
+    /// `broadphase::segments`), then applies the pair-list changes their swaps found: the x axis's, then the y axis's,
+    /// each in the order one insertion sort finds them (with bands: each band's in band order, then the rechecks of the
+    /// bodies that changed bands, `bands`), so the list is the same whichever thread sorted what.
     fn sort_axes(&mut self) {
         let bodies = &self.bodies;
         let ([x, y], [x_sort, y_sort]) = (&mut self.axes, &mut self.sorts);
         let (x_swaps, y_swaps) = match &mut self.bands {
             Some(bands) => rayon::join(|| x_sort.sort(x, 0, bodies), || bands.sort(bodies)),
-            None if x.len() >= 2 * ENDPOINTS_PER_SEGMENT => {
+            // From 512 bodies on, not only from the 8,192 endpoints of a segmented axis: sorting y beside x kept
+            // the second thread busy, so it did not have to be woken again for the narrowphase (two threads: squares
+            // 3,200 and dense7 2,000 2–4 % faster, docs/performance.md "The predictor and corrector of small Worlds
+            // in two").
+            None if steps_in_parallel(x.len() / 2) => {
                 rayon::join(|| x_sort.sort(x, 0, bodies), || y_sort.sort(y, 1, bodies))
             }
             None => (x_sort.sort(x, 0, bodies), y_sort.sort(y, 1, bodies)),

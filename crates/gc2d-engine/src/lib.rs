@@ -24,6 +24,7 @@ pub mod motion;
 pub mod narrowphase;
 pub mod outlets;
 mod pair_sums;
+mod parallel;
 pub mod safety;
 pub mod schedules;
 pub mod shape;

@@ -20,6 +20,7 @@ use crate::motion::WallMotion;
 use crate::narrowphase::{ContactHistory, PairContact, PairContext};
 use crate::outlets::{Outlet, OutletState};
 use crate::pair_sums::{CHUNKS_PER_TASK, PAIRS_PER_CHUNK, PairSums};
+use crate::parallel::steps_in_parallel;
 use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
 use crate::shape::{BodyShape, MassModel, shape_view};
@@ -1538,16 +1539,6 @@ fn force_history_after_loading() -> u8 {
 /// 16 % instead of 38 % on 8 and 10 % instead of 32 % on 16: from 8 threads on the reads spared outweigh the work
 /// (docs/performance.md, "The force accumulation's ranges read a third of the pair list").
 pub(crate) const STRAYS_MIN_THREADS: usize = 8;
-
-/// Worlds with fewer bodies than this step on the calling thread: below it, handing work to the thread pool costs
-/// more than it saves. Results are bitwise the same either way (every parallel task writes only its own data).
-pub(crate) const PARALLEL_MIN_BODIES: usize = 512;
-
-/// Whether a World of `bodies` bodies hands its stages to the thread pool: from [`PARALLEL_MIN_BODIES`] bodies on,
-/// and only in a pool of more than one thread (in a pool of one, handing out tasks costs time and gains none).
-pub(crate) fn steps_in_parallel(bodies: usize) -> bool {
-    bodies >= PARALLEL_MIN_BODIES && rayon::current_num_threads() > 1
-}
 
 /// True when body `i`'s pose and velocities are finite and, for a particle, so is its kinetic energy (a finite
 /// velocity can still overflow ½mv², which would poison the ledger).
