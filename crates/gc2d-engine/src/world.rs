@@ -1425,8 +1425,10 @@ fn pair_context<'a>(bodies: &'a Bodies, config: &'a WorldConfig) -> PairContext<
 }
 
 /// Evaluates the pairs of `chunk` in list order, writing their records and the chunk's `sums`, and calls `touching`
-/// with each pair that touches, right after its evaluation.
-#[inline]
+/// with each pair that touches, right after its evaluation. Always inlined: left to the compiler, the parallel
+/// narrowphase of the 12,800 squares ran about 1 % slower on two threads than with the loop written in place (medians
+/// of 21 quiet rounds, 139.3 against 137.8 ns per particle-step).
+#[inline(always)]
 fn evaluate_chunk(
     context: &PairContext,
     chunk: &mut [PairEntry<PairContact>],
