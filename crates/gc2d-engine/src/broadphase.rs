@@ -451,10 +451,10 @@ impl<T: Default> SortAndSweep<T> {
         let ([x, y], [x_sort, y_sort]) = (&mut self.axes, &mut self.sorts);
         let (x_swaps, y_swaps) = match &mut self.bands {
             Some(bands) => rayon::join(|| x_sort.sort(x, 0, bodies), || bands.sort(bodies)),
-            // From 512 bodies on, not only from the 8,192 endpoints of a segmented axis: sorting y beside x kept
-            // the second thread busy, so it did not have to be woken again for the narrowphase (two threads: squares
-            // 3,200 and dense7 2,000 2–4 % faster, docs/performance.md "The predictor and corrector of small Worlds
-            // in two").
+            // From 512 bodies on, not only from the 8,192 endpoints of a segmented axis: sorting y beside x gives
+            // the second thread a share of the update instead of leaving it idle until the narrowphase (two threads:
+            // squares 3,200 and dense7 2,000 2–4 % faster, docs/performance.md "The predictor and corrector of small
+            // Worlds in two").
             None if steps_in_parallel(x.len() / 2) => {
                 rayon::join(|| x_sort.sort(x, 0, bodies), || y_sort.sort(y, 1, bodies))
             }
