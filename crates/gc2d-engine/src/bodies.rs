@@ -7,6 +7,7 @@
 use crate::broadphase::BoxWriter;
 use crate::integrator::GearState;
 use crate::interactions::MaterialId;
+use crate::parallel::steps_in_parallel;
 use crate::shape::{BodyShape, ShapeKind, shape_view};
 use gc2d_geometry::{Aabb, DVec2, Pose, ShapeView};
 use serde::{Deserialize, Serialize};
@@ -324,8 +325,8 @@ pub(crate) type KinematicsColumns<'a> =
 /// Per-body columns the corrector reads: force, torque, inverse mass, inverse inertia.
 pub(crate) type ForceColumns<'a> = (&'a [DVec2], &'a [f64], &'a [f64], &'a [f64]);
 
-/// Bodies below this many per task are transformed sequentially (and all of them in a pool of one thread, where
-/// cutting the work into tasks gains nothing).
+/// Bodies below this many per task are transformed sequentially (and all of them where the World does not step in
+/// parallel, [`steps_in_parallel`]: in a pool of one thread cutting the work into tasks gains nothing).
 const TRANSFORM_GRAIN: usize = 512;
 
 /// The columns [`transform_range`] reads.
@@ -340,7 +341,7 @@ struct TransformInputs<'a> {
 /// Transforms bodies `first..last`; `world` starts at body `first`'s first vertex, `boxes` at body `first`.
 fn transform_range(first: usize, last: usize, inputs: &TransformInputs, world: &mut [DVec2], mut boxes: BoxWriter) {
     let ranges = inputs.ranges;
-    if last - first <= TRANSFORM_GRAIN || rayon::current_num_threads() == 1 {
+    if last - first <= TRANSFORM_GRAIN || !steps_in_parallel(last - first) {
         let offset = if first < ranges.len() { ranges[first].start as usize } else { 0 };
         for (slot, i) in (first..last).enumerate() {
             if !inputs.alive[i] {

@@ -962,13 +962,13 @@ impl World {
     /// sums bit for bit, without reading the pair list a second time (docs/performance.md, "The forces added in the
     /// narrowphase on one thread").
     fn evaluate_pairs(&mut self) -> ForcesAdded {
+        self.pair_sums.resize(self.broadphase.pairs().len().div_ceil(PAIRS_PER_CHUNK), PairSums::default());
         if !steps_in_parallel(self.bodies.len()) {
             self.evaluate_pairs_adding_forces();
             return ForcesAdded::InNarrowphase;
         }
         let context = pair_context(&self.bodies, &self.config);
         let pairs = self.broadphase.pairs_mut();
-        self.pair_sums.resize(pairs.len().div_ceil(PAIRS_PER_CHUNK), PairSums::default());
         // Which pairs a range of the force accumulation reads never changes the sums, so finding strays is a matter
         // of speed alone: see STRAYS_MIN_THREADS.
         let find_strays = rayon::current_num_threads() >= STRAYS_MIN_THREADS;
@@ -985,7 +985,8 @@ impl World {
         ForcesAdded::Later
     }
 
-    /// [`Self::evaluate_pairs`] on the calling thread, adding each touching pair's forces to its bodies as it goes.
+    /// [`Self::evaluate_pairs`] on the calling thread (the chunks' sums already sized), adding each touching pair's
+    /// forces to its bodies as it goes.
     fn evaluate_pairs_adding_forces(&mut self) {
         // The pair context reads the bodies while the forces are written: the two force columns are taken out of
         // the store for the pass (it reads neither) and put back after it.
@@ -995,7 +996,6 @@ impl World {
         torques.fill(0.0);
         let context = pair_context(&self.bodies, &self.config);
         let pairs = self.broadphase.pairs_mut();
-        self.pair_sums.resize(pairs.len().div_ceil(PAIRS_PER_CHUNK), PairSums::default());
         for (chunk, sums) in pairs.chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.iter_mut()) {
             evaluate_chunk(&context, chunk, sums, |pair| add_pair_forces(pair, 0, &mut forces, &mut torques));
             sums.keep_every_pair_in_the_core();
