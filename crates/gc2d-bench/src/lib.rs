@@ -5,10 +5,12 @@
 //! - [`piles`]: the four standard piles ([`StandardPile`]) built and settled;
 //! - [`deposition`]: sequential deposition, the dense start without overlaps that the polygon piles share;
 //! - [`thesis_material`], [`square_material`], [`disk_material`]: their particles and contact laws;
-//! - [`timing`]: one timed measurement on a rayon pool of a given size.
+//! - [`timing`]: one timed measurement on a rayon pool of a given size;
+//! - [`line_trip`]: a cache line's round trip between two threads, which bounds what more threads gain.
 
 pub mod deposition;
 pub mod disk_material;
+pub mod line_trip;
 pub mod piles;
 pub mod square_material;
 pub mod thesis_material;

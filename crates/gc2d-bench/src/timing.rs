@@ -1,6 +1,7 @@
 //! Timing of `World::step`: one measurement on a rayon pool of a given size, wall-clock and CPU time, and its row in
 //! the Markdown table docs/performance.md quotes.
 
+use crate::line_trip::cache_line_round_trip_ns;
 use gc2d_engine::{Stage, StageTimes, World, WorldError};
 use std::time::Instant;
 
@@ -29,6 +30,9 @@ pub struct Measurement {
     pub body_heap_bytes: usize,
     /// Wall-clock time per stage of the timed steps, where the measurement was asked to time them.
     pub stages: Option<StageTimes>,
+    /// A cache line's round trip between two threads just before the timed steps, ns ([`cache_line_round_trip_ns`]);
+    /// measured only for more than one thread, whose speed-up it bounds.
+    pub line_trip_ns: Option<f64>,
 }
 
 impl Measurement {
@@ -46,7 +50,7 @@ impl Measurement {
     pub fn row(&self) -> String {
         let per_step = |x: u64| x as f64 / self.steps as f64 / self.particles as f64;
         format!(
-            "| {:>7} | {:>7} | {:>6} | {:>8.3} | {:>8.3} | {:>10.2} | {:>10.2} | {:>6.1} | {:>8.1} | {:>8.2} | {:>8.2} | {:>7} | {:>7} |",
+            "| {:>7} | {:>7} | {:>6} | {:>8.3} | {:>8.3} | {:>10.2} | {:>10.2} | {:>6.1} | {:>8.1} | {:>8.2} | {:>8.2} | {:>7} | {:>7} | {:>6} |",
             self.particles,
             self.threads,
             self.steps,
@@ -60,6 +64,7 @@ impl Measurement {
             per_step(self.contacts),
             self.heap_bytes / self.particles,
             self.body_heap_bytes / self.particles,
+            self.line_trip_ns.map_or_else(|| "–".into(), |ns| format!("{ns:.0}")),
         )
     }
 
@@ -84,8 +89,8 @@ impl Measurement {
 pub fn table_header(particle: &str) -> String {
     format!(
         "| {particle}s | threads | steps | wall s | CPU s | M p-steps/s | M contacts/s | wall ns/p-step | CPU ns/p-step \
-         | box pairs/{particle} | contacts/{particle} | heap B/{particle} | of it bodies |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|---|"
+         | box pairs/{particle} | contacts/{particle} | heap B/{particle} | of it bodies | line trip ns |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     )
 }
 
@@ -115,10 +120,12 @@ fn process_cpu_seconds() -> Option<f64> {
 }
 
 /// Steps `world` `steps` times on a pool of `threads` threads, after `WARM_STEPS` untimed ones, and times it, each
-/// stage too where `time_stages` asks for it ([`World::start_stage_clock`]); the error of a step that fails (a
-/// blow-up).
+/// stage too where `time_stages` asks for it ([`World::start_stage_clock`]); on more than one thread it first measures
+/// a cache line's round trip between two threads. The error of a step that fails (a blow-up).
 pub fn measure(world: &mut World, threads: usize, steps: u64, time_stages: bool) -> Result<Measurement, WorldError> {
     let particles = world.bodies().particles().count();
+    // Before the pool exists: its idle workers would compete with the two threads for the cores.
+    let line_trip_ns = (threads > 1).then(cache_line_round_trip_ns);
     pool(threads).install(|| {
         for _ in 0..WARM_STEPS {
             world.step()?;
@@ -148,6 +155,7 @@ pub fn measure(world: &mut World, threads: usize, steps: u64, time_stages: bool)
             heap_bytes,
             body_heap_bytes,
             stages: world.stop_stage_clock(),
+            line_trip_ns,
         })
     })
 }

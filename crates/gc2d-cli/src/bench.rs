@@ -308,7 +308,8 @@ fn settling_bar(pile: StandardPile, particles: usize, quiet: bool) -> ProgressBa
 /// are empty where the stages were not timed.
 fn csv(rows: &[BenchRow]) -> String {
     let mut out = String::from(
-        "pile,particles,threads,steps,wall_s,cpu_s,particle_steps_per_s,contacts_per_particle,heap_bytes_per_particle",
+        "pile,particles,threads,steps,wall_s,cpu_s,particle_steps_per_s,contacts_per_particle,heap_bytes_per_particle,\
+         cache_line_round_trip_ns",
     );
     for stage in Stage::ALL {
         let _ = write!(out, ",stage_{}_s", stage.name());
@@ -317,7 +318,7 @@ fn csv(rows: &[BenchRow]) -> String {
     for BenchRow { pile, measurement: m } in rows {
         let _ = write!(
             out,
-            "{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{}",
             pile.name(),
             m.particles,
             m.threads,
@@ -326,7 +327,8 @@ fn csv(rows: &[BenchRow]) -> String {
             m.cpu_seconds,
             m.particle_steps_per_second(),
             m.contacts_per_particle(),
-            m.heap_bytes as f64 / m.particles as f64
+            m.heap_bytes as f64 / m.particles as f64,
+            m.line_trip_ns.map_or_else(String::new, |ns| ns.to_string())
         );
         for stage in Stage::ALL {
             out.push(',');

@@ -1,6 +1,7 @@
 //! `gc2d-rs bench` (issue 18 item 6): the table and CSV of every pile, size and thread count, the cache of settled
 //! piles (a cached state measures exactly as the freshly settled one did), every thread count measured from the same
-//! settled state and ending in the same state, and refusals of bad arguments.
+//! settled state and ending in the same state, a cache line's round trip beside every many-thread row, and refusals
+//! of bad arguments.
 
 use assert_cmd::Command;
 use std::path::Path;
@@ -16,6 +17,8 @@ struct Row {
     wall_s: f64,
     contacts_per_particle: f64,
     heap_bytes_per_particle: f64,
+    /// A cache line's round trip between two threads before the timed steps, ns; `None` on one thread.
+    line_trip_ns: Option<f64>,
     /// Seconds in each stage of the step over the timed steps; empty where the stages were not timed.
     stage_s: Vec<f64>,
 }
@@ -56,7 +59,7 @@ fn small_bench(cache: &Path, csv: &Path, extra: &[&str]) -> (String, String, Vec
         Some(
             format!(
                 "pile,particles,threads,steps,wall_s,cpu_s,particle_steps_per_s,contacts_per_particle,\
-                 heap_bytes_per_particle{stage_columns}"
+                 heap_bytes_per_particle,cache_line_round_trip_ns{stage_columns}"
             )
             .as_str()
         )
@@ -73,7 +76,8 @@ fn small_bench(cache: &Path, csv: &Path, extra: &[&str]) -> (String, String, Vec
                 particle_steps_per_s: f[6].parse().unwrap(),
                 contacts_per_particle: f[7].parse().unwrap(),
                 heap_bytes_per_particle: f[8].parse().unwrap(),
-                stage_s: f[9..].iter().filter(|cell| !cell.is_empty()).map(|cell| cell.parse().unwrap()).collect(),
+                line_trip_ns: (!f[9].is_empty()).then(|| f[9].parse().unwrap()),
+                stage_s: f[10..].iter().filter(|cell| !cell.is_empty()).map(|cell| cell.parse().unwrap()).collect(),
             }
         })
         .collect();
@@ -94,6 +98,9 @@ fn bench_measures_every_pile_and_thread_count_and_a_cached_pile_measures_as_the_
         assert_eq!((row.particles, row.steps), (60, 50), "3000 particle-steps of 60 grains: {row:?}");
         assert!(row.particle_steps_per_s > 0.0 && row.heap_bytes_per_particle > 100.0, "{row:?}");
         assert!(row.stage_s.is_empty(), "stages are timed only with --stages: {row:?}");
+        let trip = row.line_trip_ns;
+        assert_eq!(trip.is_some(), row.threads > 1, "the trip is measured for more than one thread: {row:?}");
+        assert!(trip.is_none_or(|ns| ns.is_finite() && ns > 0.0), "{row:?}");
     }
     assert!(!stdout.contains("per step in each stage"), "{stdout}");
     // Every thread count starts from the settled state and ends in the same one, bit for bit.
