@@ -1,9 +1,9 @@
 //! How long a cache line takes to travel from one thread to another and back, measured beside each many-thread
 //! timing. On more than one thread every step hands cache lines between cores (a pair's bodies written by one thread
-//! and read by another, the pair records the force accumulation reads), so what this trip costs sets how far a pile
-//! can scale. It is a property of where the cores sit: on the 2-vCPU development VM it changed from 50–150 ns to
-//! 300–470 ns for minutes at a time (the host moving the vCPUs), and the 1,000-grain layer on two threads went from
-//! 166–171 to 334–350 ns per particle-step with it (docs/performance.md, "Two threads and the trip of a cache line").
+//! and read by another, the pair records the force accumulation reads), so what this trip costs bounds how far a pile
+//! can scale. It is a property of where the cores sit: on the 2-vCPU development VM it is about 66 ns at some moments
+//! and 300–470 ns at others (most likely as the host moves the vCPUs), and the 1,000-grain layer on two threads takes
+//! 157–173 or 324–368 ns per particle-step with it (docs/performance.md, "Two threads and the trip of a cache line").
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
