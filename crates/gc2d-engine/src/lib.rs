@@ -15,6 +15,7 @@ mod body_sums;
 pub mod broadphase;
 pub mod checkpoint;
 pub mod events;
+mod force_ranges;
 pub mod inlets;
 pub mod insertions;
 pub mod integrator;

@@ -11,6 +11,7 @@ use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid};
 use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingPass};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
+use crate::force_ranges::{BodyRanges, add_contact_forces, add_pair_forces, mark_touching_pair};
 use crate::inlets::{Inlet, InletState};
 use crate::insertions::{Inserter, Insertion, InsertionLog};
 use crate::integrator::{BodyIntegrator, GearState, Integrator, IntegratorError, TimeStep};
@@ -254,6 +255,14 @@ pub struct World {
     /// The closing pass's sums, one per chunk of [`BODIES_PER_CHUNK`] bodies; refilled every step, so not saved.
     #[serde(skip)]
     body_sums: Vec<BodySums>,
+    /// The ranges of bodies the force accumulation adds up in parallel this step; set by the narrowphase pass, so not
+    /// saved.
+    #[serde(skip)]
+    body_ranges: BodyRanges,
+    /// Which touching pairs of each chunk of [`PAIRS_PER_CHUNK`] reach each range of `body_ranges`, one mask per
+    /// range, chunk after chunk ([`mark_touching_pair`]); refilled every step that steps in parallel, so not saved.
+    #[serde(skip)]
+    range_masks: Vec<u64>,
     /// Time per stage of the step, while [`Self::start_stage_clock`] has turned it on; not saved.
     #[serde(skip)]
     stage_clock: Option<StageClock>,
@@ -296,6 +305,8 @@ impl World {
             force_alternation: ForceAlternation::default(),
             pair_sums: Vec::new(),
             body_sums: Vec::new(),
+            body_ranges: BodyRanges::default(),
+            range_masks: Vec::new(),
             stage_clock: None,
         })
     }
@@ -693,6 +704,7 @@ impl World {
             + crate::bodies::vec_bytes(&self.positions_before_step)
             + crate::bodies::vec_bytes(&self.pair_sums)
             + crate::bodies::vec_bytes(&self.body_sums)
+            + crate::bodies::vec_bytes(&self.range_masks)
             + self.transits.heap_bytes()
             + self.insertions.heap_bytes()
     }
@@ -954,7 +966,8 @@ impl World {
     }
 
     /// Narrowphase and contact law for every pair, in parallel; each pair writes only its own record, and each
-    /// fixed chunk of pairs its own [`PairSums`] (the ledger's terms, the chatter watch, the statistics).
+    /// fixed chunk of pairs its own [`PairSums`] (the ledger's terms, the chatter watch, the statistics) and its masks
+    /// of the touching pairs that reach each range of bodies of the force accumulation (`force_ranges`).
     ///
     /// Where the pass runs on one thread (a small World, or a pool of one thread) it also adds each touching pair's
     /// forces to its bodies right after evaluating it, while the record is in cache, and returns
@@ -969,18 +982,15 @@ impl World {
         }
         let context = pair_context(&self.bodies, &self.config);
         let pairs = self.broadphase.pairs_mut();
-        // Which pairs a range of the force accumulation reads never changes the sums, so finding strays is a matter
-        // of speed alone: see STRAYS_MIN_THREADS.
-        let find_strays = rayon::current_num_threads() >= STRAYS_MIN_THREADS;
-        let evaluate_chunk = |(chunk, sums): (&mut [PairEntry<PairContact>], &mut PairSums)| {
-            evaluate_chunk(&context, chunk, sums, |_| {});
-            if find_strays {
-                sums.set_strays_apart(chunk);
-            } else {
-                sums.keep_every_pair_in_the_core();
-            }
+        let ranges = BodyRanges::new(self.bodies.len(), rayon::current_num_threads());
+        self.body_ranges = ranges;
+        self.range_masks.resize(self.pair_sums.len() * ranges.count, 0);
+        let evaluate_chunk = |((chunk, sums), masks): ((&mut [PairEntry<PairContact>], &mut PairSums), &mut [u64])| {
+            masks.fill(0);
+            evaluate_chunk(&context, chunk, sums, |position, pair| mark_touching_pair(masks, &ranges, position, pair));
         };
         let chunks = pairs.par_chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.par_iter_mut());
+        let chunks = chunks.zip(self.range_masks.par_chunks_mut(ranges.count));
         chunks.with_max_len(CHUNKS_PER_TASK).for_each(evaluate_chunk);
         ForcesAdded::Later
     }
@@ -997,8 +1007,7 @@ impl World {
         let context = pair_context(&self.bodies, &self.config);
         let pairs = self.broadphase.pairs_mut();
         for (chunk, sums) in pairs.chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.iter_mut()) {
-            evaluate_chunk(&context, chunk, sums, |pair| add_pair_forces(pair, 0, &mut forces, &mut torques));
-            sums.keep_every_pair_in_the_core();
+            evaluate_chunk(&context, chunk, sums, |_, pair| add_pair_forces(pair, 0, &mut forces, &mut torques));
         }
         self.bodies.force = forces;
         self.bodies.torque = torques;
@@ -1011,17 +1020,15 @@ impl World {
     /// opening residual then), the chatter watch and the statistics.
     fn accumulate_contact_forces(&mut self, forces_added: ForcesAdded) {
         let pairs = self.broadphase.pairs();
-        let chunk_sums = &self.pair_sums;
         let b = &mut self.bodies;
         if forces_added == ForcesAdded::Later {
-            // One range of bodies per thread: a range reads every chunk of pairs whose touching bodies reach into
-            // it, which in a pile numbered in space order is little more than its share of the list, and in one
-            // numbered otherwise (a wide layer deposited in passes) can be most of it: more ranges would read the
-            // list more often.
-            let per_range = b.len().div_ceil(rayon::current_num_threads());
-            let ranges = b.force.par_chunks_mut(per_range).zip(b.torque.par_chunks_mut(per_range));
-            ranges.enumerate().for_each(|(range, (forces, torques))| {
-                add_contact_forces(pairs, chunk_sums, range * per_range, forces, torques);
+            // One range of bodies per thread, as the narrowphase marked them: a range reads only the touching pairs
+            // that reach it.
+            let (ranges, masks) = (&self.body_ranges, &self.range_masks);
+            let per_range = ranges.per_range();
+            let rows = b.force.par_chunks_mut(per_range).zip(b.torque.par_chunks_mut(per_range));
+            rows.enumerate().for_each(|(range, (forces, torques))| {
+                add_contact_forces(pairs, masks, ranges, range, forces, torques);
             });
         }
         let mut sums = PairSums::default();
@@ -1425,69 +1432,24 @@ fn pair_context<'a>(bodies: &'a Bodies, config: &'a WorldConfig) -> PairContext<
 }
 
 /// Evaluates the pairs of `chunk` in list order, writing their records and the chunk's `sums`, and calls `touching`
-/// with each pair that touches, right after its evaluation. Always inlined: left to the compiler, the parallel
-/// narrowphase of the 12,800 squares ran about 1 % slower on two threads than with the loop written in place (medians
-/// of 21 quiet rounds, 139.3 against 137.8 ns per particle-step).
+/// with each pair that touches and its position in the chunk, right after its evaluation. Always inlined: left to the
+/// compiler, the parallel narrowphase of the 12,800 squares ran about 1 % slower on two threads than with the loop
+/// written in place (medians of 21 quiet rounds, 139.3 against 137.8 ns per particle-step).
 #[inline(always)]
 fn evaluate_chunk(
     context: &PairContext,
     chunk: &mut [PairEntry<PairContact>],
     sums: &mut PairSums,
-    mut touching: impl FnMut(&PairEntry<PairContact>),
+    mut touching: impl FnMut(usize, &PairEntry<PairContact>),
 ) {
     *sums = PairSums::default();
-    for pair in chunk.iter_mut() {
+    for (position, pair) in chunk.iter_mut().enumerate() {
         let energy = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
         let overlap_fraction = context.overlap_fraction(pair.a(), pair.b(), &pair.payload);
-        sums.add_pair(pair.a(), pair.b(), &pair.payload, &energy, overlap_fraction);
+        sums.add_pair(&pair.payload, &energy, overlap_fraction);
         if pair.payload.touching {
-            touching(pair);
+            touching(position, pair);
         }
-    }
-}
-
-/// Sets `forces` and `torques`, the rows of bodies `first`, `first + 1`, …, to the sum of the contact forces and
-/// torques the touching pairs exert on them, adding each body's terms in pair order: the same sums, bit for bit, as
-/// one pass over the pairs in list order, whatever range a body falls in. `chunk_sums` are the narrowphase's sums of
-/// the chunks of [`PAIRS_PER_CHUNK`] pairs; a chunk whose touching bodies all lie outside the range is skipped, and of
-/// a chunk whose touching bodies but its strays do, only the strays are read (in their order, so each body's terms
-/// keep theirs).
-fn add_contact_forces(
-    pairs: &[PairEntry<PairContact>],
-    chunk_sums: &[PairSums],
-    first: usize,
-    forces: &mut [DVec2],
-    torques: &mut [f64],
-) {
-    forces.fill(DVec2::ZERO);
-    torques.fill(0.0);
-    let end = first + forces.len();
-    let mut add = |pair: &PairEntry<PairContact>| add_pair_forces(pair, first, forces, torques);
-    let (first, end) = (first as u32, end as u32);
-    for (chunk, sums) in pairs.chunks(PAIRS_PER_CHUNK).zip(chunk_sums) {
-        if sums.core_bodies.meets(first, end) {
-            chunk.iter().filter(|pair| pair.payload.touching).for_each(&mut add);
-        } else if sums.touching_bodies.meets(first, end) {
-            sums.strays.positions().iter().for_each(|&k| add(&chunk[usize::from(k)]));
-        }
-    }
-}
-
-/// Adds the force and torques of the touching `pair` to those of its bodies that lie in the rows `forces` and
-/// `torques` of bodies `first`, `first + 1`, ….
-#[inline]
-fn add_pair_forces(pair: &PairEntry<PairContact>, first: usize, forces: &mut [DVec2], torques: &mut [f64]) {
-    let len = forces.len();
-    // Below `first` the subtraction wraps to a huge index: one comparison tells whether the body is in the range.
-    let local = |body: u32| Some((body as usize).wrapping_sub(first)).filter(|&i| i < len);
-    let c = &pair.payload;
-    if let Some(i) = local(pair.a()) {
-        forces[i] += c.force_on_a;
-        torques[i] += c.torque_on_a;
-    }
-    if let Some(j) = local(pair.b()) {
-        forces[j] -= c.force_on_a;
-        torques[j] += c.torque_on_b;
     }
 }
 
@@ -1533,14 +1495,6 @@ const FULL_FORCE_HISTORY: u8 = 2;
 fn force_history_after_loading() -> u8 {
     1
 }
-
-/// Threads from which the narrowphase sets each chunk's stray pairs apart ([`PairSums::set_strays_apart`]) so that
-/// the force accumulation's ranges of bodies read fewer chunks. Finding them costs about 1 M instructions a step on
-/// the dense 10,000-grain 7-gon pile with its list at the most disorder it reaches before a sort (some 40 µs a thread
-/// on 2 threads); the ranges then read 52 % instead of 66 % of the chunks on 2 threads, 28 % instead of 47 % on 4,
-/// 16 % instead of 38 % on 8 and 10 % instead of 32 % on 16: from 8 threads on the reads spared outweigh the work
-/// (docs/performance.md, "The force accumulation's ranges read a third of the pair list").
-pub(crate) const STRAYS_MIN_THREADS: usize = 8;
 
 /// True when body `i`'s pose and velocities are finite and, for a particle, so is its kinetic energy (a finite
 /// velocity can still overflow ½mv², which would poison the ledger).
@@ -1609,87 +1563,4 @@ fn sync_kinematics(
     pose.angle = state.angle();
     *velocity = state.velocity(time_step);
     *angular_velocity = state.angular_velocity(time_step);
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::narrowphase::LedgerTerms;
-    use rand::Rng;
-
-    /// Adding each body's forces within ranges of bodies gives the same bits as one pass over the pairs in list
-    /// order, for any split into ranges, and skipping chunks by their span loses nothing.
-    #[test]
-    fn forces_added_by_ranges_of_bodies_equal_one_pass_in_pair_order_bit_for_bit() {
-        // Far pairs one in five (chunks too wide for strays to help) and one in fifty (about one stray per chunk).
-        forces_by_ranges_equal_one_pass(0.8, true);
-        let (with_strays, chunks) = forces_by_ranges_equal_one_pass(0.98, true);
-        assert!(with_strays > chunks / 4, "{with_strays} of {chunks} chunks have strays");
-        assert_eq!(forces_by_ranges_equal_one_pass(0.98, false).0, 0);
-    }
-
-    /// The test above on pairs that are near neighbours with probability `near`, with strays set apart where
-    /// `find_strays` says (as on [`STRAYS_MIN_THREADS`] threads or more); returns how many chunks have strays and how
-    /// many chunks there are.
-    fn forces_by_ranges_equal_one_pass(near: f64, find_strays: bool) -> (usize, usize) {
-        let bodies = 3000;
-        let mut rng = ChaCha8Rng::seed_from_u64(7);
-        let mut pairs: Vec<PairEntry<PairContact>> = (0..9000)
-            .map(|k| {
-                // Mostly near neighbours in id order, some far apart, like a pile numbered partly in space order.
-                let a = (k / 3 + rng.random_range(0..40)).min(bodies - 2) as u32;
-                let b = if rng.random_bool(near) {
-                    a + rng.random_range(1..60).min(bodies as u32 - 1 - a)
-                } else {
-                    rng.random_range(a + 1..bodies as u32)
-                };
-                let contact = PairContact {
-                    touching: rng.random_bool(0.7),
-                    force_on_a: DVec2::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)),
-                    torque_on_a: rng.random_range(-1e-3..1e-3),
-                    torque_on_b: rng.random_range(-1e-3..1e-3),
-                    ..PairContact::default()
-                };
-                PairEntry::for_test(a, b, contact)
-            })
-            .collect();
-        pairs.sort_by_key(|p| p.a());
-        let chunk_sums: Vec<PairSums> = pairs
-            .chunks(PAIRS_PER_CHUNK)
-            .map(|chunk| {
-                let mut sums = PairSums::default();
-                chunk.iter().for_each(|p| sums.add_pair(p.a(), p.b(), &p.payload, &LedgerTerms::default(), 0.0));
-                if find_strays {
-                    sums.set_strays_apart(chunk);
-                } else {
-                    sums.keep_every_pair_in_the_core();
-                }
-                sums
-            })
-            .collect();
-        let mut expected_force = vec![DVec2::ZERO; bodies];
-        let mut expected_torque = vec![0.0; bodies];
-        for pair in pairs.iter().filter(|p| p.payload.touching) {
-            let (a, b, c) = (pair.a() as usize, pair.b() as usize, &pair.payload);
-            expected_force[a] += c.force_on_a;
-            expected_force[b] -= c.force_on_a;
-            expected_torque[a] += c.torque_on_a;
-            expected_torque[b] += c.torque_on_b;
-        }
-        for ranges in [1, 2, 7, 16, 3000] {
-            let per_range = bodies.div_ceil(ranges);
-            let mut force = vec![DVec2::splat(f64::NAN); bodies];
-            let mut torque = vec![f64::NAN; bodies];
-            for (range, (f, t)) in force.chunks_mut(per_range).zip(torque.chunks_mut(per_range)).enumerate() {
-                add_contact_forces(&pairs, &chunk_sums, range * per_range, f, t);
-            }
-            for i in 0..bodies {
-                assert_eq!(force[i].x.to_bits(), expected_force[i].x.to_bits(), "{near}: {ranges} ranges, body {i}");
-                assert_eq!(force[i].y.to_bits(), expected_force[i].y.to_bits(), "{near}: {ranges} ranges, body {i}");
-                assert_eq!(torque[i].to_bits(), expected_torque[i].to_bits(), "{near}: {ranges} ranges, body {i}");
-            }
-        }
-        let with_strays = chunk_sums.iter().filter(|sums| !sums.strays.positions().is_empty()).count();
-        (with_strays, chunk_sums.len())
-    }
 }
