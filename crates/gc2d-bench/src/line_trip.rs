@@ -8,8 +8,8 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-/// Round trips before the samples, at most: a new thread often starts on its parent's core, where each trip waits
-/// for the scheduler, until the system moves it to an idle one.
+/// How long round trips run before the samples: a new thread often starts on its parent's core, where each trip
+/// waits for the scheduler, until the system moves it to an idle one.
 const WARM_UP: Duration = Duration::from_millis(10);
 
 /// Round trips in one sample.

@@ -4,10 +4,9 @@
 //!
 //! The narrowphase marks, for each chunk of [`PAIRS_PER_CHUNK`] pairs, which of its touching pairs reach each range
 //! ([`mark_touching_pair`]: one bit per pair and range); a range then reads exactly those pairs' records and no
-//! other. A
-//! record read on another thread than the one that wrote it is a cache line passed between cores, which is what
-//! limits more threads (docs/performance.md, "Two threads and the trip of a cache line"), so a range reads no record
-//! it has no use for, not even to find out that it has none.
+//! other. A record read on another thread than the one that wrote it is a cache line passed between cores, which is
+//! what limits more threads (docs/performance.md, "Two threads and the trip of a cache line"), so a range reads no
+//! record it has no use for, not even to find out that it has none.
 
 use crate::broadphase::PairEntry;
 use crate::narrowphase::PairContact;
@@ -23,10 +22,11 @@ pub(crate) struct BodyRanges {
     /// Bodies per range.
     per_range: u32,
     /// ⌊2⁶⁴ / `per_range`⌋ + 1: a body's range is the high half of its id times this, exactly for every 32-bit id
-    /// and range length (Lemire, Kaser and Kurz 2019, "Faster remainder by direct computation"), a multiplication
-    /// instead of a division for each touching pair.
+    /// and range length from 2 (Lemire, Kaser and Kurz 2019, "Faster remainder by direct computation"), a
+    /// multiplication instead of a division for each touching pair.
     reciprocal: u64,
-    /// Ranges there can be: the threads. The last ones hold no body where there are fewer bodies than threads.
+    /// Ranges there can be: the threads. The last ones hold no body where there are fewer than twice as many bodies
+    /// as threads.
     pub count: usize,
 }
 
