@@ -5,6 +5,8 @@
 //! per-body offsets, so a step transforms them without allocating.
 
 use crate::broadphase::BoxWriter;
+use crate::force_ranges::BodyRanges;
+use crate::home_threads::for_each_on_home_thread;
 use crate::integrator::GearState;
 use crate::interactions::MaterialId;
 use crate::parallel::steps_in_parallel;
@@ -288,8 +290,9 @@ impl Bodies {
     }
 
     /// Recomputes the world vertices of every living body from its pose, and writes its box through `boxes` (the
-    /// broadphase's, which must cover every slot), in parallel over bodies. The flat vertex array is split at body
-    /// boundaries recursively, so no allocation happens and each body's vertices are written by exactly one task.
+    /// broadphase's, which must cover every slot): where the World steps in parallel ([`steps_in_parallel`]) each
+    /// range of bodies on its home thread ([`for_each_on_home_thread`]), with the flat vertex array and the boxes
+    /// split at the ranges' first bodies, so no allocation happens and each body's vertices are written by one task.
     pub(crate) fn update_world_vertices(&mut self, boxes: BoxWriter) {
         let count = self.len();
         let inputs = TransformInputs {
@@ -300,7 +303,29 @@ impl Bodies {
             radius: &self.radius,
         };
         debug_assert_eq!(boxes.len(), count, "the box writer covers every body slot");
-        transform_range(0, count, &inputs, &mut self.world_vertices, boxes);
+        if !steps_in_parallel(count) {
+            transform_range(0, count, &inputs, &mut self.world_vertices, boxes);
+            return;
+        }
+        let per_range = BodyRanges::of_pool(count).per_range();
+        let vertex_count = self.world_vertices.len();
+        let first_vertex = |body: usize| self.vertices.get(body).map_or(vertex_count, |range| range.start as usize);
+        let (mut world, mut boxes) = (&mut self.world_vertices[..], Some(boxes));
+        let mut first = 0;
+        let ranges = std::iter::from_fn(|| {
+            let remaining_boxes = boxes.take()?;
+            let last = count.min(first + per_range);
+            let vertices = first_vertex(last) - first_vertex(first);
+            let (range_world, rest_world) = std::mem::take(&mut world).split_at_mut(vertices);
+            let (range_boxes, rest_boxes) = remaining_boxes.split_at(last - first);
+            (world, boxes) = (rest_world, (last < count).then_some(rest_boxes));
+            let range = (first, last, range_world, range_boxes);
+            first = last;
+            Some(range)
+        });
+        for_each_on_home_thread(ranges, |_, (first, last, world, boxes)| {
+            transform_range(first, last, &inputs, world, boxes);
+        });
     }
 }
 
@@ -325,10 +350,6 @@ pub(crate) type KinematicsColumns<'a> =
 /// Per-body columns the corrector reads: force, torque, inverse mass, inverse inertia.
 pub(crate) type ForceColumns<'a> = (&'a [DVec2], &'a [f64], &'a [f64], &'a [f64]);
 
-/// Bodies below this many per task are transformed sequentially (and all of them where the World does not step in
-/// parallel, [`steps_in_parallel`]: in a pool of one thread cutting the work into tasks gains nothing).
-const TRANSFORM_GRAIN: usize = 512;
-
 /// The columns [`transform_range`] reads.
 struct TransformInputs<'a> {
     ranges: &'a [VertexRange],
@@ -341,26 +362,15 @@ struct TransformInputs<'a> {
 /// Transforms bodies `first..last`; `world` starts at body `first`'s first vertex, `boxes` at body `first`.
 fn transform_range(first: usize, last: usize, inputs: &TransformInputs, world: &mut [DVec2], mut boxes: BoxWriter) {
     let ranges = inputs.ranges;
-    if last - first <= TRANSFORM_GRAIN || !steps_in_parallel(last - first) {
-        let offset = if first < ranges.len() { ranges[first].start as usize } else { 0 };
-        for (slot, i) in (first..last).enumerate() {
-            if !inputs.alive[i] {
-                continue;
-            }
-            let r = ranges[i].range();
-            let local = r.start - offset..r.end - offset;
-            let pose = &inputs.poses[i];
-            pose.transform_into(&inputs.body[r], &mut world[local.clone()]);
-            boxes.set(slot, &body_aabb(&world[local], inputs.radius[i] * pose.scale));
+    let offset = if first < ranges.len() { ranges[first].start as usize } else { 0 };
+    for (slot, i) in (first..last).enumerate() {
+        if !inputs.alive[i] {
+            continue;
         }
-        return;
+        let r = ranges[i].range();
+        let local = r.start - offset..r.end - offset;
+        let pose = &inputs.poses[i];
+        pose.transform_into(&inputs.body[r], &mut world[local.clone()]);
+        boxes.set(slot, &body_aabb(&world[local], inputs.radius[i] * pose.scale));
     }
-    let mid = first + (last - first) / 2;
-    let split = (ranges[mid].start - ranges[first].start) as usize;
-    let (world_lo, world_hi) = world.split_at_mut(split);
-    let (boxes_lo, boxes_hi) = boxes.split_at(mid - first);
-    rayon::join(
-        || transform_range(first, mid, inputs, world_lo, boxes_lo),
-        || transform_range(mid, last, inputs, world_hi, boxes_hi),
-    );
 }

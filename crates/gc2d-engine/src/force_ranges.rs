@@ -16,7 +16,8 @@ use glam::DVec2;
 /// One bit per pair of a chunk: the chunk's pairs fit.
 const _: () = assert!(PAIRS_PER_CHUNK <= u64::BITS as usize);
 
-/// The bodies cut into ranges of equal length (the last one shorter), one per thread of the force accumulation.
+/// The bodies cut into ranges of equal length (the last one shorter), one per thread: the force accumulation's, and
+/// the light passes' that go to each range's home thread ([`crate::home_threads`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct BodyRanges {
     /// Bodies per range.

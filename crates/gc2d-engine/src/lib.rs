@@ -16,6 +16,7 @@ pub mod broadphase;
 pub mod checkpoint;
 pub mod events;
 mod force_ranges;
+mod home_threads;
 pub mod inlets;
 pub mod insertions;
 pub mod integrator;

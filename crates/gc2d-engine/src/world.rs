@@ -12,6 +12,7 @@ use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingPass};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
 use crate::force_ranges::{BodyRanges, add_contact_forces, add_pair_forces, mark_touching_pair};
+use crate::home_threads::for_each_on_home_thread;
 use crate::inlets::{Inlet, InletState};
 use crate::insertions::{Inserter, Insertion, InsertionLog};
 use crate::integrator::{BodyIntegrator, GearState, Integrator, IntegratorError, TimeStep};
@@ -982,7 +983,7 @@ impl World {
         }
         let context = pair_context(&self.bodies, &self.config);
         let pairs = self.broadphase.pairs_mut();
-        let ranges = BodyRanges::new(self.bodies.len(), rayon::current_num_threads());
+        let ranges = BodyRanges::of_pool(self.bodies.len());
         self.body_ranges = ranges;
         self.range_masks.resize(self.pair_sums.len() * ranges.count, 0);
         let evaluate_chunk = |((chunk, sums), masks): ((&mut [PairEntry<PairContact>], &mut PairSums), &mut [u64])| {
@@ -1022,12 +1023,12 @@ impl World {
         let pairs = self.broadphase.pairs();
         let b = &mut self.bodies;
         if forces_added == ForcesAdded::Later {
-            // One range of bodies per thread, as the narrowphase marked them: a range reads only the touching pairs
-            // that reach it.
+            // One range of bodies per thread, each on its home thread (crate::home_threads), as the narrowphase
+            // marked them: a range reads only the touching pairs that reach it.
             let (ranges, masks) = (&self.body_ranges, &self.range_masks);
             let per_range = ranges.per_range();
-            let rows = b.force.par_chunks_mut(per_range).zip(b.torque.par_chunks_mut(per_range));
-            rows.enumerate().for_each(|(range, (forces, torques))| {
+            let rows = b.force.chunks_mut(per_range).zip(b.torque.chunks_mut(per_range));
+            for_each_on_home_thread(rows, |range, (forces, torques)| {
                 add_contact_forces(pairs, masks, ranges, range, forces, torques);
             });
         }
@@ -1510,35 +1511,13 @@ fn state_is_finite(b: &Bodies, i: usize) -> bool {
     kinematics_finite && energy_finite
 }
 
-/// Bodies one task of the predictor or corrector takes at least, in Worlds of 2,048 bodies or more. Their rows are
-/// light (10–20 ns a body), so rayon's own splitting (about two pieces per thread, more when stolen) made tasks of a
-/// few hundred bodies on 16 threads, whose start and hand-over cost more than the rows: with 1,024 the two stages of
-/// the 12,800 squares fell from 95–121 to 54–75 µs a step on 16 threads and the step by 7–8 %, unchanged on one and
-/// two threads (docs/performance.md, "Sixteen cores, a third session"). Smaller Worlds: [`kinematics_rows_per_task`].
-const KINEMATICS_ROWS_PER_TASK: usize = 1024;
-
-/// Bodies one task of the predictor or corrector takes at least in a World of `bodies` bodies:
-/// [`KINEMATICS_ROWS_PER_TASK`], but at most half of them, rounded down (rayon cuts a piece only while each half holds
-/// at least this many), so that a World of 512 to 2,047 bodies is still cut in two. As one task its rows ran on the
-/// calling thread, which took back every cache line of the poses and velocities the other thread had read in the
-/// narrowphase, and the other thread, idle meanwhile, had to be woken again in the vertex transform: the 800 squares on
-/// two threads 172–179 → 145–148 µs a step, one thread unchanged (docs/performance.md, "The predictor and corrector of
-/// small Worlds in two").
-fn kinematics_rows_per_task(bodies: usize) -> usize {
-    KINEMATICS_ROWS_PER_TASK.min(bodies / 2)
-}
-
 /// The kinematic columns of one body that the predictor and corrector update.
 type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
 
-/// Calls `f(index, row)` for every body: in parallel where the World steps in parallel ([`steps_in_parallel`]), else
-/// on the calling thread.
+/// Calls `f(index, row)` for every body: where the World steps in parallel ([`steps_in_parallel`]) each range of
+/// bodies on its home thread ([`for_each_on_home_thread`]), else on the calling thread.
 fn for_each_kinematics_row(columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
-    if steps_in_parallel(columns.0.len()) {
-        let rows_per_task = kinematics_rows_per_task(columns.0.len());
-        columns.into_par_iter().enumerate().with_min_len(rows_per_task).for_each(|(i, row)| f(i, row));
-    } else {
-        let (g, p, v, w, k, a) = columns;
+    let rows_from = |first: usize, (g, p, v, w, k, a): KinematicsColumns| {
         g.iter_mut()
             .zip(p)
             .zip(v)
@@ -1546,8 +1525,19 @@ fn for_each_kinematics_row(columns: KinematicsColumns, f: impl Fn(usize, Kinemat
             .zip(k)
             .zip(a)
             .enumerate()
-            .for_each(|(i, (((((g, p), v), w), k), a))| f(i, (g, p, v, w, k, a)));
+            .for_each(|(i, (((((g, p), v), w), k), a))| f(first + i, (g, p, v, w, k, a)));
+    };
+    let bodies = columns.0.len();
+    if !steps_in_parallel(bodies) {
+        rows_from(0, columns);
+        return;
     }
+    let per_range = BodyRanges::of_pool(bodies).per_range();
+    let (g, p, v, w, k, a) = columns;
+    let ranges = g.chunks_mut(per_range).zip(p.chunks_mut(per_range)).zip(v.chunks_mut(per_range));
+    let ranges = ranges.zip(w.chunks_mut(per_range)).zip(k.chunks(per_range)).zip(a.chunks(per_range));
+    let ranges = ranges.map(|(((((g, p), v), w), k), a)| (g, p, v, w, k, a));
+    for_each_on_home_thread(ranges, |range, rows| rows_from(range * per_range, rows));
 }
 
 /// Copies position, angle and velocities out of a particle's Gear state.
