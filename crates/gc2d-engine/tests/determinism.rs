@@ -111,15 +111,17 @@ fn run_scene_in_pool(scene: fn() -> World, threads: usize, split_at: Option<usiz
     })
 }
 
+/// 70 threads: more than `home_threads::MAX_RANGES` (64), so the bodies are cut into 64 ranges and six threads have
+/// none of their own.
 #[test]
-fn pile_is_bitwise_identical_on_1_2_and_8_threads() {
+fn pile_is_bitwise_identical_on_1_2_8_and_70_threads() {
     let one = run_in_pool(1);
     assert_eq!(one.bits.len(), 6 * COLUMNS * ROWS);
     let (contacts, pairs) = (one.most_contacts, one.most_pairs);
     assert!(contacts > 50, "the run must exercise contacts, saw at most {contacts}");
     // Measured: 160 contacts and 920 box pairs in the busiest step (fifteen chunks of the narrowphase's sums).
     assert!(pairs > 8 * 64, "the run must fill more than eight chunks of pairs, saw at most {pairs} pairs");
-    for threads in [2, 8] {
+    for threads in [2, 8, 70] {
         let other = run_in_pool(threads);
         let first_difference = one.bits.iter().zip(&other.bits).position(|(a, b)| a != b);
         assert_eq!(first_difference, None, "{threads} threads: particle {:?} differs", first_difference.map(|k| k / 6));
