@@ -15,9 +15,9 @@ use crate::force_ranges::BodyRanges;
 use rayon::prelude::*;
 use std::sync::{Mutex, PoisonError};
 
-/// Most ranges of bodies a pool's passes cut the bodies into: one per thread up to this; the threads of a larger
-/// pool beyond it have no range of their own and help where a range is still free. The pieces of a pass wait in an
-/// array of this length on the stack.
+/// Most ranges of bodies a pool's passes cut the bodies into: one per thread up to this; in a larger pool thread k's
+/// home is range k mod 64, which it shares with thread k − 64. The pieces of a pass wait in an array of this length on
+/// the stack.
 pub(crate) const MAX_RANGES: usize = 64;
 
 impl BodyRanges {
