@@ -10,10 +10,11 @@
 # from, e.g. carried from another machine; default none).
 #
 # Each binary settles and reads its piles in a cache folder of its own, OUT_DIR/cache-NAME (NAME: the binary's file
-# name), seeded from CACHE, so that binaries of different checkpoint formats never overwrite each other's settled
-# states; a pile the first binary settles is copied to the others' folders before they need it (the 100,000-grain
-# layer: about 20 s on 16 cores, minutes on 2). Writes OUT_DIR/NAME-PILE-SIZE-rROUND.csv, all rows in one
-# OUT_DIR/all.csv (the bench's columns after `binary,round`), and the tables to OUT_DIR/log.txt.
+# name, or its folder's and file name where two binaries share a file name), seeded from CACHE, so that binaries of
+# different checkpoint formats never overwrite each other's settled states; a pile the first binary settles is copied to
+# the others' folders before they need it (the 100,000-grain layer: about 20 s on 16 cores, minutes on 2). Writes
+# OUT_DIR/NAME-PILE-SIZE-rROUND.csv, all rows in one OUT_DIR/all.csv (the bench's columns after `binary,round`), and the
+# tables to OUT_DIR/log.txt.
 set -eu
 if [ $# -lt 2 ]; then
   echo "usage: $0 OUT_DIR BINARY [BINARY …]" >&2
@@ -21,13 +22,22 @@ if [ $# -lt 2 ]; then
 fi
 OUT_DIR=$1
 shift
+# Each binary's name in the CSVs and cache folders: its file name, or its folder and file name where two binaries
+# share a file name (before/gc2d-rs and after/gc2d-rs are "before-gc2d-rs" and "after-gc2d-rs").
+binaries=("$@")
 names=()
 for binary in "$@"; do
   [ -x "$binary" ] || { echo "$binary is not an executable gc2d-rs" >&2; exit 2; }
   names+=("$(basename "$binary")")
 done
 if [ "$(printf '%s\n' "${names[@]}" | sort | uniq -d)" ]; then
-  echo "the binaries need different file names (they name the CSVs and cache folders): ${names[*]}" >&2
+  names=()
+  for binary in "$@"; do
+    names+=("$(basename "$(dirname "$binary")")-$(basename "$binary")")
+  done
+fi
+if [ "$(printf '%s\n' "${names[@]}" | sort | uniq -d)" ]; then
+  echo "the binaries need different file or folder names (they name the CSVs and cache folders): ${names[*]}" >&2
   exit 2
 fi
 CORES=$(nproc)
@@ -47,8 +57,9 @@ for round in $(seq "$ROUNDS"); do
   for pile_size in $PILES; do
     pile=${pile_size%%:*}
     size=${pile_size##*:}
-    for binary in "$@"; do
-      name=$(basename "$binary")
+    for index in "${!names[@]}"; do
+      name=${names[$index]}
+      binary=${binaries[$index]}
       csv="$OUT_DIR/$name-$pile-$size-r$round.csv"
       echo "=== $name $pile $size round $round" | tee -a "$OUT_DIR/log.txt"
       "$binary" bench --pile "$pile" --size "$size" --threads "$THREADS" --stages --quiet "${steps_args[@]}" \
