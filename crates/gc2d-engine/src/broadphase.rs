@@ -223,7 +223,7 @@ impl<T: Default> Default for SortAndSweep<T> {
     }
 }
 
-impl<T: Default> SortAndSweep<T> {
+impl<T: Default + Send> SortAndSweep<T> {
     /// An empty broadphase.
     pub fn new() -> Self {
         Self::default()
@@ -626,7 +626,7 @@ impl SweepScratch {
     /// Sweeps the sorted x axis once and adds every touching pair that has at least one fresh body. A fresh body is
     /// tested against all open intervals when it begins, an old body only against the open fresh ones. Returns the
     /// number of pairs added.
-    fn pair_fresh_bodies<T: Default>(
+    fn pair_fresh_bodies<T: Default + Send>(
         &mut self,
         x_axis: &[Endpoint],
         bodies: &Bodies,

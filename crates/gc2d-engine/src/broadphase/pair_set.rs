@@ -12,6 +12,7 @@
 //! (docs/performance.md, "Pairs in body order"). The descent count is a function of the list alone, so the sorts
 //! fall on the same steps in every run, for any thread count and across a checkpoint.
 
+use rayon::slice::ParallelSliceMut;
 use serde::{Deserialize, Serialize};
 
 /// One candidate pair: two bodies whose bounding boxes overlap or touch, and the engine's per-pair record.
@@ -64,6 +65,12 @@ const MAX_LOAD_DENOMINATOR: usize = 4;
 /// step 10–15 % faster and the 10,000-grain piles 0–4 %, and settling piles, whose pairs change fastest, sort more
 /// often and still settle as fast or faster (docs/performance.md, "The pair list closer to body order").
 const SORT_WHEN_DESCENTS_EXCEED: usize = 64;
+
+/// A list of at least this many pairs is sorted in parallel where the pool has several threads: a sort of the
+/// 100,000-grain layer's 200,000 pairs took 13–15 ms on one thread here and about 28 ms of one thread's time on the
+/// 16-core machine, once in about 80 steps, which on 16 threads was 7 % of the step (docs/performance.md, "The
+/// layer's broadphase on many threads"). The keys are unique, so any correct sort gives the same order.
+const PARALLEL_SORT_MIN_ENTRIES: usize = 1 << 14;
 
 /// Dense pair entries plus an index from (a, b) to the entry's position.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -145,7 +152,7 @@ impl<T> PairEntry<T> {
     }
 }
 
-impl<T: Default> PairSet<T> {
+impl<T: Default + Send> PairSet<T> {
     /// All entries: new pairs appended, removed ones replaced by the last entry, the whole list sorted by body ids
     /// from time to time.
     #[inline]
@@ -331,7 +338,11 @@ impl<T: Default> PairSet<T> {
         if descents * SORT_WHEN_DESCENTS_EXCEED <= self.entries.len() {
             return false;
         }
-        self.entries.sort_unstable_by_key(PairEntry::key);
+        if self.entries.len() >= PARALLEL_SORT_MIN_ENTRIES && rayon::current_num_threads() > 1 {
+            self.entries.par_sort_unstable_by_key(PairEntry::key);
+        } else {
+            self.entries.sort_unstable_by_key(PairEntry::key);
+        }
         self.descents = Some(0);
         self.rebuild_index(self.slots.len());
         true
@@ -433,6 +444,31 @@ mod tests {
         assert!(sorts > 10, "only {sorts} sorts");
         for (&(a, b), &payload) in &model {
             assert_eq!(set.get(b, a).map(|e| e.payload), Some(payload));
+        }
+    }
+
+    /// A list long enough to be sorted in parallel ends in the same order, every pair findable, on 1 to 4 threads.
+    #[test]
+    fn a_long_list_sorts_to_the_same_order_on_any_thread_count() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        let mut unsorted = PairSet::<u32>::default();
+        while unsorted.entries.len() < PARALLEL_SORT_MIN_ENTRIES + 1000 {
+            let (a, b) = (rng.random_range(0..5_000), rng.random_range(0..5_000));
+            if unsorted.insert(a, b) {
+                unsorted.get_mut(a, b).unwrap().payload = a ^ b;
+            }
+        }
+        let mut sorted_keys = None;
+        for threads in 1..=4 {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let mut set = unsorted.clone();
+            assert!(pool.install(|| set.sort_if_disordered()), "{threads} threads: a shuffled list is sorted");
+            let keys: Vec<_> = set.entries().iter().map(PairEntry::key).collect();
+            assert!(keys.is_sorted(), "{threads} threads");
+            assert_eq!(sorted_keys.get_or_insert_with(|| keys.clone()), &keys, "{threads} threads");
+            assert!(
+                set.entries().iter().all(|e| set.get(e.b(), e.a()).is_some_and(|found| found.payload == e.a() ^ e.b()))
+            );
         }
     }
 
