@@ -6,8 +6,10 @@
 #   tools/bench-threads.sh OUT_DIR BINARY [BINARY …]
 #
 # Environment: PILES (default "squares:12800 layer:100000 dense7:10000"), THREADS (default 1,2,4,8,16, trimmed to
-# the cores), ROUNDS (default 1), PARTICLE_STEPS (default the bench's own), CACHE (a folder of settled piles to start
-# from, e.g. carried from another machine; default none).
+# the cores), ROUNDS (default 1), LATER_THREADS (the thread counts of the rounds after the first, e.g. "1,16" for many
+# short rounds after one full one; default THREADS), STOP_AFTER (seconds: no round starts after this many, so that a
+# script fits a lease of a borrowed machine; default none), PARTICLE_STEPS (default the bench's own), CACHE (a folder of
+# settled piles to start from, e.g. carried from another machine; default none).
 #
 # Each binary settles and reads its piles in a cache folder of its own, OUT_DIR/cache-NAME (NAME: the binary's file
 # name, or its folder's and file name where two binaries share a file name), seeded from CACHE, so that binaries of
@@ -44,6 +46,8 @@ CORES=$(nproc)
 THREADS=${THREADS:-$(for t in 1 2 4 8 16; do [ "$t" -le "$CORES" ] && printf '%s,' "$t"; done | sed 's/,$//')}
 PILES=${PILES:-"squares:12800 layer:100000 dense7:10000"}
 ROUNDS=${ROUNDS:-1}
+LATER_THREADS=${LATER_THREADS:-$THREADS}
+started=$(date +%s)
 mkdir -p "$OUT_DIR"
 for name in "${names[@]}"; do
   mkdir -p "$OUT_DIR/cache-$name"
@@ -54,6 +58,12 @@ steps_args=()
 { echo "$CORES cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2-), load average $(cut -d' ' -f1-3 /proc/loadavg)"; } |
   tee -a "$OUT_DIR/log.txt"
 for round in $(seq "$ROUNDS"); do
+  if [ -n "${STOP_AFTER:-}" ] && [ $(($(date +%s) - started)) -gt "$STOP_AFTER" ]; then
+    echo "stopped before round $round: more than $STOP_AFTER s have passed" | tee -a "$OUT_DIR/log.txt"
+    break
+  fi
+  threads=$THREADS
+  [ "$round" -gt 1 ] && threads=$LATER_THREADS
   for pile_size in $PILES; do
     pile=${pile_size%%:*}
     size=${pile_size##*:}
@@ -62,7 +72,7 @@ for round in $(seq "$ROUNDS"); do
       binary=${binaries[$index]}
       csv="$OUT_DIR/$name-$pile-$size-r$round.csv"
       echo "=== $name $pile $size round $round" | tee -a "$OUT_DIR/log.txt"
-      "$binary" bench --pile "$pile" --size "$size" --threads "$THREADS" --stages --quiet "${steps_args[@]}" \
+      "$binary" bench --pile "$pile" --size "$size" --threads "$threads" --stages --quiet "${steps_args[@]}" \
         --cache "$OUT_DIR/cache-$name" --csv "$csv" 2>&1 | tee -a "$OUT_DIR/log.txt"
       [ -s "$OUT_DIR/all.csv" ] || echo "binary,round,$(head -n 1 "$csv")" > "$OUT_DIR/all.csv"
       tail -n +2 "$csv" | sed "s/^/$name,$round,/" >> "$OUT_DIR/all.csv"
