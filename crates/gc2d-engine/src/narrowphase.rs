@@ -89,7 +89,19 @@ pub struct PairContact {
     /// diagnostic compares forces to a few digits (its threshold is 5 %), and 16 bytes fewer per pair.
     #[serde(skip)]
     pub earlier_forces: [Vec2; 2],
+    /// Evaluations in a row, up to [`QUIET_EVALUATIONS`], in which the overlap-area law found the pair apart and
+    /// recorded its answer for a pair apart and not in contact before (no force, nothing stored or booked). From
+    /// [`QUIET_EVALUATIONS`] on the record holds bit for bit what the next such evaluation would write, the force history
+    /// included, so that evaluation leaves it alone and the step's sums skip it ([`Self::is_quiet`]): its first two
+    /// cache lines are neither read nor written (docs/performance.md, "Quiet pairs"). Not saved in checkpoints: a
+    /// resumed World counts again, and the record is the same either way.
+    #[serde(skip)]
+    pub quiet_evaluations: u8,
 }
+
+/// Evaluations of a pair apart after which its record no longer changes ([`PairContact::quiet_evaluations`]): the
+/// first writes the law's answer, the next two shift the zero force through the force history.
+pub const QUIET_EVALUATIONS: u8 = 3;
 
 /// The part of a contact's [`EnergyTerms`] the energy ledger books, with the work of walls folded in (the
 /// stored-energy changes are not needed, since the ledger reads the stored energy itself): what a pair's evaluation
@@ -309,6 +321,9 @@ impl PairContext<'_> {
         } else {
             area_contact(bodies.shape_view(i), bodies.shape_view(j))
         };
+        if overlap.is_none() && contact.is_quiet() {
+            return LedgerTerms::default();
+        }
         let (position_i, position_j) = (bodies.pose[i.index()].position, bodies.pose[j.index()].position);
         let geometry = overlap.map_or(gc2d_contact::ContactGeometry::SEPARATED, |g| gc2d_contact::ContactGeometry {
             area: g.area,
@@ -334,10 +349,13 @@ impl PairContext<'_> {
         };
         // A pair apart now that was not in contact before (no contact constants) gets the law's answer for it, no
         // force and nothing to book, without reading the bodies' velocities: most box pairs of a pile are such
-        // pairs (docs/performance.md, "Pairs apart skip the law").
+        // pairs (docs/performance.md, "Pairs apart skip the law"). Once its record holds that answer in full (a quiet
+        // pair), writing it again would change no bit, so it is left alone.
         if overlap.is_none() && previous.constants.is_none() {
+            contact.quiet_evaluations = (contact.quiet_evaluations + 1).min(QUIET_EVALUATIONS);
             record(contact, &ContactResponse::default(), 0.0)
         } else {
+            contact.quiet_evaluations = 0;
             let (motion_i, motion_j) = (self.motion(i), self.motion(j));
             let response = law.evaluate(&geometry, &motion_i, &motion_j, &previous, self.dt);
             record(contact, &response, wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt))
@@ -360,6 +378,13 @@ impl PairContext<'_> {
 }
 
 impl PairContact {
+    /// Whether the record holds, bit for bit, what an evaluation that finds the pair apart would write
+    /// ([`Self::quiet_evaluations`]): no force now or in the force history, nothing stored, nothing dissipated.
+    #[inline]
+    pub fn is_quiet(&self) -> bool {
+        self.quiet_evaluations >= QUIET_EVALUATIONS
+    }
+
     /// Stores this step's force and torques, expressed for body `a` of the pair (the law computed them for i, which
     /// is `b` when `a` is a wall), and shifts the force history of the chatter diagnostic.
     #[inline]
@@ -464,5 +489,58 @@ mod tests {
         PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
         assert!(!contact.touching && contact.passes >= 1, "a pair that separated asks the query again");
         assert_eq!(contact.force_on_a, DVec2::ZERO);
+    }
+
+    /// A pair that stays apart after a contact (a wall first, so the zero force is recorded as −0.0) becomes quiet
+    /// after [`QUIET_EVALUATIONS`] evaluations, and from then on the evaluation that leaves the record alone ends
+    /// with the same record, bit for bit, and returns the same terms as the full one; it turns loud again on touching.
+    #[test]
+    fn a_quiet_pair_keeps_the_record_a_full_evaluation_writes() {
+        let law = InteractionTable::uniform(ContactLaw::elastic(1e7));
+        let (mut apart, mut overlapping) = (stacked(0.1), stacked(-0.01));
+        for bodies in [&mut apart, &mut overlapping] {
+            bodies.kind[0] = BodyKind::Wall;
+        }
+        let evaluate = |bodies: &Bodies, contact: &mut PairContact| {
+            PairContext { bodies, interactions: &law, dt: 1e-6 }.evaluate(0, 1, contact)
+        };
+        let bits = |contact: &PairContact| format!("{:?}", (contact.force_on_a.to_array().map(f64::to_bits), contact));
+        let mut contact = PairContact::default();
+        evaluate(&overlapping, &mut contact);
+        evaluate(&overlapping, &mut contact);
+        assert!(contact.touching && contact.earlier_forces[0] != glam::Vec2::ZERO);
+        // The first evaluation apart still has the contact's constants and goes through the law; the quiet count
+        // starts with the second.
+        for evaluation in 1..=7_u8 {
+            let mut full = contact;
+            full.quiet_evaluations = 0;
+            let full_terms = evaluate(&apart, &mut full);
+            let terms = evaluate(&apart, &mut contact);
+            assert_eq!(contact.quiet_evaluations, (evaluation - 1).min(QUIET_EVALUATIONS), "evaluation {evaluation}");
+            assert_eq!(contact.is_quiet(), evaluation > QUIET_EVALUATIONS);
+            full.quiet_evaluations = contact.quiet_evaluations;
+            assert_eq!(bits(&contact), bits(&full), "evaluation {evaluation}");
+            assert_eq!(terms, full_terms, "evaluation {evaluation}");
+        }
+        assert_eq!(contact.force_on_a.x.to_bits(), (-0.0_f64).to_bits(), "the wall's zero force is −0.0");
+        evaluate(&overlapping, &mut contact);
+        assert!(contact.touching && !contact.is_quiet());
+
+        // A record that starts the count with a force now and two before (as after a law that still pulls on a pair
+        // apart): only the third evaluation apart has shifted them all out.
+        let mut contact = PairContact {
+            force_on_a: DVec2::new(1.0, 0.0),
+            earlier_forces: [glam::Vec2::new(2.0, 0.0), glam::Vec2::new(3.0, 0.0)],
+            ..PairContact::default()
+        };
+        for evaluation in 1..=5_u8 {
+            let mut full = contact;
+            full.quiet_evaluations = 0;
+            evaluate(&apart, &mut full);
+            evaluate(&apart, &mut contact);
+            full.quiet_evaluations = contact.quiet_evaluations;
+            assert_eq!(bits(&contact), bits(&full), "with a history, evaluation {evaluation}");
+        }
+        assert!(contact.is_quiet() && contact.earlier_forces == [glam::Vec2::ZERO; 2]);
     }
 }

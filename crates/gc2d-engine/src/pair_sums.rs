@@ -46,6 +46,12 @@ impl PairSums {
     /// fraction ([`crate::narrowphase::PairContext::overlap_fraction`]; 0 when it does not touch).
     #[inline]
     pub fn add_pair(&mut self, contact: &PairContact, energy: &LedgerTerms, overlap_fraction: f64) {
+        if contact.is_quiet() {
+            // Nothing stored, no force now or before, an evaluation that booked nothing: every sum below would add
+            // +0.0, which changes no sum (they start at +0.0 and so are never −0.0), and the pair is not touching.
+            self.multi_pass_queries += usize::from(contact.passes > 1);
+            return;
+        }
         self.contact_stored += contact.stored_energy;
         let [previous, before_previous] = contact.earlier_forces.map(|force| force.as_dvec2());
         // Only steps with a force now and two steps ago count: the first two steps of a contact and the steps after
@@ -79,6 +85,7 @@ impl PairSums {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::narrowphase::QUIET_EVALUATIONS;
 
     fn touching_pair(force: f64, stored_energy: f64) -> PairContact {
         PairContact {
@@ -111,5 +118,26 @@ mod tests {
         assert_eq!((whole.energy.normal_damping, whole.energy.sliding), (500.0, 250.0));
         assert_eq!(whole.contact_stored, 0.25 * 999.0 * 1000.0 / 2.0);
         assert_eq!(whole.alternation, 0.0, "a steady force does not alternate");
+    }
+
+    /// A quiet pair (apart, no force now or before, nothing stored) adds what its full sums would add, bit for bit:
+    /// only its closest-feature passes count, whatever came before it.
+    #[test]
+    fn a_quiet_pair_adds_only_its_passes() {
+        let quiet = PairContact { quiet_evaluations: QUIET_EVALUATIONS, passes: 2, ..PairContact::default() };
+        let loud = PairContact { quiet_evaluations: 0, ..quiet };
+        assert!(quiet.is_quiet() && !loud.is_quiet());
+        let before = [PairSums::default(), {
+            let mut sums = PairSums::default();
+            sums.add_pair(&touching_pair(3.0, 0.5), &LedgerTerms { work_walls: -1.0, ..LedgerTerms::default() }, 0.1);
+            sums
+        }];
+        for start in before {
+            let (mut skipped, mut full) = (start, start);
+            skipped.add_pair(&quiet, &LedgerTerms::default(), 0.0);
+            full.add_pair(&loud, &LedgerTerms::default(), 0.0);
+            assert_eq!(format!("{skipped:?}"), format!("{full:?}"));
+            assert_eq!(skipped.multi_pass_queries, start.multi_pass_queries + 1);
+        }
     }
 }
