@@ -89,8 +89,8 @@ pub struct PairContact {
     /// diagnostic compares forces to a few digits (its threshold is 5 %), and 16 bytes fewer per pair.
     #[serde(skip)]
     pub earlier_forces: [Vec2; 2],
-    /// Evaluations in a row, up to [`QUIET_EVALUATIONS`], in which the overlap-area law found the pair apart and
-    /// recorded its answer for a pair apart and not in contact before (no force, nothing stored or booked). From
+    /// Evaluations in a row, up to [`QUIET_EVALUATIONS`], in which the contact law found the pair apart and recorded
+    /// its answer for a pair apart and not in contact before (no force, nothing stored or booked). From
     /// [`QUIET_EVALUATIONS`] on the record holds bit for bit what the next such evaluation would write, the force history
     /// included, so that evaluation leaves it alone and the step's sums skip it ([`Self::is_quiet`]): its first two
     /// cache lines are neither read nor written (docs/performance.md, "Quiet pairs"). Not saved in checkpoints: a
@@ -263,6 +263,9 @@ impl PairContext<'_> {
     ) -> LedgerTerms {
         let bodies = self.bodies;
         let found = penetration(bodies.shape_view(i), bodies.shape_view(j));
+        if found.is_none() && contact.is_quiet() {
+            return LedgerTerms::default();
+        }
         let (position_i, position_j) = (bodies.pose[i.index()].position, bodies.pose[j.index()].position);
         let geometry = found.map_or(PenetrationGeometry::SEPARATED, |p| PenetrationGeometry {
             depth: p.depth,
@@ -274,8 +277,10 @@ impl PairContext<'_> {
         // A pair apart now that was not touching before gets the law's answer for it (no force, nothing stored or
         // booked) without reading the bodies' velocities, as in `evaluate_overlap_area`.
         let (response, stored_energy, wall_work) = if found.is_none() && !previous.is_touching() {
+            contact.quiet_evaluations = (contact.quiet_evaluations + 1).min(QUIET_EVALUATIONS);
             (PenetrationResponse::default(), 0.0, 0.0)
         } else {
+            contact.quiet_evaluations = 0;
             let (motion_i, motion_j) = (self.motion(i), self.motion(j));
             let radius_i = bodies.contact_radius(i.index());
             let surface_radius_j = match bodies.shape_view(j) {
@@ -496,13 +501,24 @@ mod tests {
     /// with the same record, bit for bit, and returns the same terms as the full one; it turns loud again on touching.
     #[test]
     fn a_quiet_pair_keeps_the_record_a_full_evaluation_writes() {
-        let law = InteractionTable::uniform(ContactLaw::elastic(1e7));
+        let hertz = gc2d_contact::NormalSpring::Hertz { effective_modulus_pa: 1e9 };
+        let damped = PenetrationLaw {
+            damping: Some(gc2d_contact::PenetrationDamping::Restitution(0.8)),
+            ..PenetrationLaw::elastic(hertz)
+        };
+        for law in [InteractionTable::uniform(ContactLaw::elastic(1e7)), InteractionTable::uniform(damped)] {
+            a_quiet_pair_keeps_the_record_under(&law);
+        }
+    }
+
+    /// [`a_quiet_pair_keeps_the_record_a_full_evaluation_writes`] under the contact model of `law`.
+    fn a_quiet_pair_keeps_the_record_under(law: &InteractionTable) {
         let (mut apart, mut overlapping) = (stacked(0.1), stacked(-0.01));
         for bodies in [&mut apart, &mut overlapping] {
             bodies.kind[0] = BodyKind::Wall;
         }
         let evaluate = |bodies: &Bodies, contact: &mut PairContact| {
-            PairContext { bodies, interactions: &law, dt: 1e-6 }.evaluate(0, 1, contact)
+            PairContext { bodies, interactions: law, dt: 1e-6 }.evaluate(0, 1, contact)
         };
         let bits = |contact: &PairContact| format!("{:?}", (contact.force_on_a.to_array().map(f64::to_bits), contact));
         let mut contact = PairContact::default();
