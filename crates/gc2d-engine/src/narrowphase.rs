@@ -92,9 +92,10 @@ pub struct PairContact {
     /// Evaluations in a row, up to [`QUIET_EVALUATIONS`], in which the contact law found the pair apart and recorded
     /// its answer for a pair apart and not in contact before (no force, nothing stored or booked). From
     /// [`QUIET_EVALUATIONS`] on the record holds bit for bit what the next such evaluation would write, the force history
-    /// included, so that evaluation leaves it alone and the step's sums skip it ([`Self::is_quiet`]): its first two
-    /// cache lines are neither read nor written (docs/performance.md, "Quiet pairs"). Not saved in checkpoints: a
-    /// resumed World counts again, and the record is the same either way.
+    /// included, so that evaluation leaves it alone and the step's sums skip it ([`Self::is_quiet`]): of the record
+    /// only its last bytes (warm start, pass count, flags), one cache line with the pair's body ids, are read or
+    /// written (docs/performance.md, "Quiet pairs"). Not saved in checkpoints: a resumed World counts again, and the
+    /// record is the same either way.
     #[serde(skip)]
     pub quiet_evaluations: u8,
 }
