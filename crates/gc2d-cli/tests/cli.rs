@@ -42,7 +42,7 @@ fn check_prints_what_the_scene_contains() {
         .stdout(contains("sources: 1"))
         .stdout(contains("stable bound"))
         .stdout(contains("memory (rough estimate): ").and(contains(" kB for up to 36 particles")))
-        .stdout(contains("run time (rough estimate for one core): ").and(contains("particle-steps at 1.3 M/s")));
+        .stdout(contains("run time (rough estimate for one core): ").and(contains("particle-steps at 2 M/s")));
 }
 
 #[test]

@@ -144,10 +144,12 @@ pub fn bytes_per_box_pair() -> usize {
     std::mem::size_of::<gc2d_engine::broadphase::PairEntry<gc2d_engine::PairContact>>() + 16
 }
 
-/// Particle-steps per second of one core that run-time estimates use: 1.3 million, the dense 10,000-grain pile of
-/// 7-gons on one thread (docs/performance.md, "Pile throughput": 1.27-1.38 M; looser or smaller scenes run faster,
-/// 100,000 grains slower).
-pub const PARTICLE_STEPS_PER_SECOND: f64 = 1.3e6;
+/// Particle-steps per second of one core that run-time estimates use: 2 million, the dense 10,000-grain pile of
+/// 7-gons on one thread, on the safe side of what it measures (docs/performance.md, "Quiet pairs" and "Sixteen cores
+/// with the one-unit build": 3.2 M on the development machine, 1.3-2.3 M on a 16-core Xeon server; 1.3 M until
+/// 2026-11, before the two-crossing walk and the release build optimised as one unit). Looser or smaller scenes run
+/// faster, 100,000 grains slower.
+pub const PARTICLE_STEPS_PER_SECOND: f64 = 2e6;
 
 impl Summary {
     /// The most particles the scene can hold: those at the start and every insertion its sources plan.
