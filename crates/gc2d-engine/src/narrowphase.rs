@@ -278,10 +278,10 @@ impl PairContext<'_> {
         // A pair apart now that was not touching before gets the law's answer for it (no force, nothing stored or
         // booked) without reading the bodies' velocities, as in `evaluate_overlap_area`.
         let (response, stored_energy, wall_work) = if found.is_none() && !previous.is_touching() {
-            contact.quiet_evaluations = (contact.quiet_evaluations + 1).min(QUIET_EVALUATIONS);
+            contact.count_evaluation(true);
             (PenetrationResponse::default(), 0.0, 0.0)
         } else {
-            contact.quiet_evaluations = 0;
+            contact.count_evaluation(false);
             let (motion_i, motion_j) = (self.motion(i), self.motion(j));
             let radius_i = bodies.contact_radius(i.index());
             let surface_radius_j = match bodies.shape_view(j) {
@@ -358,10 +358,10 @@ impl PairContext<'_> {
         // pairs (docs/performance.md, "Pairs apart skip the law"). Once its record holds that answer in full (a quiet
         // pair), writing it again would change no bit, so it is left alone.
         if overlap.is_none() && previous.constants.is_none() {
-            contact.quiet_evaluations = (contact.quiet_evaluations + 1).min(QUIET_EVALUATIONS);
+            contact.count_evaluation(true);
             record(contact, &ContactResponse::default(), 0.0)
         } else {
-            contact.quiet_evaluations = 0;
+            contact.count_evaluation(false);
             let (motion_i, motion_j) = (self.motion(i), self.motion(j));
             let response = law.evaluate(&geometry, &motion_i, &motion_j, &previous, self.dt);
             record(contact, &response, wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt))
@@ -389,6 +389,13 @@ impl PairContact {
     #[inline]
     pub fn is_quiet(&self) -> bool {
         self.quiet_evaluations >= QUIET_EVALUATIONS
+    }
+
+    /// Counts an evaluation in [`Self::quiet_evaluations`]: one more (up to [`QUIET_EVALUATIONS`]) where the law
+    /// `answered_apart` (the pair apart and not in contact before: no force, nothing stored or booked), else none.
+    #[inline]
+    fn count_evaluation(&mut self, answered_apart: bool) {
+        self.quiet_evaluations = if answered_apart { (self.quiet_evaluations + 1).min(QUIET_EVALUATIONS) } else { 0 };
     }
 
     /// Stores this step's force and torques, expressed for body `a` of the pair (the law computed them for i, which
