@@ -13,7 +13,7 @@ use gc2d_contact::{
 };
 use gc2d_geometry::{
     AreaContact, DVec2, FeaturePair, ShapeView, area_contact, area_contact_with_centroid, closest_features,
-    contact_geometry, contact_geometry_with_centroid, penetration,
+    contact_geometry_from_exit, penetration,
 };
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -58,7 +58,10 @@ impl ContactHistory {
 /// Everything the World keeps about one pair of bodies whose boxes touch: the contact history and this step's result.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct PairContact {
-    /// Closest features of the last closest-feature query, the warm start of the next one.
+    /// The warm start of the pair's next geometric query: the closest features of its last closest-feature query
+    /// or, once a plain two-crossing overlap was found, the edges on which the outline of body `a` (of the particle,
+    /// where `a` is a wall) left the other body's, from which the next overlap is looked for first (docs/model.md, "Contact
+    /// geometry"). Saved in checkpoints, so a resumed run starts every query where the uninterrupted one would.
     pub warm_start: Option<FeaturePair>,
     /// The contact model's history.
     pub state: ContactHistory,
@@ -154,10 +157,12 @@ impl LedgerTerms {
 /// The overlap of polygons `i` and `j` this step, or `None` (the polygon–polygon path of the overlap-area law), with
 /// the overlap centroid when `with_centroid` (the Winkler formulation; the others spend nothing on it).
 ///
-/// A pair that touched in the last step almost always still touches, so the overlap computation itself decides; a
-/// closest-feature query first would only repeat its answer. Every other pair (approaching, or just separated) asks
-/// the warm-started closest-feature walk first (reference §4.3), which settles the common "apart" case without
-/// building an overlap polygon, and keeps the warm start fresh for the step the pair comes into contact.
+/// A pair that touched in the last step almost always still touches, so the overlap computation itself decides,
+/// starting from the edges where the outlines crossed in the last step; a closest-feature query first would only
+/// repeat its answer. Every other pair (approaching, or just separated) asks the warm-started closest-feature walk
+/// first (reference §4.3), which settles the common "apart" case without building an overlap polygon, and keeps the
+/// warm start fresh for the step the pair comes into contact. Both kinds of query read and write the one warm start:
+/// a crossing where `a` leaves `b` is what the closest-feature walk itself keeps for an overlap.
 #[inline]
 fn polygon_overlap(
     vertices_i: &[DVec2],
@@ -165,11 +170,11 @@ fn polygon_overlap(
     with_centroid: bool,
     contact: &mut PairContact,
 ) -> Option<AreaContact> {
-    let overlap = |a: &[DVec2], b: &[DVec2]| {
-        if with_centroid { contact_geometry_with_centroid(a, b) } else { contact_geometry(a, b) }
+    let overlap = |a: &[DVec2], b: &[DVec2], exit: &mut Option<FeaturePair>| {
+        contact_geometry_from_exit(a, b, with_centroid, exit)
     };
     if contact.touching
-        && let Some(overlap) = overlap(vertices_i, vertices_j)
+        && let Some(overlap) = overlap(vertices_i, vertices_j, &mut contact.warm_start)
     {
         contact.passes = 0;
         return Some(AreaContact::from(overlap));
@@ -180,7 +185,7 @@ fn polygon_overlap(
     if separation.distance > 0.0 || contact.touching {
         None
     } else {
-        overlap(vertices_i, vertices_j).map(AreaContact::from)
+        overlap(vertices_i, vertices_j, &mut contact.warm_start).map(AreaContact::from)
     }
 }
 

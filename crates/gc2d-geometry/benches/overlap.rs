@@ -1,10 +1,11 @@
 //! Overlap area + contact chord of two touching polygons, the per-pair narrowphase cost of every step.
 //!
 //! Each case places two regular n-gons of radius 1.75 mm (the thesis's 7-gon piles) rotated against each other, at
-//! 0.07 m from the origin, pressed together by a penetration of 1e-3 of their size, as in a typical DEM contact.
+//! 0.07 m from the origin, pressed together by a penetration of 1e-3 of their size, as in a typical DEM contact: found
+//! from scratch, and found from the last step's crossing as the engine finds a contact that persists.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use gc2d_geometry::{DVec2, contact_geometry};
+use gc2d_geometry::{DVec2, contact_geometry, contact_geometry_from_exit};
 use std::f64::consts::PI;
 use std::hint::black_box;
 
@@ -44,6 +45,15 @@ fn bench_overlap(c: &mut Criterion) {
         assert!(contact.area > 0.0);
         c.bench_function(&format!("contact_geometry touching {n}-gons"), |bench| {
             bench.iter(|| contact_geometry(black_box(&a), black_box(&b)))
+        });
+        // A persisting contact: the same pair found from the edges where the outlines crossed last time.
+        let mut exit = None;
+        assert_eq!(contact_geometry_from_exit(&a, &b, false, &mut exit), Some(contact));
+        c.bench_function(&format!("contact_geometry_from_exit touching {n}-gons"), |bench| {
+            bench.iter(|| {
+                let mut hint = exit;
+                contact_geometry_from_exit(black_box(&a), black_box(&b), false, black_box(&mut hint))
+            })
         });
     }
 }

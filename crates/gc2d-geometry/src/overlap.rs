@@ -15,10 +15,10 @@ mod clip;
 mod facing;
 mod two_crossings;
 
-use crate::{DVec2, MAX_VERTICES, cross, cyclic_next};
+use crate::{DVec2, Feature, FeaturePair, MAX_VERTICES, cross, cyclic_next};
 use clip::{Label, Ring, RingVertex};
 use facing::Facing;
-use two_crossings::{TwoCrossings, two_crossings};
+use two_crossings::{TwoCrossings, two_crossings, two_crossings_from_exit};
 
 /// A chord shorter than this fraction of √A carries no direction: the overlap is treated as a containment.
 /// A genuine chord is that short only when `a`'s outline barely leaves `b` (or the reverse), i.e. one polygon is
@@ -114,11 +114,40 @@ pub fn contact_geometry_with_centroid(a: &[DVec2], b: &[DVec2]) -> Option<Contac
 }
 
 fn contact_with_centroid_if(a: &[DVec2], b: &[DVec2], with_centroid: bool) -> Option<ContactGeometry> {
-    match checked_total_vertices(a, b)? {
-        0..=16 => contact_with_capacity::<16>(a, b, with_centroid),
-        17..=32 => contact_with_capacity::<32>(a, b, with_centroid),
-        33..=64 => contact_with_capacity::<64>(a, b, with_centroid),
-        _ => contact_with_capacity::<128>(a, b, with_centroid),
+    contact_from_exit(a, b, with_centroid, &mut None)
+}
+
+/// [`contact_geometry`], or [`contact_geometry_with_centroid`] where `with_centroid`, found first from `exit`, the
+/// edges of `a` and `b` on which `a`'s outline left `b` in the last step, and `exit` updated to this step's where the
+/// overlap is a plain two-crossing one (else left as it was). Bit for bit the same contact as without `exit`: a
+/// persisting contact's crossings are found on the edges next to last step's instead of among all facing edges
+/// (docs/model.md, "Contact geometry"; docs/performance.md, "Overlaps warm-started from the last crossing").
+pub fn contact_geometry_from_exit(
+    a: &[DVec2],
+    b: &[DVec2],
+    with_centroid: bool,
+    exit: &mut Option<FeaturePair>,
+) -> Option<ContactGeometry> {
+    contact_from_exit(a, b, with_centroid, exit)
+}
+
+fn contact_from_exit(
+    a: &[DVec2],
+    b: &[DVec2],
+    with_centroid: bool,
+    exit: &mut Option<FeaturePair>,
+) -> Option<ContactGeometry> {
+    let total = checked_total_vertices(a, b)?;
+    if let Some(FeaturePair { a: Feature::Edge(edge_of_a), b: Feature::Edge(edge_of_b) }) = *exit
+        && let Some(overlap) = two_crossings_from_exit(a, b, usize::from(edge_of_a), usize::from(edge_of_b))
+    {
+        return Some(two_crossing_contact(&overlap, with_centroid, exit));
+    }
+    match total {
+        0..=16 => contact_with_capacity::<16>(a, b, with_centroid, exit),
+        17..=32 => contact_with_capacity::<32>(a, b, with_centroid, exit),
+        33..=64 => contact_with_capacity::<64>(a, b, with_centroid, exit),
+        _ => contact_with_capacity::<128>(a, b, with_centroid, exit),
     }
 }
 
@@ -176,10 +205,15 @@ fn positive_area(area: f64) -> bool {
 }
 
 /// The two-crossing walk where it applies (almost every contact), else the clipper.
-fn contact_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2], with_centroid: bool) -> Option<ContactGeometry> {
+fn contact_with_capacity<const CAP: usize>(
+    a: &[DVec2],
+    b: &[DVec2],
+    with_centroid: bool,
+    exit: &mut Option<FeaturePair>,
+) -> Option<ContactGeometry> {
     let facing = Facing::of(a, b)?;
     if let Some(overlap) = two_crossings(a, b, &facing) {
-        return Some(two_crossing_contact(&overlap, with_centroid));
+        return Some(two_crossing_contact(&overlap, with_centroid, exit));
     }
     let (mut first, mut second) = (Ring::<CAP>::new(), Ring::<CAP>::new());
     let ring = clip::clip(a, b, &facing, &mut first, &mut second)?;
@@ -191,8 +225,15 @@ fn contact_with_capacity<const CAP: usize>(a: &[DVec2], b: &[DVec2], with_centro
     Some(ContactGeometry { centroid: with_centroid.then(|| ring_centroid(ring.vertices())), ..contact })
 }
 
-/// The contact of a two-crossing overlap: a plain crossing whose chord runs from the entry c1 to the exit c2.
-fn two_crossing_contact(overlap: &TwoCrossings, with_centroid: bool) -> ContactGeometry {
+/// The contact of a two-crossing overlap: a plain crossing whose chord runs from the entry c1 to the exit c2; sets
+/// `exit` to the edges of c2.
+fn two_crossing_contact(
+    overlap: &TwoCrossings,
+    with_centroid: bool,
+    exit: &mut Option<FeaturePair>,
+) -> ContactGeometry {
+    let (edge_of_a, edge_of_b) = overlap.exit_edges();
+    *exit = Some(FeaturePair { a: Feature::edge(edge_of_a), b: Feature::edge(edge_of_b) });
     let (c1, c2) = (overlap.c1(), overlap.c2());
     let chord = c2 - c1;
     let chord_length = chord.length();

@@ -66,6 +66,11 @@ impl TwoCrossings<'_> {
         self.entry.point + self.weighted / (3.0 * self.twice_area)
     }
 
+    /// The edges on which `a`'s outline leaves `b`: the warm start of [`two_crossings_from_exit`] in the next step.
+    pub(crate) fn exit_edges(&self) -> (usize, usize) {
+        (self.exit.edge_of_a, self.exit.edge_of_b)
+    }
+
     /// Calls `visit` with the overlap's vertices, counter-clockwise, starting at c1.
     pub(crate) fn for_each_vertex(&self, mut visit: impl FnMut(DVec2)) {
         visit(self.entry.point);
@@ -168,6 +173,94 @@ pub(crate) fn two_crossings<'p>(a: &'p [DVec2], b: &'p [DVec2], facing: &Facing)
     (positive_area(area) && chord_carries_a_direction).then_some(overlap)
 }
 
+/// The two-crossing overlap of `a` and `b` found from the crossing where `a`'s outline left `b` in the last step
+/// (edge `exit_a` of `a`, edge `exit_b` of `b`), or `None` where it is not found so and the full search must decide
+/// ([`two_crossings`]). Where both find it, both give it bit for bit: the same crossings of the same edges, computed
+/// alike.
+///
+/// The crossing must still be a proper one with `a` leaving `b`. From it, `a`'s vertices strictly inside `b` are
+/// walked back and `b`'s strictly inside `a` forward, which ends each chain at the edge of the other crossing, and
+/// that must be a proper crossing with `a` entering `b`. The ring c1, `a`'s chain, c2, `b`'s chain then lies in
+/// `a ∩ b`, is simple (each chain's inside lies strictly inside the other polygon), and has `a` beyond its `a`-chain
+/// and `b` beyond its `b`-chain, which makes it, where its area is positive, the whole of `a ∩ b`: the outlines cross
+/// nowhere else. The side tests run over whole outlines without early exits, whose branches the processor could not
+/// foresee (docs/performance.md, "Overlaps from the last exit").
+pub(crate) fn two_crossings_from_exit<'p>(
+    a: &'p [DVec2],
+    b: &'p [DVec2],
+    exit_a: usize,
+    exit_b: usize,
+) -> Option<TwoCrossings<'p>> {
+    let (n, m) = (a.len(), b.len());
+    if exit_a >= n || exit_b >= m {
+        return None;
+    }
+    let exit = proper_crossing(a, exit_a, b, exit_b, Passage::Leaving)?;
+    let mut entry_a = exit_a;
+    while strictly_inside(b, a[entry_a]) {
+        entry_a = cyclic_previous(entry_a, n);
+        if entry_a == exit_a {
+            return None;
+        }
+    }
+    let mut entry_b = exit_b;
+    while strictly_inside(a, b[cyclic_next(entry_b, m)]) {
+        entry_b = cyclic_next(entry_b, m);
+        if entry_b == exit_b {
+            return None;
+        }
+    }
+    let entry = proper_crossing(a, entry_a, b, entry_b, Passage::Entering)?;
+    // With no vertex between them on one outline, the chain along that edge must run forwards from one crossing to
+    // the other (the other way round it would be the whole outline).
+    if entry_a == exit_a && (exit.point - entry.point).dot(a[cyclic_next(entry_a, n)] - a[entry_a]) <= 0.0 {
+        return None;
+    }
+    if entry_b == exit_b && (entry.point - exit.point).dot(b[cyclic_next(entry_b, m)] - b[entry_b]) <= 0.0 {
+        return None;
+    }
+    let mut overlap = TwoCrossings { a, b, entry, exit, twice_area: 0.0, weighted: DVec2::ZERO };
+    overlap.sum_moments();
+    let area = overlap.area();
+    let chord_carries_a_direction = (exit.point - entry.point).length() > DEGENERATE_CHORD_FRACTION * area.sqrt();
+    (positive_area(area) && chord_carries_a_direction).then_some(overlap)
+}
+
+/// Which way `a`'s outline passes `b`'s at a crossing.
+#[derive(Clone, Copy, PartialEq)]
+enum Passage {
+    Entering,
+    Leaving,
+}
+
+/// The crossing of `a`'s edge `i` with `b`'s edge `j` where each edge's ends lie strictly on both sides of the
+/// other's line and `a` passes into or out of `b` as `passage` says; else `None`. The point is computed as the full
+/// walk computes it, from the sides of `a`'s ends to `b`'s edge line.
+fn proper_crossing(a: &[DVec2], i: usize, b: &[DVec2], j: usize, passage: Passage) -> Option<Crossing> {
+    let (p, q) = (a[i], a[cyclic_next(i, a.len())]);
+    let (start, end) = (b[j], b[cyclic_next(j, b.len())]);
+    let edge_of_b = end - start;
+    let (side_p, side_q) = (cross(edge_of_b, p - start), cross(edge_of_b, q - start));
+    let (side_start, side_end) = (cross(q - p, start - p), cross(q - p, end - p));
+    let crosses = match passage {
+        Passage::Entering => (side_p < 0.0) & (side_q > 0.0) & (side_start > 0.0) & (side_end < 0.0),
+        Passage::Leaving => (side_p > 0.0) & (side_q < 0.0) & (side_start < 0.0) & (side_end > 0.0),
+    };
+    crosses.then(|| Crossing { point: p + (q - p) * (side_p / (side_p - side_q)), edge_of_a: i, edge_of_b: j })
+}
+
+/// Whether `p` lies strictly inside the counter-clockwise convex polygon `points` (every side test positive; a NaN
+/// is not).
+fn strictly_inside(points: &[DVec2], p: DVec2) -> bool {
+    let mut inside = true;
+    let mut start = points[points.len() - 1];
+    for &end in points {
+        inside &= cross(end - start, p - start) > 0.0;
+        start = end;
+    }
+    inside
+}
+
 /// A run of consecutive edges of a polygon: `count` edges from edge `first` (from vertex `first` to the next) on.
 struct EdgeRun {
     first: usize,
@@ -262,7 +355,7 @@ mod tests {
     use super::*;
     use crate::overlap::clip::{self, Ring};
     use crate::overlap::contact_from_overlap;
-    use crate::{ContactGeometry, ContactKind, ConvexPolygon, Pose, contact_geometry};
+    use crate::{ContactGeometry, ContactKind, ConvexPolygon, Feature, FeaturePair, Pose, contact_geometry};
     use proptest::prelude::*;
     use proptest::strategy::ValueTree;
     use proptest::test_runner::RngSeed;
@@ -386,6 +479,87 @@ mod tests {
             let tolerance = 1e-9 * size;
             prop_assert!((c1 - reference.c1).length() <= tolerance && (c2 - reference.c2).length() <= tolerance);
         }
+    }
+
+    proptest! {
+        #![proptest_config({
+            let mut config = ProptestConfig::with_cases(1000);
+            config.rng_seed = RngSeed::Fixed(0x6c2d_0003);
+            config
+        })]
+
+        /// The walk from an exit finds the full walk's overlap from the full walk's own exit, and from any other pair
+        /// of edges it finds that overlap, bit for bit, or nothing: never another polygon, also where the contact is deep
+        /// enough for more crossings (which the full walk leaves to the clipper).
+        #[test]
+        fn the_walk_from_any_exit_gives_the_full_walks_overlap_or_nothing(
+            a in outline(1.0), b in outline(1.0), angle in 0.0..2.0 * PI, turn in 0.0..2.0 * PI,
+            depth in prop_oneof![1e-9..1e-6f64, 1e-6..1e-3f64, 1e-3..0.3f64, 0.3..1.0f64],
+        ) {
+            let b: Vec<DVec2> = b.iter().map(|&p| Pose::new(DVec2::ZERO, turn).apply(p)).collect();
+            let b = pressed_together(&a, &b, v(angle.cos(), angle.sin()), depth);
+            let full = Facing::of(&a, &b).and_then(|facing| two_crossings(&a, &b, &facing));
+            let bits = |o: &TwoCrossings| {
+                [o.c1().x, o.c1().y, o.c2().x, o.c2().y, o.area(), o.centroid().x, o.centroid().y].map(f64::to_bits)
+            };
+            if let Some(full) = &full {
+                let (exit_a, exit_b) = full.exit_edges();
+                let warm = two_crossings_from_exit(&a, &b, exit_a, exit_b);
+                prop_assert_eq!(warm.map(|o| bits(&o)), Some(bits(full)));
+            }
+            for (exit_a, exit_b) in (0..a.len()).flat_map(|i| (0..b.len()).map(move |j| (i, j))) {
+                if let Some(warm) = two_crossings_from_exit(&a, &b, exit_a, exit_b) {
+                    prop_assert_eq!(Some(bits(&warm)), full.as_ref().map(bits), "from edges {} and {}", exit_a, exit_b);
+                }
+            }
+        }
+    }
+
+    /// Deep overlaps with more than two crossings, and ties, are found from no edge: the clipper keeps them.
+    #[test]
+    fn the_walk_from_an_exit_leaves_ties_and_many_crossings_alone() {
+        let triangle = |phase: f64| {
+            [0.0, 1.0, 2.0].map(|k: f64| v((phase + k * 2.0 * PI / 3.0).cos(), (phase + k * 2.0 * PI / 3.0).sin()))
+        };
+        let square = [v(0.0, -1.0), v(1.0, -1.0), v(1.0, 0.0), v(0.0, 0.0)];
+        let diamond = [v(0.5, -1.2), v(1.2, -0.5), v(0.5, 0.2), v(-0.2, -0.5)];
+        let on_the_line = [v(0.2, 0.0), v(0.8, -0.3), v(0.9, 0.5)];
+        let cases: [(&[DVec2], &[DVec2]); 4] = [
+            (&triangle(PI / 2.0), &triangle(-PI / 2.0)),
+            (&diamond, &square),
+            (&square, &diamond),
+            (&on_the_line, &square),
+        ];
+        for (a, b) in cases {
+            for (i, j) in (0..a.len()).flat_map(|i| (0..b.len()).map(move |j| (i, j))) {
+                assert!(two_crossings_from_exit(a, b, i, j).is_none(), "{a:?} from edges {i} and {j}");
+            }
+        }
+    }
+
+    /// A contact that persists, one grain turning and sliding against another by small steps: the overlap found
+    /// from the last step's exit is the one found without it, bit for bit, at every step, and the warm walk finds
+    /// it at all but the steps where the crossings moved to other edges.
+    #[test]
+    fn a_persisting_contact_is_found_from_its_last_exit() {
+        let heptagon: Vec<DVec2> = (0..7).map(|k| 1e-3 * v((k as f64 * 0.9).cos(), (k as f64 * 0.9).sin())).collect();
+        let heptagon = ConvexPolygon::new(&heptagon).unwrap().0.vertices().to_vec();
+        let mut exit = None;
+        let (mut found, mut warm) = (0, 0);
+        for step in 0..2000 {
+            let s = step as f64;
+            let a: Vec<DVec2> = heptagon.iter().map(|&p| Pose::new(v(0.1, 0.1), 0.2).apply(p)).collect();
+            let pose = Pose::new(v(0.1 + 5e-4 * (1e-3 * s).cos(), 0.1 + 1.6e-3 + 1e-4 * (3e-3 * s).sin()), 1e-3 * s);
+            let b: Vec<DVec2> = heptagon.iter().map(|&p| pose.apply(p)).collect();
+            let hint = exit;
+            let from_exit = super::super::contact_geometry_from_exit(&a, &b, true, &mut exit);
+            assert_eq!(from_exit, super::super::contact_geometry_with_centroid(&a, &b), "step {step}");
+            found += usize::from(from_exit.is_some());
+            if let Some(FeaturePair { a: Feature::Edge(i), b: Feature::Edge(j) }) = hint {
+                warm += usize::from(two_crossings_from_exit(&a, &b, i.into(), j.into()).is_some());
+            }
+        }
+        assert!(found > 1900 && warm + 20 >= found, "found {found} times, {warm} from the last exit");
     }
 
     /// A grain against a wall 80 times longer than it (a silo's side wall), in either order: along the line between
