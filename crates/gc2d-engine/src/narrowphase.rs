@@ -60,8 +60,9 @@ impl ContactHistory {
 pub struct PairContact {
     /// The warm start of the pair's next geometric query: the closest features of its last closest-feature query
     /// or, once a plain two-crossing overlap was found, the edges on which the outline of body `a` (of the particle,
-    /// where `a` is a wall) left the other body's, from which the next overlap is looked for first (docs/model.md, "Contact
-    /// geometry"). Saved in checkpoints, so a resumed run starts every query where the uninterrupted one would.
+    /// where `a` is a wall) left the other body's, from which the next overlap is looked for first (docs/model.md,
+    /// "Contact geometry"). Saved in checkpoints, so a resumed run starts every query where the uninterrupted one
+    /// would.
     pub warm_start: Option<FeaturePair>,
     /// The contact model's history.
     pub state: ContactHistory,

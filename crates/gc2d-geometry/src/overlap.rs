@@ -119,9 +119,11 @@ fn contact_with_centroid_if(a: &[DVec2], b: &[DVec2], with_centroid: bool) -> Op
 
 /// [`contact_geometry`], or [`contact_geometry_with_centroid`] where `with_centroid`, found first from `exit`, the
 /// edges of `a` and `b` on which `a`'s outline left `b` in the last step, and `exit` updated to this step's where the
-/// overlap is a plain two-crossing one (else left as it was). Bit for bit the same contact as without `exit`: a
-/// persisting contact's crossings are found on the edges next to last step's instead of among all facing edges
-/// (docs/model.md, "Contact geometry"; docs/performance.md, "Overlaps warm-started from the last crossing").
+/// overlap is a plain two-crossing one (else left as it was). A persisting contact's crossings are found from last
+/// step's instead of among all facing edges, and wherever the full search walks the contact it is the same bit for
+/// bit; the full search leaves to the clipper a few exact ties away from the crossings (a vertex exactly on an edge
+/// line, equal vertex means) that the walk from `exit` may still take, to round-off the clipper's answer
+/// (docs/model.md, "Contact geometry"; docs/performance.md, "Overlaps from the last exit").
 pub fn contact_geometry_from_exit(
     a: &[DVec2],
     b: &[DVec2],

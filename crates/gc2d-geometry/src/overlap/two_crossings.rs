@@ -176,7 +176,7 @@ pub(crate) fn two_crossings<'p>(a: &'p [DVec2], b: &'p [DVec2], facing: &Facing)
 /// The two-crossing overlap of `a` and `b` found from the crossing where `a`'s outline left `b` in the last step
 /// (edge `exit_a` of `a`, edge `exit_b` of `b`), or `None` where it is not found so and the full search must decide
 /// ([`two_crossings`]). Where both find it, both give it bit for bit: the same crossings of the same edges, computed
-/// alike.
+/// alike. (The full walk also gives up on exact ties away from the crossings, which this one does not look at.)
 ///
 /// The crossing must still be a proper one with `a` leaving `b`. From it, `a`'s vertices strictly inside `b` are
 /// walked back and `b`'s strictly inside `a` forward, which ends each chain at the edge of the other crossing, and
