@@ -171,11 +171,9 @@ fn polygon_overlap(
     with_centroid: bool,
     contact: &mut PairContact,
 ) -> Option<AreaContact> {
-    let overlap = |a: &[DVec2], b: &[DVec2], exit: &mut Option<FeaturePair>| {
-        contact_geometry_from_exit(a, b, with_centroid, exit)
-    };
     if contact.touching
-        && let Some(overlap) = overlap(vertices_i, vertices_j, &mut contact.warm_start)
+        && let Some(overlap) =
+            contact_geometry_from_exit(vertices_i, vertices_j, with_centroid, &mut contact.warm_start)
     {
         contact.passes = 0;
         return Some(AreaContact::from(overlap));
@@ -186,7 +184,8 @@ fn polygon_overlap(
     if separation.distance > 0.0 || contact.touching {
         None
     } else {
-        overlap(vertices_i, vertices_j, &mut contact.warm_start).map(AreaContact::from)
+        contact_geometry_from_exit(vertices_i, vertices_j, with_centroid, &mut contact.warm_start)
+            .map(AreaContact::from)
     }
 }
 

@@ -104,17 +104,13 @@ impl Default for OverlapPolygon {
 /// Returns `None` when the interiors do not overlap (A = 0, including mere touching) or the input is out of range.
 /// Never allocates, never panics, never returns NaN for finite input.
 pub fn contact_geometry(a: &[DVec2], b: &[DVec2]) -> Option<ContactGeometry> {
-    contact_with_centroid_if(a, b, false)
+    contact_geometry_from_exit(a, b, false, &mut None)
 }
 
 /// [`contact_geometry`] with the overlap polygon's area centroid in [`ContactGeometry::centroid`] (bitwise the same
 /// other fields), for laws that apply the elastic force at the centroid (docs/model.md, "Rocking of flat contacts").
 pub fn contact_geometry_with_centroid(a: &[DVec2], b: &[DVec2]) -> Option<ContactGeometry> {
-    contact_with_centroid_if(a, b, true)
-}
-
-fn contact_with_centroid_if(a: &[DVec2], b: &[DVec2], with_centroid: bool) -> Option<ContactGeometry> {
-    contact_from_exit(a, b, with_centroid, &mut None)
+    contact_geometry_from_exit(a, b, true, &mut None)
 }
 
 /// [`contact_geometry`], or [`contact_geometry_with_centroid`] where `with_centroid`, found first from `exit`, the
@@ -125,15 +121,6 @@ fn contact_with_centroid_if(a: &[DVec2], b: &[DVec2], with_centroid: bool) -> Op
 /// line, equal vertex means) that the walk from `exit` may still take, to round-off the clipper's answer
 /// (docs/model.md, "Contact geometry"; docs/performance.md, "Overlaps from the last exit").
 pub fn contact_geometry_from_exit(
-    a: &[DVec2],
-    b: &[DVec2],
-    with_centroid: bool,
-    exit: &mut Option<FeaturePair>,
-) -> Option<ContactGeometry> {
-    contact_from_exit(a, b, with_centroid, exit)
-}
-
-fn contact_from_exit(
     a: &[DVec2],
     b: &[DVec2],
     with_centroid: bool,
