@@ -103,6 +103,12 @@ pub struct Bodies {
     pub inscribed_radius: Vec<f64>,
     /// Largest distance of a point of the body from its centroid, at scale 1, m.
     pub reach: Vec<f64>,
+    /// How far any point of the body may have moved since the pose the last narrowphase saw, m, rounded up: the
+    /// corrector's move of the last step plus this step's predictor's ([`travel_bound`]); infinite for walls and for
+    /// a body not yet stepped or rescaled this step. A pair apart by more than its two bodies' travel is still apart,
+    /// so its closest-feature query can wait (docs/model.md, "Pairs apart by more than they moved"). Saved in
+    /// checkpoints, so that a resumed run skips the same queries. Single precision: 4 bytes per body.
+    pub travel: Vec<f32>,
     /// Virtual tangential surface velocity of the walls that have one (drums, §2.11), by body id. The column ends
     /// at the last such wall: every body beyond it has none, so the particles, added after the walls, do not carry
     /// 16 bytes each of a wall property. Read it with [`Bodies::surface_velocity_of`].
@@ -149,6 +155,7 @@ impl Bodies {
         self.area.push(shape.area());
         self.inscribed_radius.push(shape.inscribed_radius());
         self.reach.push(shape.reach());
+        self.travel.push(f32::INFINITY);
         self.force.push(DVec2::ZERO);
         self.torque.push(0.0);
         id
@@ -166,6 +173,7 @@ impl Bodies {
         self.radius.shrink_to_fit();
         self.material.shrink_to_fit();
         self.reach.shrink_to_fit();
+        self.travel.shrink_to_fit();
         self.vertices.shrink_to_fit();
         self.body_vertices.shrink_to_fit();
         self.world_vertices.shrink_to_fit();
@@ -193,6 +201,7 @@ impl Bodies {
             + vec_bytes(&self.radius)
             + vec_bytes(&self.material)
             + vec_bytes(&self.reach)
+            + vec_bytes(&self.travel)
             + vec_bytes(&self.vertices)
             + vec_bytes(&self.body_vertices)
             + vec_bytes(&self.world_vertices)
@@ -253,7 +262,16 @@ impl Bodies {
     /// once.
     pub(crate) fn split_for_integration(&mut self) -> (KinematicsColumns<'_>, ForceColumns<'_>) {
         (
-            (&mut self.gear, &mut self.pose, &mut self.velocity, &mut self.angular_velocity, &self.kind, &self.alive),
+            KinematicsColumns {
+                gear: &mut self.gear,
+                pose: &mut self.pose,
+                velocity: &mut self.velocity,
+                angular_velocity: &mut self.angular_velocity,
+                travel: &mut self.travel,
+                kind: &self.kind,
+                alive: &self.alive,
+                reach: &self.reach,
+            },
             (&self.force, &self.torque, &self.inverse_mass, &self.inverse_inertia),
         )
     }
@@ -337,15 +355,71 @@ fn body_aabb(points: &[DVec2], scaled_radius: f64) -> Aabb {
     if scaled_radius > 0.0 { aabb.expanded(scaled_radius) } else { aabb }
 }
 
+/// An upper bound on how far any point of a body reaching `reach` (m, at its scale) from its centroid moves from pose
+/// `from` to pose `to` of the same scale, m, in single precision: the centroid's move plus the arc of the farthest
+/// point, |Δx| + |Δy| + R·|Δφ| (a turn by Δφ moves a point at distance r by 2r·sin(|Δφ|/2) ≤ r·|Δφ|; the sum of
+/// the two components bounds the length of the move without a square root). Raised by 2⁻²² of itself and 10⁻³⁰ m
+/// before it is rounded to single precision, which changes a number by at most 2⁻²⁴ of itself in the normal range,
+/// so the rounded bound is never below the exact one.
+#[inline]
+pub(crate) fn travel_bound(from: &Pose, to: &Pose, reach: f64) -> f32 {
+    let moved = (to.position - from.position).abs();
+    let bound = moved.x + moved.y + reach * (to.angle - from.angle).abs();
+    (bound * TRAVEL_ROUNDING_UP + 1e-30) as f32
+}
+
+/// The factor that lifts a travel bound above the rounding to single precision: 1 + 2⁻²².
+const TRAVEL_ROUNDING_UP: f64 = 1.0 + 1.0 / (1u64 << 22) as f64;
+
 /// Heap bytes of a `Vec`'s buffer: capacity times element size.
 pub(crate) fn vec_bytes<T>(v: &Vec<T>) -> usize {
     v.capacity() * std::mem::size_of::<T>()
 }
 
-/// Per-body columns the predictor and corrector update: Gear state, pose, velocity, angular velocity, and (read)
-/// kind and liveness.
-pub(crate) type KinematicsColumns<'a> =
-    (&'a mut [GearState], &'a mut [Pose], &'a mut [DVec2], &'a mut [f64], &'a [BodyKind], &'a [bool]);
+/// Per-body columns the predictor and corrector update (Gear state, pose, velocities, travel) and read (kind,
+/// liveness, reach), one slice each over the same bodies.
+pub(crate) struct KinematicsColumns<'a> {
+    pub gear: &'a mut [GearState],
+    pub pose: &'a mut [Pose],
+    pub velocity: &'a mut [DVec2],
+    pub angular_velocity: &'a mut [f64],
+    pub travel: &'a mut [f32],
+    pub kind: &'a [BodyKind],
+    pub alive: &'a [bool],
+    pub reach: &'a [f64],
+}
+
+impl<'a> KinematicsColumns<'a> {
+    /// Number of bodies.
+    pub fn len(&self) -> usize {
+        self.gear.len()
+    }
+
+    /// The first `mid` bodies and the rest.
+    pub fn split_at(self, mid: usize) -> (Self, Self) {
+        let (gear, gear_rest) = self.gear.split_at_mut(mid);
+        let (pose, pose_rest) = self.pose.split_at_mut(mid);
+        let (velocity, velocity_rest) = self.velocity.split_at_mut(mid);
+        let (angular_velocity, angular_velocity_rest) = self.angular_velocity.split_at_mut(mid);
+        let (travel, travel_rest) = self.travel.split_at_mut(mid);
+        let (kind, kind_rest) = self.kind.split_at(mid);
+        let (alive, alive_rest) = self.alive.split_at(mid);
+        let (reach, reach_rest) = self.reach.split_at(mid);
+        (
+            Self { gear, pose, velocity, angular_velocity, travel, kind, alive, reach },
+            Self {
+                gear: gear_rest,
+                pose: pose_rest,
+                velocity: velocity_rest,
+                angular_velocity: angular_velocity_rest,
+                travel: travel_rest,
+                kind: kind_rest,
+                alive: alive_rest,
+                reach: reach_rest,
+            },
+        )
+    }
+}
 
 /// Per-body columns the corrector reads: force, torque, inverse mass, inverse inertia.
 pub(crate) type ForceColumns<'a> = (&'a [DVec2], &'a [f64], &'a [f64], &'a [f64]);

@@ -14,6 +14,7 @@ pub mod body_forces;
 mod body_sums;
 pub mod broadphase;
 pub mod checkpoint;
+pub mod clearance;
 pub mod events;
 mod force_ranges;
 mod home_threads;

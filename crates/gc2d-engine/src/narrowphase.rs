@@ -5,6 +5,7 @@
 //! forces to the bodies afterwards in pair order, which keeps results independent of threads.
 
 use crate::bodies::{Bodies, BodyId, BodyKind};
+use crate::clearance::Clearance;
 use crate::interactions::{ContactModel, InteractionTable};
 use crate::shape::ShapeKind;
 use gc2d_contact::{
@@ -84,9 +85,11 @@ pub struct PairContact {
     /// per episode. The ledger's own terms are summed in the narrowphase pass and not kept per pair
     /// (`pair_sums.rs`).
     pub dissipated: f64,
-    /// Passes the closest-feature walk needed this step (saturating at 65,535; the walk's own cap is far below);
-    /// 0 when the pair was still touching and no query ran. Two bytes, so that the record stays within 160.
-    pub passes: u16,
+    /// How far apart the pair is known to be, after the bodies' travel since its last closest-feature query
+    /// (`Bodies::travel`): while it exceeds this step's travel of the two bodies, the pair is still apart and no
+    /// query runs (docs/model.md, "Pairs apart by more than they moved"). [`Clearance::NONE`] while touching. Saved in
+    /// checkpoints, so that a resumed run skips the same queries.
+    pub clearance: Clearance,
     /// `force_on_a` of the two steps before this one, newest first: the history of the force-alternation
     /// diagnostic ([`World::force_alternation`](crate::World::force_alternation)). Not saved in checkpoints, so that
     /// the format stays; a resumed World measures the diagnostic again after two steps. Single precision: the
@@ -156,37 +159,82 @@ impl LedgerTerms {
 }
 
 /// The overlap of polygons `i` and `j` this step, or `None` (the polygon–polygon path of the overlap-area law), with
-/// the overlap centroid when `with_centroid` (the Winkler formulation; the others spend nothing on it).
+/// the overlap centroid when `with_centroid` (the Winkler formulation; the others spend nothing on it), and the passes
+/// its closest-feature walk needed (0 where none ran).
 ///
 /// A pair that touched in the last step almost always still touches, so the overlap computation itself decides,
 /// starting from the edges where the outlines crossed in the last step; a closest-feature query first would only
-/// repeat its answer. Every other pair (approaching, or just separated) asks the warm-started closest-feature walk
-/// first (reference §4.3), which settles the common "apart" case without building an overlap polygon, and keeps the
-/// warm start fresh for the step the pair comes into contact. Both kinds of query read and write the one warm start:
-/// a crossing where `a` leaves `b` is what the closest-feature walk itself keeps for an overlap.
+/// repeat its answer. A pair apart by more than its two bodies travelled since ([`PairContact::clearance`]) is still
+/// apart, and nothing is read of its outlines. Every other pair (approaching, or just separated) asks the
+/// warm-started closest-feature walk first (reference §4.3), which settles the common "apart" case without building
+/// an overlap polygon, and keeps the warm start fresh for the step the pair comes into contact. Both kinds of query
+/// read and write the one warm start: a crossing where `a` leaves `b` is what the closest-feature walk itself keeps
+/// for an overlap.
 #[inline]
 fn polygon_overlap(
-    vertices_i: &[DVec2],
-    vertices_j: &[DVec2],
+    bodies: &Bodies,
+    i: BodyId,
+    j: BodyId,
     with_centroid: bool,
     contact: &mut PairContact,
-) -> Option<AreaContact> {
-    if contact.touching
-        && let Some(overlap) =
+) -> (Option<AreaContact>, u16) {
+    let (vertices_i, vertices_j) = (bodies.world_vertices_of(i), bodies.world_vertices_of(j));
+    if contact.touching {
+        if let Some(overlap) =
             contact_geometry_from_exit(vertices_i, vertices_j, with_centroid, &mut contact.warm_start)
-    {
-        contact.passes = 0;
-        return Some(AreaContact::from(overlap));
+        {
+            return (Some(AreaContact::from(overlap)), 0);
+        }
+    } else {
+        let clearance = contact.clearance.metres();
+        let travel = f64::from(bodies.travel[i.index()]) + f64::from(bodies.travel[j.index()]);
+        if clearance > travel {
+            debug_assert!(
+                closest_features(vertices_i, vertices_j, contact.warm_start).distance > 0.0,
+                "a pair skipped as apart touches"
+            );
+            contact.clearance = Clearance::at_most(clearance - travel);
+            return (None, 0);
+        }
     }
     let separation = closest_features(vertices_i, vertices_j, contact.warm_start);
     contact.warm_start = Some(separation.features);
-    contact.passes = u16::try_from(separation.passes).unwrap_or(u16::MAX);
-    if separation.distance > 0.0 || contact.touching {
-        None
-    } else {
-        contact_geometry_from_exit(vertices_i, vertices_j, with_centroid, &mut contact.warm_start)
-            .map(AreaContact::from)
+    let passes = u16::try_from(separation.passes).unwrap_or(u16::MAX);
+    if separation.distance > 0.0 {
+        contact.clearance = Clearance::at_most(separation.distance - rounding_allowance(bodies, i, j));
+        return (None, passes);
     }
+    contact.clearance = Clearance::NONE;
+    if contact.touching {
+        return (None, passes);
+    }
+    let overlap = contact_geometry_from_exit(vertices_i, vertices_j, with_centroid, &mut contact.warm_start);
+    (overlap.map(AreaContact::from), passes)
+}
+
+/// What a distance between the world outlines of bodies `i` and `j` may be off by, m: their vertices are rounded
+/// from the poses to a few units in the last place of the largest coordinate (centroid plus reach), at the step a
+/// [`Clearance`] is measured as at any later one. 2⁻⁴⁰ of that largest coordinate is a thousand times more, and
+/// still far below any gap a step closes.
+fn rounding_allowance(bodies: &Bodies, i: BodyId, j: BodyId) -> f64 {
+    let largest_coordinate = |id: BodyId| {
+        let pose = &bodies.pose[id.index()];
+        pose.position.abs().max_element() + bodies.reach[id.index()] * pose.scale
+    };
+    (largest_coordinate(i) + largest_coordinate(j)) * ROUNDING_ALLOWANCE
+}
+
+/// [`rounding_allowance`] per metre of the largest coordinate: 2⁻⁴⁰.
+const ROUNDING_ALLOWANCE: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// What a pair's evaluation hands to the step's sums besides its record.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct PairEvaluation {
+    /// The terms the energy ledger books.
+    pub ledger: LedgerTerms,
+    /// Passes the closest-feature walk needed (0 where none ran): the statistics count the queries that needed more
+    /// than one.
+    pub passes: u16,
 }
 
 /// What a pair evaluation reads: the body store as it is after the predictor.
@@ -216,13 +264,15 @@ impl PairContext<'_> {
     ///
     /// When one body is a wall, the contact law sees the particle as body i; the stored result is always expressed
     /// for `a`, so that accumulation does not need to know.
-    pub fn evaluate(&self, a: u32, b: u32, contact: &mut PairContact) -> LedgerTerms {
+    pub fn evaluate(&self, a: u32, b: u32, contact: &mut PairContact) -> PairEvaluation {
         let bodies = self.bodies;
         let wall_first = bodies.kind[a as usize] == BodyKind::Wall;
         let (i, j) = if wall_first { (BodyId(b), BodyId(a)) } else { (BodyId(a), BodyId(b)) };
         match self.interactions.model(bodies.material[i.index()], bodies.material[j.index()]) {
             ContactModel::OverlapArea(law) => self.evaluate_overlap_area(law, i, j, wall_first, contact),
-            ContactModel::Penetration(law) => self.evaluate_penetration(law, i, j, wall_first, contact),
+            ContactModel::Penetration(law) => {
+                PairEvaluation { ledger: self.evaluate_penetration(law, i, j, wall_first, contact), passes: 0 }
+            }
         }
     }
 
@@ -307,7 +357,6 @@ impl PairContext<'_> {
         contact.dissipated = energy.dissipation();
         contact.touching = geometry.is_touching();
         contact.point = if contact.touching { position_i + geometry.arm_i } else { DVec2::ZERO };
-        contact.passes = 0;
         contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
         energy
     }
@@ -320,20 +369,20 @@ impl PairContext<'_> {
         j: BodyId,
         wall_first: bool,
         contact: &mut PairContact,
-    ) -> LedgerTerms {
+    ) -> PairEvaluation {
         let bodies = self.bodies;
         let both_polygons =
             bodies.shape[i.index()] == ShapeKind::Polygon && bodies.shape[j.index()] == ShapeKind::Polygon;
         let with_centroid = law.elastic.formulation == AreaFormulation::Winkler;
-        let overlap = if both_polygons {
-            polygon_overlap(bodies.world_vertices_of(i), bodies.world_vertices_of(j), with_centroid, contact)
+        let (overlap, passes) = if both_polygons {
+            polygon_overlap(bodies, i, j, with_centroid, contact)
         } else if with_centroid {
-            area_contact_with_centroid(bodies.shape_view(i), bodies.shape_view(j))
+            (area_contact_with_centroid(bodies.shape_view(i), bodies.shape_view(j)), 0)
         } else {
-            area_contact(bodies.shape_view(i), bodies.shape_view(j))
+            (area_contact(bodies.shape_view(i), bodies.shape_view(j)), 0)
         };
         if overlap.is_none() && contact.is_quiet() {
-            return LedgerTerms::default();
+            return PairEvaluation { ledger: LedgerTerms::default(), passes };
         }
         let (position_i, position_j) = (bodies.pose[i.index()].position, bodies.pose[j.index()].position);
         let geometry = overlap.map_or(gc2d_contact::ContactGeometry::SEPARATED, |g| gc2d_contact::ContactGeometry {
@@ -362,7 +411,7 @@ impl PairContext<'_> {
         // force and nothing to book, without reading the bodies' velocities: most box pairs of a pile are such
         // pairs (docs/performance.md, "Pairs apart skip the law"). Once its record holds that answer in full (a quiet
         // pair), writing it again would change no bit, so it is left alone.
-        if overlap.is_none() && previous.constants.is_none() {
+        let ledger = if overlap.is_none() && previous.constants.is_none() {
             contact.count_evaluation(true);
             record(contact, &ContactResponse::default(), 0.0)
         } else {
@@ -370,7 +419,8 @@ impl PairContext<'_> {
             let (motion_i, motion_j) = (self.motion(i), self.motion(j));
             let response = law.evaluate(&geometry, &motion_i, &motion_j, &previous, self.dt);
             record(contact, &response, wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt))
-        }
+        };
+        PairEvaluation { ledger, passes }
     }
 
     /// Area of the smaller particle of the pair at its current scale (walls do not count).
@@ -462,7 +512,7 @@ mod tests {
     /// two-byte pass count, 208 with the ledger's terms alone instead of all energy terms and the wall work, 192
     /// with the chatter watch's history in single precision, 160 with the ledger's terms summed in the narrowphase
     /// pass (`pair_sums.rs`) and only the dissipation kept, 152 with the overlap fraction read from the history
-    /// ([`PairContext::overlap_fraction`]).
+    /// ([`PairContext::overlap_fraction`]); the clearance took the two bytes of the walk's pass count.
     #[test]
     fn pair_record_is_at_most_152_bytes() {
         assert!(std::mem::size_of::<PairContact>() <= 152, "{} bytes", std::mem::size_of::<PairContact>());
@@ -487,26 +537,83 @@ mod tests {
         let law = InteractionTable::uniform(ContactLaw::elastic(1e7));
         let mut contact = PairContact::default();
         let apart = stacked(0.1);
-        PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        let evaluation = PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
         assert!(!contact.touching);
-        assert!(contact.passes >= 1 && contact.warm_start.is_some());
+        assert!(evaluation.passes >= 1 && contact.warm_start.is_some());
 
         let overlapping = stacked(-0.01);
-        PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
-        assert!(contact.touching && contact.passes >= 1);
+        let evaluation =
+            PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        assert!(contact.touching && evaluation.passes >= 1);
         let first_force = contact.force_on_a;
 
-        PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        let evaluation =
+            PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
         assert!(contact.touching);
-        assert_eq!(contact.passes, 0);
+        assert_eq!(evaluation.passes, 0);
         assert_eq!(contact.force_on_a, first_force, "same overlap, same elastic force");
         assert!(contact.point.x == 0.0 && (0.49..=0.5).contains(&contact.point.y), "{:?}", contact.point);
         let context = PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 };
         assert!((context.overlap_fraction(0, 1, &contact) - 0.01).abs() < 1e-12);
 
-        PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
-        assert!(!contact.touching && contact.passes >= 1, "a pair that separated asks the query again");
+        let evaluation = PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        assert!(!contact.touching && evaluation.passes >= 1, "a pair that separated asks the query again");
         assert_eq!(contact.force_on_a, DVec2::ZERO);
+    }
+
+    /// A pair apart by more than its two bodies travelled since its last query skips the query and keeps the rest
+    /// of its clearance; once the travel reaches the clearance, it asks again.
+    #[test]
+    fn a_pair_apart_by_more_than_its_travel_skips_the_query() {
+        let law = InteractionTable::uniform(ContactLaw::elastic(1e7));
+        let mut bodies = stacked(0.1);
+        let mut contact = PairContact::default();
+        let evaluate = |bodies: &Bodies, contact: &mut PairContact| {
+            PairContext { bodies, interactions: &law, dt: 1e-6 }.evaluate(0, 1, contact).passes
+        };
+        assert!(evaluate(&bodies, &mut contact) >= 1, "never stepped: the travel is unknown");
+        let clearance = contact.clearance.metres();
+        assert!((0.1 * (1.0 - 1.0 / 128.0)..=0.1).contains(&clearance), "{clearance}");
+
+        bodies.travel = vec![0.01, 0.02];
+        assert_eq!(evaluate(&bodies, &mut contact), 0);
+        let left = contact.clearance.metres();
+        assert!(left <= clearance - 0.03 && left >= (clearance - 0.03) * (1.0 - 1.0 / 128.0), "{left}");
+
+        bodies.travel = vec![f32::from_bits((left as f32).to_bits() + 1), 0.0];
+        assert!(evaluate(&bodies, &mut contact) >= 1, "travel as large as the clearance: ask again");
+        assert!(!contact.touching && contact.clearance.metres() > 0.09);
+    }
+
+    proptest::proptest! {
+        /// A square turning and sliding towards another in random steps, each step's travel bounded from its poses
+        /// as the integrator bounds it: whether the pair touches, and its force, are at every step what a pair record
+        /// without history finds.
+        #[test]
+        fn skipping_queries_never_misses_a_contact(
+            moves in proptest::collection::vec((-0.02f64..0.01, -0.01f64..0.01, -0.05f64..0.05), 1..120),
+        ) {
+            let law = InteractionTable::uniform(ContactLaw::elastic(1e7));
+            let mut bodies = stacked(0.3);
+            bodies.travel = vec![0.0, f32::INFINITY];
+            let mut contact = PairContact::default();
+            for (dy, dx, turn) in moves {
+                let before = bodies.pose[1];
+                let after = Pose { position: before.position + DVec2::new(dx, dy), angle: before.angle + turn, ..before };
+                bodies.pose[1] = after;
+                bodies.travel[1] = crate::bodies::travel_bound(&before, &after, bodies.reach[1]);
+                let mut broadphase = crate::broadphase::SortAndSweep::<()>::new();
+                bodies.update_world_vertices(broadphase.box_writer(bodies.len()));
+                let context = PairContext { bodies: &bodies, interactions: &law, dt: 1e-6 };
+                context.evaluate(0, 1, &mut contact);
+                let mut fresh = PairContact::default();
+                context.evaluate(0, 1, &mut fresh);
+                proptest::prop_assert_eq!(contact.touching, fresh.touching);
+                if !contact.touching {
+                    proptest::prop_assert_eq!(contact.force_on_a, DVec2::ZERO);
+                }
+            }
+        }
     }
 
     /// A pair that stays apart after a contact (a wall first, so the zero force is recorded as −0.0) becomes quiet

@@ -6,7 +6,7 @@
 //! bitwise the same for any number of threads and across a checkpoint split. A pair therefore keeps none of its
 //! ledger terms in its record ([`PairContact`]), only its dissipation for the contact events.
 
-use crate::narrowphase::{LedgerTerms, PairContact};
+use crate::narrowphase::{LedgerTerms, PairContact, PairEvaluation};
 use glam::DVec2;
 
 /// Pairs per chunk of the narrowphase pass. Fixed, so that the sums are grouped the same way for any thread count.
@@ -42,14 +42,15 @@ pub(crate) struct PairSums {
 }
 
 impl PairSums {
-    /// Adds the pair that was just evaluated: its record, the ledger terms its evaluation returned and its overlap
-    /// fraction ([`crate::narrowphase::PairContext::overlap_fraction`]; 0 when it does not touch).
+    /// Adds the pair that was just evaluated: its record, what its evaluation returned (the ledger terms, the
+    /// closest-feature passes) and its overlap fraction ([`crate::narrowphase::PairContext::overlap_fraction`]; 0
+    /// when it does not touch).
     #[inline]
-    pub fn add_pair(&mut self, contact: &PairContact, energy: &LedgerTerms, overlap_fraction: f64) {
+    pub fn add_pair(&mut self, contact: &PairContact, evaluation: &PairEvaluation, overlap_fraction: f64) {
+        self.multi_pass_queries += usize::from(evaluation.passes > 1);
         if contact.is_quiet() {
             // Nothing stored, no force now or before, an evaluation that booked nothing: every sum below would add
             // +0.0, which changes no sum (they start at +0.0 and so are never −0.0), and the pair is not touching.
-            self.multi_pass_queries += usize::from(contact.passes > 1);
             return;
         }
         self.contact_stored += contact.stored_energy;
@@ -62,8 +63,7 @@ impl PairSums {
             self.alternation += (contact.force_on_a - 2.0 * previous + before_previous).length();
             self.force_scale += contact.force_on_a.length() + previous.length();
         }
-        self.multi_pass_queries += usize::from(contact.passes > 1);
-        self.energy.add(energy);
+        self.energy.add(&evaluation.ledger);
         if contact.touching {
             self.contacts += 1;
             self.max_overlap_fraction = self.max_overlap_fraction.max(overlap_fraction);
@@ -102,7 +102,10 @@ mod tests {
     fn chunk_sums_add_up_to_the_sums_over_all_pairs() {
         let pairs: Vec<_> = (0..1000).map(|k| touching_pair(f64::from(k), 0.25 * f64::from(k))).collect();
         let fraction = |k: usize| 1e-4 * k as f64;
-        let terms = LedgerTerms { normal_damping: 0.5, sliding: 0.25, ..LedgerTerms::default() };
+        let terms = PairEvaluation {
+            ledger: LedgerTerms { normal_damping: 0.5, sliding: 0.25, ..LedgerTerms::default() },
+            passes: 1,
+        };
         let mut whole = PairSums::default();
         pairs.iter().enumerate().for_each(|(k, pair)| whole.add_pair(pair, &terms, fraction(k)));
         let mut by_chunks = PairSums::default();
@@ -124,18 +127,20 @@ mod tests {
     /// only its closest-feature passes count, whatever came before it.
     #[test]
     fn a_quiet_pair_adds_only_its_passes() {
-        let quiet = PairContact { quiet_evaluations: QUIET_EVALUATIONS, passes: 2, ..PairContact::default() };
+        let quiet = PairContact { quiet_evaluations: QUIET_EVALUATIONS, ..PairContact::default() };
+        let two_passes = PairEvaluation { passes: 2, ..PairEvaluation::default() };
         let loud = PairContact { quiet_evaluations: 0, ..quiet };
         assert!(quiet.is_quiet() && !loud.is_quiet());
         let before = [PairSums::default(), {
             let mut sums = PairSums::default();
-            sums.add_pair(&touching_pair(3.0, 0.5), &LedgerTerms { work_walls: -1.0, ..LedgerTerms::default() }, 0.1);
+            let ledger = LedgerTerms { work_walls: -1.0, ..LedgerTerms::default() };
+            sums.add_pair(&touching_pair(3.0, 0.5), &PairEvaluation { ledger, passes: 1 }, 0.1);
             sums
         }];
         for start in before {
             let (mut skipped, mut full) = (start, start);
-            skipped.add_pair(&quiet, &LedgerTerms::default(), 0.0);
-            full.add_pair(&loud, &LedgerTerms::default(), 0.0);
+            skipped.add_pair(&quiet, &two_passes, 0.0);
+            full.add_pair(&loud, &two_passes, 0.0);
             assert_eq!(format!("{skipped:?}"), format!("{full:?}"));
             assert_eq!(skipped.multi_pass_queries, start.multi_pass_queries + 1);
         }

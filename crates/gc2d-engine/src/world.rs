@@ -6,7 +6,7 @@
 //! s(t) → ledger and safety checks. Stages a scene does not use are skipped by a flag test, so a plain pile pays
 //! nothing for drag springs, moving walls, heating, sources, inlets or outlets.
 
-use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns};
+use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns, travel_bound};
 use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid};
 use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingPass};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
@@ -25,7 +25,7 @@ use crate::pair_sums::{CHUNKS_PER_TASK, PAIRS_PER_CHUNK, PairSums};
 use crate::parallel::steps_in_parallel;
 use crate::safety::{self, SafetyError, SafetyLimits};
 use crate::schedules::{DragSpring, GravitySchedule, HeatingSchedule};
-use crate::shape::{BodyShape, MassModel, shape_view};
+use crate::shape::{BodyShape, MassModel, ShapeKind, shape_view};
 use crate::sources::{DropHeight, DropSource, PLACEMENT_ATTEMPTS, SourceState};
 use crate::stage_clock::{Stage, StageClock, StageTimes};
 use crate::transits::{Transit, TransitLog};
@@ -209,6 +209,9 @@ struct Stages {
     domain: bool,
     inlets: bool,
     outlets: bool,
+    /// A particle is a polygon: the predictor and corrector bound each particle's travel (`Bodies::travel`) for the
+    /// clearance of polygon pairs; without one the travel stays infinite and costs nothing.
+    polygon_particles: bool,
 }
 
 /// A simulation: bodies, the contacts between them, the drivers that move walls and pull particles, and time.
@@ -336,6 +339,7 @@ impl World {
         shape.validate(true).map_err(|e| WorldError::InvalidBody(e.to_string()))?;
         let mass = self.config.mass_model.mass_properties(&shape, density);
         let id = self.bodies.push(BodyKind::Particle, &shape, pose, mass.mass, mass.inertia);
+        self.stages.polygon_particles |= self.bodies.shape[id.index()] == ShapeKind::Polygon;
         let i = id.index();
         self.bodies.velocity[i] = velocity;
         self.bodies.angular_velocity[i] = angular_velocity;
@@ -884,10 +888,16 @@ impl World {
         let gear = &self.integrator;
         let time_step = *gear.time_step();
         let (rows, _) = self.bodies.split_for_integration();
-        let predict = |(state, pose, velocity, angular_velocity, kind, alive): KinematicsRow| {
-            if *kind == BodyKind::Particle && *alive {
-                gear.predict_body(state);
-                sync_kinematics(state, &time_step, pose, velocity, angular_velocity);
+        let track_travel = self.stages.polygon_particles;
+        let predict = |row: KinematicsRow| {
+            if row.kind == BodyKind::Particle && row.alive {
+                let before = *row.pose;
+                gear.predict_body(row.state);
+                sync_kinematics(row.state, &time_step, row.pose, row.velocity, row.angular_velocity);
+                if track_travel {
+                    // The corrector left the move from the last predicted pose to the corrected one.
+                    *row.travel += travel_bound(&before, row.pose, row.reach * before.scale);
+                }
             }
         };
         for_each_kinematics_row(rows, |_, row| predict(row));
@@ -908,6 +918,10 @@ impl World {
             let scale = heating.scale(t_next);
             for i in 0..b.len() {
                 if b.kind[i] == BodyKind::Particle {
+                    if b.pose[i].scale != scale {
+                        // The travel bound is for poses of one scale: a grown body has moved by more than it says.
+                        b.travel[i] = f32::INFINITY;
+                    }
                     b.pose[i].scale = scale;
                     b.inverse_inertia[i] = 1.0 / (b.inertia[i] * HeatingSchedule::inertia_factor(scale));
                 }
@@ -1071,10 +1085,15 @@ impl World {
         let gear = &self.integrator;
         let time_step = *gear.time_step();
         let (rows, (force, torque, inverse_mass, inverse_inertia)) = self.bodies.split_for_integration();
-        let correct = |i: usize, (state, pose, velocity, angular_velocity, kind, alive): KinematicsRow| {
-            if *kind == BodyKind::Particle && *alive {
-                gear.correct_body(state, force[i] * inverse_mass[i], torque[i] * inverse_inertia[i]);
-                sync_kinematics(state, &time_step, pose, velocity, angular_velocity);
+        let track_travel = self.stages.polygon_particles;
+        let correct = |i: usize, row: KinematicsRow| {
+            if row.kind == BodyKind::Particle && row.alive {
+                let predicted = *row.pose;
+                gear.correct_body(row.state, force[i] * inverse_mass[i], torque[i] * inverse_inertia[i]);
+                sync_kinematics(row.state, &time_step, row.pose, row.velocity, row.angular_velocity);
+                if track_travel {
+                    *row.travel = travel_bound(&predicted, row.pose, row.reach * predicted.scale);
+                }
             }
         };
         for_each_kinematics_row(rows, correct);
@@ -1445,9 +1464,9 @@ fn evaluate_chunk(
 ) {
     *sums = PairSums::default();
     for (position, pair) in chunk.iter_mut().enumerate() {
-        let energy = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
+        let evaluation = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
         let overlap_fraction = context.overlap_fraction(pair.a(), pair.b(), &pair.payload);
-        sums.add_pair(&pair.payload, &energy, overlap_fraction);
+        sums.add_pair(&pair.payload, &evaluation, overlap_fraction);
         if pair.payload.touching {
             touching(position, pair);
         }
@@ -1511,32 +1530,56 @@ fn state_is_finite(b: &Bodies, i: usize) -> bool {
     kinematics_finite && energy_finite
 }
 
-/// The kinematic columns of one body that the predictor and corrector update.
-type KinematicsRow<'a> = (&'a mut GearState, &'a mut Pose, &'a mut DVec2, &'a mut f64, &'a BodyKind, &'a bool);
+/// The kinematic columns of one body that the predictor and corrector update, and what they read.
+struct KinematicsRow<'a> {
+    state: &'a mut GearState,
+    pose: &'a mut Pose,
+    velocity: &'a mut DVec2,
+    angular_velocity: &'a mut f64,
+    travel: &'a mut f32,
+    kind: BodyKind,
+    alive: bool,
+    reach: f64,
+}
 
 /// Calls `f(index, row)` for every body: where the World steps in parallel ([`steps_in_parallel`]) each range of
 /// bodies on its home thread ([`for_each_on_home_thread`]), else on the calling thread.
 fn for_each_kinematics_row(columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
-    let rows_from = |first: usize, (g, p, v, w, k, a): KinematicsColumns| {
-        g.iter_mut()
-            .zip(p)
-            .zip(v)
-            .zip(w)
-            .zip(k)
-            .zip(a)
-            .enumerate()
-            .for_each(|(i, (((((g, p), v), w), k), a))| f(first + i, (g, p, v, w, k, a)));
+    let rows_from = |first: usize, c: KinematicsColumns| {
+        let n = c.len();
+        let (pose, velocity, angular_velocity, travel) =
+            (&mut c.pose[..n], &mut c.velocity[..n], &mut c.angular_velocity[..n], &mut c.travel[..n]);
+        let (kind, alive, reach) = (&c.kind[..n], &c.alive[..n], &c.reach[..n]);
+        for (i, state) in c.gear.iter_mut().enumerate() {
+            let row = KinematicsRow {
+                state,
+                pose: &mut pose[i],
+                velocity: &mut velocity[i],
+                angular_velocity: &mut angular_velocity[i],
+                travel: &mut travel[i],
+                kind: kind[i],
+                alive: alive[i],
+                reach: reach[i],
+            };
+            f(first + i, row);
+        }
     };
-    let bodies = columns.0.len();
+    let bodies = columns.len();
     if !steps_in_parallel(bodies) {
         rows_from(0, columns);
         return;
     }
     let per_range = BodyRanges::of_pool(bodies).per_range();
-    let (g, p, v, w, k, a) = columns;
-    let ranges = g.chunks_mut(per_range).zip(p.chunks_mut(per_range)).zip(v.chunks_mut(per_range));
-    let ranges = ranges.zip(w.chunks_mut(per_range)).zip(k.chunks(per_range)).zip(a.chunks(per_range));
-    let ranges = ranges.map(|(((((g, p), v), w), k), a)| (g, p, v, w, k, a));
+    let mut rest = Some(columns);
+    let ranges = std::iter::from_fn(|| {
+        let columns = rest.take()?;
+        if columns.len() <= per_range {
+            return Some(columns);
+        }
+        let (range, others) = columns.split_at(per_range);
+        rest = Some(others);
+        Some(range)
+    });
     for_each_on_home_thread(ranges, |range, rows| rows_from(range * per_range, rows));
 }
 

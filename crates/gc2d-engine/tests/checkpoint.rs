@@ -147,7 +147,7 @@ fn observed_bits(world: &World) -> Vec<u64> {
         bits.push(u64::from(b.alive[i]));
     }
     for (a, bb, c) in world.pairs() {
-        bits.extend([u64::from(a.0), u64::from(bb.0), u64::from(c.touching), u64::from(c.passes)]);
+        bits.extend([u64::from(a.0), u64::from(bb.0), u64::from(c.touching), c.clearance.metres().to_bits()]);
         let s = c.state.overlap_area();
         let constants = s.constants.map_or([0.0; 3], |k| [k.length, k.normal_mass, k.tangential_mass]);
         let scalars = [s.previous_area, s.previous_chord, s.spring, s.normal_energy, c.torque_on_a, c.torque_on_b]
@@ -349,7 +349,9 @@ fn a_payload_that_passes_the_checksum_but_is_not_a_world_is_an_error() {
 /// written), the pair list's index table, which loading rebuilds from the entries, and the bodies' box column
 /// (the broadphase's boxes are the only ones now): 18,567 bytes. Format 14 dropped the pair record's overlap
 /// fraction, which is read from the contact's history now: 18,535 bytes. Format 15 added the broadphase's bands of
-/// the y axis (`None` here, one byte): 18,536 bytes.
+/// the y axis (`None` here, one byte): 18,536 bytes. Format 16 added the bodies' travel bounds (4 bytes each and the
+/// column's length) and put the pair record's clearance (two bytes, a varint like the pass count it replaced) in
+/// place of its closest-feature passes, and the step's flag that the travel is tracked (one byte): 18,666 bytes.
 #[test]
 fn checkpoint_layout_is_pinned() {
     let mut world = scene();
@@ -357,7 +359,7 @@ fn checkpoint_layout_is_pinned() {
     assert!(world.contacts().count() > 0, "the pin must cover a pair record");
     let payload = checkpoint_bytes(&world).len() - payload_offset();
     assert_eq!(
-        payload, 18536,
+        payload, 18666,
         "the checkpoint layout changed: bump CHECKPOINT_FORMAT_VERSION (now {CHECKPOINT_FORMAT_VERSION}) and pin the \
          new payload length"
     );
