@@ -197,7 +197,7 @@ impl ForceAlternation {
     }
 }
 
-/// Which optional stages the step runs; fixed when the World is built and when drivers are added.
+/// Which optional stages the step runs; fixed when the World is built, and set when drivers or particles are added.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 struct Stages {
     moving_walls: bool,
