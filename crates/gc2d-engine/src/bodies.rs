@@ -104,10 +104,11 @@ pub struct Bodies {
     /// Largest distance of a point of the body from its centroid, at scale 1, m.
     pub reach: Vec<f64>,
     /// How far any point of the body may have moved since the pose the last narrowphase saw, m, rounded up: the
-    /// corrector's move of the last step plus this step's predictor's ([`travel_bound`]); infinite for walls and for
-    /// a body not yet stepped or rescaled this step. A pair apart by more than its two bodies' travel is still apart,
-    /// so its closest-feature query can wait (docs/model.md, "Pairs apart by more than they moved"). Saved in
-    /// checkpoints, so that a resumed run skips the same queries. Single precision: 4 bytes per body.
+    /// corrector's move of the last step plus this step's predictor's (`travel_bound`); infinite for walls, for a body
+    /// not yet stepped or rescaled this step, and for every body while the World has no polygon particle. A pair apart
+    /// by more than its two bodies' travel is still apart, so its closest-feature query can wait (docs/model.md, "Pairs
+    /// apart by more than they moved"). Saved in checkpoints, so that a resumed run skips the same queries. Single
+    /// precision: 4 bytes per body.
     pub travel: Vec<f32>,
     /// Virtual tangential surface velocity of the walls that have one (drums, §2.11), by body id. The column ends
     /// at the last such wall: every body beyond it has none, so the particles, added after the walls, do not carry
