@@ -318,9 +318,6 @@ impl PairContext<'_> {
         contact: &mut PairContact,
     ) -> LedgerTerms {
         let bodies = self.bodies;
-        // Only the polygon walk keeps a clearance, and only while it runs every step: one left from before a change
-        // of material would not have followed the bodies' travel since.
-        contact.clearance = Clearance::NONE;
         let found = penetration(bodies.shape_view(i), bodies.shape_view(j));
         if found.is_none() && contact.is_quiet() {
             return LedgerTerms::default();
@@ -379,12 +376,10 @@ impl PairContext<'_> {
         let with_centroid = law.elastic.formulation == AreaFormulation::Winkler;
         let (overlap, passes) = if both_polygons {
             polygon_overlap(bodies, i, j, with_centroid, contact)
+        } else if with_centroid {
+            (area_contact_with_centroid(bodies.shape_view(i), bodies.shape_view(j)), 0)
         } else {
-            contact.clearance = Clearance::NONE;
-            let (view_i, view_j) = (bodies.shape_view(i), bodies.shape_view(j));
-            let overlap =
-                if with_centroid { area_contact_with_centroid(view_i, view_j) } else { area_contact(view_i, view_j) };
-            (overlap, 0)
+            (area_contact(bodies.shape_view(i), bodies.shape_view(j)), 0)
         };
         if overlap.is_none() && contact.is_quiet() {
             return PairEvaluation { ledger: LedgerTerms::default(), passes };

@@ -10,6 +10,7 @@ use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns, travel_bound};
 use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid};
 use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingPass};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
+use crate::clearance::Clearance;
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
 use crate::force_ranges::{BodyRanges, add_contact_forces, add_pair_forces, mark_touching_pair};
 use crate::home_threads::for_each_on_home_thread;
@@ -410,6 +411,11 @@ impl World {
         }
         let slot = self.bodies.material.get_mut(body.index());
         *slot.ok_or_else(|| WorldError::InvalidBody(format!("no body {}", body.0)))? = material;
+        // A pair's contact model follows the materials, and only the polygon walk of the overlap-area law keeps the
+        // clearance up to date: a pair that changes model forgets it, so none outlives steps it was not followed in.
+        for pair in self.broadphase.pairs_mut().iter_mut().filter(|p| p.a() == body.0 || p.b() == body.0) {
+            pair.payload.clearance = Clearance::NONE;
+        }
         Ok(())
     }
 

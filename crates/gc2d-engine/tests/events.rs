@@ -7,6 +7,7 @@ use gc2d_contact::{
     ContactLaw, CundallStrack, NormalDamping, NormalElastic, NormalSpring, PenetrationDamping, PenetrationLaw,
     TangentialSpring, TangentialStiffness,
 };
+use gc2d_engine::clearance::Clearance;
 use gc2d_engine::schedules::GravitySchedule;
 use gc2d_engine::{
     BodyShape, ContactEvent, ContactEventKind, ContactModel, Integrator, InteractionTable, MassModel, MaterialId,
@@ -176,4 +177,24 @@ fn an_impact_reports_its_speed_and_an_impulse_equal_to_the_momentum_change() {
     let error = (impulse_on_ball - momentum_change).length() / momentum_change.length();
     assert!(error < 1e-3, "impulse {impulse_on_ball} against the momentum change {momentum_change} ({error:.1e})");
     assert!(end.episode.dissipated > 0.0 && end.episode.max_overlap > 0.0);
+}
+
+/// A body that changes material may change its pairs' contact model, and only the polygon walk keeps a pair's
+/// clearance up to date: its pairs forget their clearance, the others keep theirs, and the run goes on (in debug
+/// builds every pair skipped as apart is checked against the walk).
+#[test]
+fn a_change_of_material_drops_the_clearance_of_the_body_s_pairs() {
+    let mut world = mixed_scene();
+    run(&mut world, 1000, 1);
+    let with_clearance = |world: &World| {
+        world.pairs().filter(|(_, _, c)| c.clearance != Clearance::NONE).map(|(a, b, _)| (a, b)).collect::<Vec<_>>()
+    };
+    let before = with_clearance(&world);
+    let (body, _) = *before.first().expect("grains apart keep a clearance");
+    world.set_material(body, BALL).unwrap();
+    let after = with_clearance(&world);
+    assert!(after.iter().all(|&(a, b)| a != body && b != body));
+    let others: Vec<_> = before.iter().copied().filter(|&(a, b)| a != body && b != body).collect();
+    assert_eq!(after, others, "the other pairs keep theirs");
+    run(&mut world, 50, 1);
 }
