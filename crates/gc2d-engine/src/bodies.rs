@@ -259,8 +259,7 @@ impl Bodies {
     }
 
     /// The columns the integrator writes (state, pose, velocities; with kind and liveness to read) and, beside them,
-    /// the ones the corrector reads (force, torque, inverse mass and inertia), borrowed apart so both can be used at
-    /// once.
+    /// the force columns and what the corrector reads with them, borrowed apart so both can be used at once.
     pub(crate) fn split_for_integration(&mut self) -> (KinematicsColumns<'_>, ForceColumns<'_>) {
         (
             KinematicsColumns {
@@ -273,7 +272,13 @@ impl Bodies {
                 alive: &self.alive,
                 reach: &self.reach,
             },
-            (&self.force, &self.torque, &self.inverse_mass, &self.inverse_inertia),
+            ForceColumns {
+                force: &mut self.force,
+                torque: &mut self.torque,
+                mass: &self.mass,
+                inverse_mass: &self.inverse_mass,
+                inverse_inertia: &self.inverse_inertia,
+            },
         )
     }
 
@@ -313,37 +318,59 @@ impl Bodies {
     /// range of bodies on its home thread ([`for_each_on_home_thread`]), with the flat vertex array and the boxes
     /// split at the ranges' first bodies, so no allocation happens and each body's vertices are written by one task.
     pub(crate) fn update_world_vertices(&mut self, boxes: BoxWriter) {
+        self.move_and_update_world_vertices(boxes, |_, _| {});
+    }
+
+    /// [`Self::update_world_vertices`], each range of bodies first moved by `move_range(first, rows)` (`first`: the
+    /// range's first body) on the thread that then transforms it: the predictor and the vertex transform in one pass
+    /// over the bodies (`World::predict_and_transform`). `move_range` may change poses, not vertices or liveness.
+    pub(crate) fn move_and_update_world_vertices(
+        &mut self,
+        boxes: BoxWriter,
+        move_range: impl Fn(usize, &mut KinematicsColumns) + Sync,
+    ) {
         let count = self.len();
+        debug_assert_eq!(boxes.len(), count, "the box writer covers every body slot");
         let inputs = TransformInputs {
             ranges: &self.vertices,
             body: &self.body_vertices,
-            poses: &self.pose,
             alive: &self.alive,
             radius: &self.radius,
         };
-        debug_assert_eq!(boxes.len(), count, "the box writer covers every body slot");
+        let mut columns = KinematicsColumns {
+            gear: &mut self.gear,
+            pose: &mut self.pose,
+            velocity: &mut self.velocity,
+            angular_velocity: &mut self.angular_velocity,
+            travel: &mut self.travel,
+            kind: &self.kind,
+            alive: &self.alive,
+            reach: &self.reach,
+        };
         if !steps_in_parallel(count) {
-            transform_range(0, count, &inputs, &mut self.world_vertices, boxes);
+            move_range(0, &mut columns);
+            transform_range(0, count, &inputs, columns.pose, &mut self.world_vertices, boxes);
             return;
         }
         let per_range = BodyRanges::of_pool(count).per_range();
         let vertex_count = self.world_vertices.len();
-        let first_vertex = |body: usize| self.vertices.get(body).map_or(vertex_count, |range| range.start as usize);
+        let first_vertex = |body: usize| inputs.ranges.get(body).map_or(vertex_count, |range| range.start as usize);
         let (mut world, mut boxes) = (&mut self.world_vertices[..], Some(boxes));
         let mut first = 0;
-        let ranges = std::iter::from_fn(|| {
+        let ranges = columns.ranges(per_range).map_while(|rows| {
             let remaining_boxes = boxes.take()?;
-            let last = count.min(first + per_range);
+            let last = first + rows.len();
             let vertices = first_vertex(last) - first_vertex(first);
             let (range_world, rest_world) = std::mem::take(&mut world).split_at_mut(vertices);
             let (range_boxes, rest_boxes) = remaining_boxes.split_at(last - first);
             (world, boxes) = (rest_world, (last < count).then_some(rest_boxes));
-            let range = (first, last, range_world, range_boxes);
+            let range = (first, last, rows, range_world, range_boxes);
             first = last;
             Some(range)
         });
-        for_each_on_home_thread(ranges, |_, (first, last, world, boxes)| {
-            transform_range(first, last, &inputs, world, boxes);
+        for_each_on_home_thread(ranges, |_, (first, last, mut rows, world, boxes)| {
+            move_range(first, &mut rows);
+            transform_range(first, last, &inputs, rows.pose, world, boxes);
         });
     }
 }
@@ -396,8 +423,23 @@ impl<'a> KinematicsColumns<'a> {
         self.gear.len()
     }
 
+    /// The columns cut into ranges of `per_range` bodies (the last one shorter), in body order; one empty range
+    /// where there are no bodies.
+    pub fn ranges(self, per_range: usize) -> impl Iterator<Item = Self> {
+        let mut rest = Some(self);
+        std::iter::from_fn(move || {
+            let columns = rest.take()?;
+            if columns.len() <= per_range {
+                return Some(columns);
+            }
+            let (range, others) = columns.split_at(per_range);
+            rest = Some(others);
+            Some(range)
+        })
+    }
+
     /// The first `mid` bodies and the rest.
-    pub fn split_at(self, mid: usize) -> (Self, Self) {
+    fn split_at(self, mid: usize) -> (Self, Self) {
         let (gear, gear_rest) = self.gear.split_at_mut(mid);
         let (pose, pose_rest) = self.pose.split_at_mut(mid);
         let (velocity, velocity_rest) = self.velocity.split_at_mut(mid);
@@ -422,20 +464,34 @@ impl<'a> KinematicsColumns<'a> {
     }
 }
 
-/// Per-body columns the corrector reads: force, torque, inverse mass, inverse inertia.
-pub(crate) type ForceColumns<'a> = (&'a [DVec2], &'a [f64], &'a [f64], &'a [f64]);
+/// Per-body columns of the forces on the bodies (written by the force accumulation and the body forces) and what
+/// turns them into accelerations (read by gravity and the corrector), one slice each over the same bodies.
+pub(crate) struct ForceColumns<'a> {
+    pub force: &'a mut [DVec2],
+    pub torque: &'a mut [f64],
+    pub mass: &'a [f64],
+    pub inverse_mass: &'a [f64],
+    pub inverse_inertia: &'a [f64],
+}
 
-/// The columns [`transform_range`] reads.
+/// The columns [`transform_range`] reads besides the poses, over all bodies.
 struct TransformInputs<'a> {
     ranges: &'a [VertexRange],
     body: &'a [DVec2],
-    poses: &'a [Pose],
     alive: &'a [bool],
     radius: &'a [f64],
 }
 
-/// Transforms bodies `first..last`; `world` starts at body `first`'s first vertex, `boxes` at body `first`.
-fn transform_range(first: usize, last: usize, inputs: &TransformInputs, world: &mut [DVec2], mut boxes: BoxWriter) {
+/// Transforms bodies `first..last`, whose poses are `poses`; `world` starts at body `first`'s first vertex, `boxes`
+/// at body `first`.
+fn transform_range(
+    first: usize,
+    last: usize,
+    inputs: &TransformInputs,
+    poses: &[Pose],
+    world: &mut [DVec2],
+    mut boxes: BoxWriter,
+) {
     let ranges = inputs.ranges;
     let offset = if first < ranges.len() { ranges[first].start as usize } else { 0 };
     for (slot, i) in (first..last).enumerate() {
@@ -444,7 +500,7 @@ fn transform_range(first: usize, last: usize, inputs: &TransformInputs, world: &
         }
         let r = ranges[i].range();
         let local = r.start - offset..r.end - offset;
-        let pose = &inputs.poses[i];
+        let pose = &poses[slot];
         pose.transform_into(&inputs.body[r], &mut world[local.clone()]);
         boxes.set(slot, &body_aabb(&world[local], inputs.radius[i] * pose.scale));
     }

@@ -99,6 +99,25 @@ impl Fluid {
     }
 }
 
+/// The columns gravity reads to weigh the bodies, over all bodies.
+pub(crate) struct WeighedBodies<'a> {
+    pub mass: &'a [f64],
+    pub kind: &'a [BodyKind],
+    pub alive: &'a [bool],
+}
+
+/// Adds its weight m·g to the force of each live particle among bodies `first`, `first + 1`, … whose forces are
+/// `forces`; walls and removed particles feel none. The one definition of gravity's pull, for the gravity pass and for
+/// the force pass that corrects each range of bodies right after (`World::add_forces_and_correct`).
+#[inline]
+pub(crate) fn add_weights(forces: &mut [DVec2], first: usize, bodies: &WeighedBodies, gravity: DVec2) {
+    for (i, force) in (first..).zip(forces) {
+        if bodies.kind[i] == BodyKind::Particle && bodies.alive[i] {
+            *force += bodies.mass[i] * gravity;
+        }
+    }
+}
+
 /// What the fluid sees of particle `i` under `mass_model`: a disk's radius, or a polygon's (or capsule's)
 /// equal-area radius √(area/π).
 fn immersed_body(bodies: &Bodies, i: usize, mass_model: MassModel) -> ImmersedBody {
@@ -137,13 +156,9 @@ impl BodyForce {
         match self {
             BodyForce::Gravity => {
                 let Bodies { force, mass, kind, alive, .. } = bodies;
+                let weighed = WeighedBodies { mass, kind, alive };
                 let pull = |(piece, forces): (usize, &mut [DVec2])| {
-                    let first = piece * GRAVITY_BODIES_PER_TASK;
-                    for (i, force) in (first..).zip(forces) {
-                        if kind[i] == BodyKind::Particle && alive[i] {
-                            *force += mass[i] * step.gravity;
-                        }
-                    }
+                    add_weights(forces, piece * GRAVITY_BODIES_PER_TASK, &weighed, step.gravity);
                 };
                 // One addition per body: the same bits in any order, so parallel where the World is, in pieces large
                 // enough that handing them out costs less than the additions (rayon's finest split made this stage

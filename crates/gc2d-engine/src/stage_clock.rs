@@ -9,7 +9,9 @@ use std::time::{Duration, Instant};
 pub enum Stage {
     /// Integrator's predictor and the moving walls' prescribed poses (parallel over the bodies).
     Predict,
-    /// World vertices and bounding boxes of every body (parallel over the bodies).
+    /// World vertices and bounding boxes of every body (parallel over the bodies). On several threads, without
+    /// moving walls or heating, each range of bodies is also predicted in the same pass, so this stage then holds the
+    /// time of the predictor too.
     Vertices,
     /// Sort-and-sweep update of the pair list and the ended pairs' booking (sequential).
     Broadphase,
@@ -17,7 +19,9 @@ pub enum Stage {
     /// the contact forces added to the bodies.
     Narrowphase,
     /// Contact forces added to the bodies in pair order (parallel over ranges of bodies; on one thread in the
-    /// narrowphase instead), the chunks' sums booked, contact events (sequential).
+    /// narrowphase instead), the chunks' sums booked, contact events (sequential). On several threads, where gravity
+    /// is the only body force and no events are written, each range also adds its weights and is corrected in the
+    /// same pass, so this stage then holds the time of the two next ones too.
     Accumulation,
     /// Gravity, drag springs and fluid drag.
     BodyForces,

@@ -4,10 +4,13 @@
 //! law per pair (parallel, each pair writes only its own record, each fixed chunk of pairs its own sums) →
 //! accumulation in pair order → body forces → correct → walls, g(t), domain and outlet removals, sources and inlets,
 //! s(t) → ledger and safety checks. Stages a scene does not use are skipped by a flag test, so a plain pile pays
-//! nothing for drag springs, moving walls, heating, sources, inlets or outlets.
+//! nothing for drag springs, moving walls, heating, sources, inlets or outlets. On several threads, stages that need
+//! nothing of other bodies in between share a pass over each range of bodies: predict with vertices and boxes where
+//! no wall moves and nothing heats, accumulation with gravity and correct where gravity is the only body force and no
+//! contact events are written.
 
-use crate::bodies::{Bodies, BodyId, BodyKind, KinematicsColumns, travel_bound};
-use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid};
+use crate::bodies::{Bodies, BodyId, BodyKind, ForceColumns, KinematicsColumns, travel_bound};
+use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid, WeighedBodies, add_weights};
 use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingPass};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::clearance::Clearance;
@@ -796,9 +799,13 @@ impl World {
             self.positions_before_step.clear();
             self.positions_before_step.extend(self.bodies.pose.iter().map(|pose| pose.position));
         }
-        self.predict(t_next);
-        self.lap(Stage::Predict);
-        self.bodies.update_world_vertices(self.broadphase.box_writer(self.bodies.len()));
+        if self.predicts_in_transform_pass() {
+            self.predict_and_transform();
+        } else {
+            self.predict(t_next);
+            self.lap(Stage::Predict);
+            self.bodies.update_world_vertices(self.broadphase.box_writer(self.bodies.len()));
+        }
         self.lap(Stage::Vertices);
         if self.stages.sources || self.stages.inlets {
             self.broadphase.update_written_for_queries();
@@ -809,7 +816,16 @@ impl World {
         self.lap(Stage::Broadphase);
         let forces_added = self.evaluate_pairs();
         self.lap(Stage::Narrowphase);
-        self.accumulate_contact_forces(forces_added);
+        // Gravity alone and no events: each range of bodies is corrected in the pass that adds its forces.
+        let corrected_with_forces = forces_added == ForcesAdded::Later
+            && self.events.is_none()
+            && matches!(self.body_forces.as_slice(), [BodyForce::Gravity]);
+        if corrected_with_forces {
+            self.add_forces_and_correct(self.config.gravity.acceleration(t_next));
+        } else if forces_added == ForcesAdded::Later {
+            self.add_contact_forces();
+        }
+        self.book_pair_sums();
         if self.stages.rotors {
             let drive = self.rotor_power();
             self.rotor_work.from_torque += drive.power_from_torque * dt;
@@ -819,9 +835,11 @@ impl World {
             self.log_contact_events(t_next);
         }
         self.lap(Stage::Accumulation);
-        self.apply_body_forces(t_next)?;
-        self.lap(Stage::BodyForces);
-        self.correct();
+        if !corrected_with_forces {
+            self.apply_body_forces(t_next)?;
+            self.lap(Stage::BodyForces);
+            self.correct();
+        }
         self.lap(Stage::Correct);
         if self.stages.moving_walls {
             self.advance_pistons();
@@ -891,22 +909,9 @@ impl World {
     /// Integrator's predict (Gear predictor or Verlet kick and drift) for particles, prescribed poses for moving
     /// walls, s(t) for everyone.
     fn predict(&mut self, t_next: f64) {
-        let gear = &self.integrator;
-        let time_step = *gear.time_step();
+        let integrator = RowIntegrator::of(&self.integrator, self.stages.polygon_particles);
         let (rows, _) = self.bodies.split_for_integration();
-        let track_travel = self.stages.polygon_particles;
-        let predict = |row: KinematicsRow| {
-            if row.kind == BodyKind::Particle && row.alive {
-                let before = *row.pose;
-                gear.predict_body(row.state);
-                sync_kinematics(row.state, &time_step, row.pose, row.velocity, row.angular_velocity);
-                if track_travel {
-                    // The corrector left the move from the last predicted pose to the corrected one.
-                    *row.travel += travel_bound(&before, row.pose, row.reach * before.scale);
-                }
-            }
-        };
-        for_each_kinematics_row(rows, |_, row| predict(row));
+        for_each_kinematics_row(rows, |_, row| integrator.predict(row));
         let b = &mut self.bodies;
         if self.stages.moving_walls {
             for wall in &self.moving_walls {
@@ -933,6 +938,25 @@ impl World {
                 }
             }
         }
+    }
+
+    /// Whether the predictor runs in the vertex transform's pass ([`Self::predict_and_transform`]): where the World
+    /// steps in parallel and has neither moving walls nor heating, whose poses and scales the predictor sets after the
+    /// particles', sequentially.
+    fn predicts_in_transform_pass(&self) -> bool {
+        steps_in_parallel(self.bodies.len()) && !self.stages.moving_walls && !self.stages.heating
+    }
+
+    /// The predictor ([`Self::predict`]) and the vertex transform in one pass: each range of bodies is predicted and
+    /// then transformed on its home thread, which spares a wait for every thread a step (docs/performance.md, "One
+    /// pass for the forces and the corrector"). Each body's pose is predicted before its vertices are computed from
+    /// it, as with two passes, so the bits are the same.
+    fn predict_and_transform(&mut self) {
+        let integrator = RowIntegrator::of(&self.integrator, self.stages.polygon_particles);
+        let boxes = self.broadphase.box_writer(self.bodies.len());
+        self.bodies.move_and_update_world_vertices(boxes, |first, rows| {
+            for_each_row(first, rows, |_, row| integrator.predict(row));
+        });
     }
 
     /// Contacts whose boxes separated in one step may still have held energy: book it as opening residual. Their
@@ -1035,23 +1059,51 @@ impl World {
     }
 
     /// Adds the contact forces to the bodies, each body's in pair order (so independent of the thread count), in
-    /// parallel over ranges of bodies, unless the narrowphase pass added them (`forces_added`, on one thread); then
-    /// books the chunks' sums in chunk order: the contacts' energy terms, the energy they store (kept by the ledger
+    /// parallel over ranges of bodies, where the narrowphase pass did not add them ([`ForcesAdded::Later`]): one range
+    /// per thread, each on its home thread (crate::home_threads), as the narrowphase marked them, so that a range reads
+    /// only the touching pairs that reach it.
+    fn add_contact_forces(&mut self) {
+        let pairs = self.broadphase.pairs();
+        let (ranges, masks) = (&self.body_ranges, &self.range_masks);
+        let per_range = ranges.per_range();
+        let b = &mut self.bodies;
+        let rows = b.force.chunks_mut(per_range).zip(b.torque.chunks_mut(per_range));
+        for_each_on_home_thread(rows, |range, (forces, torques)| {
+            add_contact_forces(pairs, masks, ranges, range, forces, torques);
+        });
+    }
+
+    /// [`Self::add_contact_forces`], gravity ([`BodyForce::Gravity`]) and [`Self::correct`] in one pass: each range
+    /// of bodies adds its contact forces and weights and is corrected on its home thread before the pass ends. For a
+    /// World stepping in parallel whose only body force is gravity and that writes no contact events (which read the
+    /// predicted velocities after the forces): it spares two passes over the bodies, each of which costs a wake-up of
+    /// every thread and a wait for the slowest one (about 20 µs a step on 16 threads, docs/performance.md, "One pass
+    /// for the forces and the corrector"). The same additions in the same order as the three passes, so the same
+    /// results bit for bit.
+    fn add_forces_and_correct(&mut self, gravity: DVec2) {
+        let pairs = self.broadphase.pairs();
+        let (ranges, masks) = (&self.body_ranges, &self.range_masks);
+        let per_range = ranges.per_range();
+        let integrator = RowIntegrator::of(&self.integrator, self.stages.polygon_particles);
+        let (rows, forces) = self.bodies.split_for_integration();
+        let ForceColumns { force, torque, mass, inverse_mass, inverse_inertia } = forces;
+        let weighed = WeighedBodies { mass, kind: rows.kind, alive: rows.alive };
+        let pieces = rows.ranges(per_range).zip(force.chunks_mut(per_range).zip(torque.chunks_mut(per_range)));
+        for_each_on_home_thread(pieces, |range, (mut rows, (forces, torques))| {
+            add_contact_forces(pairs, masks, ranges, range, forces, torques);
+            let first = range * per_range;
+            add_weights(forces, first, &weighed, gravity);
+            for_each_row(first, &mut rows, |i, row| {
+                let k = i - first;
+                integrator.correct(row, forces[k] * inverse_mass[i], torques[k] * inverse_inertia[i]);
+            });
+        });
+    }
+
+    /// Books the chunks' sums in chunk order: the contacts' energy terms, the energy they store (kept by the ledger
     /// until the next step: pairs of particles removed later in this step still hold it, and their ending books it as
     /// opening residual then), the chatter watch and the statistics.
-    fn accumulate_contact_forces(&mut self, forces_added: ForcesAdded) {
-        let pairs = self.broadphase.pairs();
-        let b = &mut self.bodies;
-        if forces_added == ForcesAdded::Later {
-            // One range of bodies per thread, each on its home thread (crate::home_threads), as the narrowphase
-            // marked them: a range reads only the touching pairs that reach it.
-            let (ranges, masks) = (&self.body_ranges, &self.range_masks);
-            let per_range = ranges.per_range();
-            let rows = b.force.chunks_mut(per_range).zip(b.torque.chunks_mut(per_range));
-            for_each_on_home_thread(rows, |range, (forces, torques)| {
-                add_contact_forces(pairs, masks, ranges, range, forces, torques);
-            });
-        }
+    fn book_pair_sums(&mut self) {
         let mut sums = PairSums::default();
         self.pair_sums.iter().for_each(|chunk| sums.add(chunk));
         self.ledger.book_contacts(&sums.energy);
@@ -1088,21 +1140,13 @@ impl World {
 
     /// Integrator's correct (Gear corrector or Verlet's second kick) for particles with a = F/m, α = τ/I.
     fn correct(&mut self) {
-        let gear = &self.integrator;
-        let time_step = *gear.time_step();
-        let (rows, (force, torque, inverse_mass, inverse_inertia)) = self.bodies.split_for_integration();
-        let track_travel = self.stages.polygon_particles;
-        let correct = |i: usize, row: KinematicsRow| {
-            if row.kind == BodyKind::Particle && row.alive {
-                let predicted = *row.pose;
-                gear.correct_body(row.state, force[i] * inverse_mass[i], torque[i] * inverse_inertia[i]);
-                sync_kinematics(row.state, &time_step, row.pose, row.velocity, row.angular_velocity);
-                if track_travel {
-                    *row.travel = travel_bound(&predicted, row.pose, row.reach * predicted.scale);
-                }
-            }
-        };
-        for_each_kinematics_row(rows, correct);
+        let integrator = RowIntegrator::of(&self.integrator, self.stages.polygon_particles);
+        let (rows, forces) = self.bodies.split_for_integration();
+        let ForceColumns { force, torque, inverse_mass, inverse_inertia, .. } = forces;
+        let (force, torque) = (&*force, &*torque);
+        for_each_kinematics_row(rows, |i, row| {
+            integrator.correct(row, force[i] * inverse_mass[i], torque[i] * inverse_inertia[i]);
+        });
     }
 
     /// Force-controlled pistons react to the force the particles exerted on them this step.
@@ -1548,45 +1592,83 @@ struct KinematicsRow<'a> {
     reach: f64,
 }
 
+/// The predictor and corrector of one body, with what every body's prediction and correction read.
+struct RowIntegrator<'a> {
+    integrator: &'a BodyIntegrator,
+    time_step: TimeStep,
+    /// Whether to keep the travel bound (only once the World has a polygon particle).
+    track_travel: bool,
+}
+
+impl<'a> RowIntegrator<'a> {
+    fn of(integrator: &'a BodyIntegrator, track_travel: bool) -> Self {
+        Self { integrator, time_step: *integrator.time_step(), track_travel }
+    }
+
+    /// Predicts `row`'s body, if it is a live particle (Gear predictor, or Verlet's kick and drift), copies its pose
+    /// and velocities out of the state, and adds the move to its travel bound.
+    #[inline]
+    fn predict(&self, row: KinematicsRow) {
+        if row.kind == BodyKind::Particle && row.alive {
+            let before = *row.pose;
+            self.integrator.predict_body(row.state);
+            sync_kinematics(row.state, &self.time_step, row.pose, row.velocity, row.angular_velocity);
+            if self.track_travel {
+                // The corrector left the move from the last predicted pose to the corrected one.
+                *row.travel += travel_bound(&before, row.pose, row.reach * before.scale);
+            }
+        }
+    }
+
+    /// Corrects `row`'s body for acceleration a = F/m and angular acceleration α = τ/I, if it is a live particle
+    /// (Gear corrector or Verlet's second kick), and copies its pose and velocities out of the state.
+    #[inline]
+    fn correct(&self, row: KinematicsRow, acceleration: DVec2, angular_acceleration: f64) {
+        if row.kind == BodyKind::Particle && row.alive {
+            let predicted = *row.pose;
+            self.integrator.correct_body(row.state, acceleration, angular_acceleration);
+            sync_kinematics(row.state, &self.time_step, row.pose, row.velocity, row.angular_velocity);
+            if self.track_travel {
+                *row.travel = travel_bound(&predicted, row.pose, row.reach * predicted.scale);
+            }
+        }
+    }
+}
+
 /// Calls `f(index, row)` for every body: where the World steps in parallel ([`steps_in_parallel`]) each range of
 /// bodies on its home thread ([`for_each_on_home_thread`]), else on the calling thread.
-fn for_each_kinematics_row(columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
-    let rows_from = |first: usize, c: KinematicsColumns| {
-        let n = c.len();
-        let (pose, velocity, angular_velocity, travel) =
-            (&mut c.pose[..n], &mut c.velocity[..n], &mut c.angular_velocity[..n], &mut c.travel[..n]);
-        let (kind, alive, reach) = (&c.kind[..n], &c.alive[..n], &c.reach[..n]);
-        for (i, state) in c.gear.iter_mut().enumerate() {
-            let row = KinematicsRow {
-                state,
-                pose: &mut pose[i],
-                velocity: &mut velocity[i],
-                angular_velocity: &mut angular_velocity[i],
-                travel: &mut travel[i],
-                kind: kind[i],
-                alive: alive[i],
-                reach: reach[i],
-            };
-            f(first + i, row);
-        }
-    };
+fn for_each_kinematics_row(mut columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
     let bodies = columns.len();
     if !steps_in_parallel(bodies) {
-        rows_from(0, columns);
+        for_each_row(0, &mut columns, f);
         return;
     }
     let per_range = BodyRanges::of_pool(bodies).per_range();
-    let mut rest = Some(columns);
-    let ranges = std::iter::from_fn(|| {
-        let columns = rest.take()?;
-        if columns.len() <= per_range {
-            return Some(columns);
-        }
-        let (range, others) = columns.split_at(per_range);
-        rest = Some(others);
-        Some(range)
+    for_each_on_home_thread(columns.ranges(per_range), |range, mut rows| {
+        for_each_row(range * per_range, &mut rows, &f)
     });
-    for_each_on_home_thread(ranges, |range, rows| rows_from(range * per_range, rows));
+}
+
+/// Calls `f(first + k, row)` for the k-th body of `columns`, in order, on the calling thread.
+fn for_each_row(first: usize, columns: &mut KinematicsColumns, f: impl Fn(usize, KinematicsRow)) {
+    let c = columns;
+    let n = c.len();
+    let (pose, velocity, angular_velocity, travel) =
+        (&mut c.pose[..n], &mut c.velocity[..n], &mut c.angular_velocity[..n], &mut c.travel[..n]);
+    let (kind, alive, reach) = (&c.kind[..n], &c.alive[..n], &c.reach[..n]);
+    for (i, state) in c.gear.iter_mut().enumerate() {
+        let row = KinematicsRow {
+            state,
+            pose: &mut pose[i],
+            velocity: &mut velocity[i],
+            angular_velocity: &mut angular_velocity[i],
+            travel: &mut travel[i],
+            kind: kind[i],
+            alive: alive[i],
+            reach: reach[i],
+        };
+        f(first + i, row);
+    }
 }
 
 /// Copies position, angle and velocities out of a particle's Gear state.

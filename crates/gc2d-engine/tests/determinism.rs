@@ -1,12 +1,15 @@
 //! Determinism across thread counts (ARCHITECTURE.md, "Decisions already taken"): the same World stepped inside
 //! rayon pools of 1, 2 and 8 threads ends bitwise identical, positions, velocities and ledger alike; also a strip
 //! wide enough for the broadphase's y axis in bands, and across a checkpoint split. The pool of one thread adds the
-//! contact forces in the narrowphase pass, the others by ranges of bodies afterwards, so they compare the two ways.
+//! contact forces in the narrowphase pass, the others by ranges of bodies afterwards, so they compare the two ways;
+//! and on several threads, the predictor, gravity and the corrector in the passes of the vertex transform and the
+//! forces or in passes of their own.
 
 mod common;
 
 use common::*;
-use gc2d_engine::World;
+use gc2d_engine::schedules::HeatingSchedule;
+use gc2d_engine::{World, WorldConfig};
 use gc2d_geometry::{Aabb, AngleMode, DVec2, Pose, ellipse_polygon};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -27,20 +30,20 @@ const _: () = assert!(COLUMNS * ROWS > 512);
 /// shortcuts"). More than the engine's 512-body threshold for parallel stages, and more than one of the closing
 /// ledger pass's fixed chunks of 512 bodies, whose sums are also added in chunk order.
 fn random_pile() -> World {
-    random_lattice(COLUMNS, ROWS, 0.0)
+    random_lattice(COLUMNS, ROWS, 0.0, None)
 }
 
 /// A strip of the same 1,080 7-gons 540 wide and 2 high (1.8 m by 1 cm): wide enough that the broadphase splits its y
 /// axis into bands (broadphase::bands), and the grains flying at up to 1 m/s change bands during the run. The walls
 /// stand half a lattice spacing further out (a 7-gon's farthest vertex from its centroid can reach past the spacing).
 fn random_strip() -> World {
-    random_lattice(COLUMNS * ROWS / 2, 2, 0.5 * SPACING)
+    random_lattice(COLUMNS * ROWS / 2, 2, 0.5 * SPACING, None)
 }
 
 /// Random 7-gons on a lattice of `columns` by `rows` in a closed box `margin` wider on every side, flying in random
-/// directions.
-fn random_lattice(columns: usize, rows: usize, margin: f64) -> World {
-    let mut world = world(config(2e-6, law(E_THESIS, 0.5, 0.6), G));
+/// directions; heated by `heating` if given.
+fn random_lattice(columns: usize, rows: usize, margin: f64, heating: Option<HeatingSchedule>) -> World {
+    let mut world = world(WorldConfig { heating, ..config(2e-6, law(E_THESIS, 0.5, 0.6), G) });
     let lattice = DVec2::new(columns as f64, rows as f64) * SPACING;
     let inner = Aabb { min: DVec2::splat(-margin), max: lattice + DVec2::splat(margin) };
     add_box(&mut world, inner, 0.01);
@@ -76,6 +79,14 @@ struct RunEnd {
 /// The random pile run inside a rayon pool of `threads` threads.
 fn run_in_pool(threads: usize) -> RunEnd {
     run_scene_in_pool(random_pile, threads, None)
+}
+
+/// The random pile recording contact events, with a heating schedule whose window never opens (gc2d's default): the
+/// grains keep their size, but the predictor and the vertex transform run as passes of their own.
+fn random_pile_in_separate_passes() -> World {
+    let mut world = random_lattice(COLUMNS, ROWS, 0.0, Some(HeatingSchedule::default()));
+    world.record_contact_events();
+    world
 }
 
 /// The World `scene` builds, run for [`STEPS`] steps inside a rayon pool of `threads` threads; with `split_at`, saved
@@ -149,4 +160,18 @@ fn a_strip_in_bands_is_bitwise_identical_on_1_2_and_8_threads_and_across_a_check
         assert_eq!(one.ledger, other.ledger, "{run}: the ledger differs");
         assert_eq!(one.state, other.state, "{run}: the state's checksum differs");
     }
+}
+
+/// On several threads a World with gravity as its only body force adds each range's contact forces and weights and
+/// corrects it in one pass, and predicts each range in the vertex transform's pass; recording contact events (which
+/// read the velocities before the corrector) and a heating schedule (whose scale the predictor sets after the
+/// particles) keep those passes apart. Both end with the same bits.
+#[test]
+fn fused_passes_give_the_bits_of_separate_ones() {
+    let fused = run_in_pool(2);
+    let separate = run_scene_in_pool(random_pile_in_separate_passes, 2, None);
+    assert!(fused.most_contacts > 50, "the run must exercise contacts, saw at most {}", fused.most_contacts);
+    let first_difference = fused.bits.iter().zip(&separate.bits).position(|(a, b)| a != b);
+    assert_eq!(first_difference, None, "particle {:?} differs", first_difference.map(|k| k / 6));
+    assert_eq!(fused.ledger, separate.ledger, "the ledger differs");
 }
