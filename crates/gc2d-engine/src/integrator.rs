@@ -301,7 +301,7 @@ impl Gear6 {
     }
 
     /// Predictor for one body: the Taylor step r(t + Δt) ≈ Σ r_n, i.e. the Pascal-triangle matrix (F.11).
-    #[inline]
+    #[inline(always)]
     pub fn predict_body(&self, state: &mut GearState) {
         predict_scaled(&mut state.linear);
         predict_scaled(&mut state.angular);
@@ -388,7 +388,9 @@ impl BodyIntegrator {
     }
 
     /// Advances one body to t + Δt before the force evaluation (Gear predictor, or Verlet half kick and drift).
-    #[inline]
+    /// Always inlined (with the Gear predictor): it runs in two row loops, the predictor's own pass and the vertex
+    /// transform's, and the optimiser left it out of line for two callers (0.4–0.6 % more instructions a step).
+    #[inline(always)]
     pub fn predict_body(&self, state: &mut GearState) {
         match self {
             BodyIntegrator::Gear6(gear) => gear.predict_body(state),
