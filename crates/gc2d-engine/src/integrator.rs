@@ -389,7 +389,7 @@ impl BodyIntegrator {
 
     /// Advances one body to t + Δt before the force evaluation (Gear predictor, or Verlet half kick and drift).
     /// Always inlined (with the Gear predictor): it runs in two row loops, the predictor's own pass and the vertex
-    /// transform's, and the optimiser left it out of line for two callers (0.4–0.6 % more instructions a step).
+    /// transform's, and the optimiser left it out of line for two callers (0.5–0.7 % more instructions a step).
     #[inline(always)]
     pub fn predict_body(&self, state: &mut GearState) {
         match self {
