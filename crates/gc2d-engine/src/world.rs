@@ -1640,7 +1640,8 @@ impl<'a> RowIntegrator<'a> {
 fn for_each_kinematics_row(mut columns: KinematicsColumns, f: impl Fn(usize, KinematicsRow) + Sync + Send) {
     let bodies = columns.len();
     // `&f` on both paths: one copy of the row loop, into which the optimiser inlines `f` (with `f` on this path and
-    // `&f` on the other, `f` was called out of line from two loops, about 75 instructions a particle-step more; callgrind).
+    // `&f` on the other, `f` was called out of line from two loops, about 75 instructions a particle-step more;
+    // callgrind).
     if !steps_in_parallel(bodies) {
         for_each_row(0, &mut columns, &f);
         return;
