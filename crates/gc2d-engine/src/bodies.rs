@@ -310,7 +310,7 @@ impl Bodies {
     /// Axis-aligned box around body `i`'s world vertices (grown by its scaled radius), computed from them: the
     /// bodies keep no box column, the broadphase keeps the boxes it sorts (`Bodies::update_world_vertices`).
     pub fn aabb(&self, i: usize) -> Aabb {
-        body_aabb(&self.world_vertices[self.vertices[i].range()], self.radius[i] * self.pose[i].scale)
+        body_aabb(Aabb::of_points(&self.world_vertices[self.vertices[i].range()]), self.radius[i] * self.pose[i].scale)
     }
 
     /// Recomputes the world vertices of every living body from its pose, and writes its box through `boxes` (the
@@ -375,12 +375,11 @@ impl Bodies {
     }
 }
 
-/// The box around a body's world points `points`, grown by its scaled radius (disks, capsules, inner circles; a
-/// polygon's radius is 0 and its box is the points' own).
+/// A body's box from `tight`, the box of its world points, grown by its scaled radius (disks, capsules, inner circles;
+/// a polygon's radius is 0 and its box is the points' own).
 #[inline]
-fn body_aabb(points: &[DVec2], scaled_radius: f64) -> Aabb {
-    let aabb = Aabb::of_points(points);
-    if scaled_radius > 0.0 { aabb.expanded(scaled_radius) } else { aabb }
+fn body_aabb(tight: Aabb, scaled_radius: f64) -> Aabb {
+    if scaled_radius > 0.0 { tight.expanded(scaled_radius) } else { tight }
 }
 
 /// An upper bound on how far any point of a body reaching `reach` (m, at its scale) from its centroid moves from pose
@@ -501,7 +500,7 @@ fn transform_range(
         let r = ranges[i].range();
         let local = r.start - offset..r.end - offset;
         let pose = &poses[slot];
-        pose.transform_into(&inputs.body[r], &mut world[local.clone()]);
-        boxes.set(slot, &body_aabb(&world[local], inputs.radius[i] * pose.scale));
+        let tight = pose.transform_into(&inputs.body[r], &mut world[local]);
+        boxes.set(slot, &body_aabb(tight, inputs.radius[i] * pose.scale));
     }
 }

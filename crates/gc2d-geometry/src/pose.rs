@@ -36,13 +36,18 @@ impl Pose {
         self.scaled_rotation().rotate(body_point) + self.position
     }
 
-    /// Writes the world positions of `body` into `world` (equal lengths), computing the rotation once.
-    pub fn transform_into(&self, body: &[DVec2], world: &mut [DVec2]) {
+    /// Writes the world positions of `body` into `world` (equal lengths), computing the rotation once, and returns
+    /// their tight box ([`Aabb::of_points`] of `world`), found in the same loop so that a caller who needs the box
+    /// does not read the points again.
+    pub fn transform_into(&self, body: &[DVec2], world: &mut [DVec2]) -> Aabb {
         debug_assert_eq!(body.len(), world.len());
         let rotation = self.scaled_rotation();
+        let mut tight = Aabb::EMPTY;
         for (w, &b) in world.iter_mut().zip(body) {
             *w = rotation.rotate(b) + self.position;
+            tight = tight.including(*w);
         }
+        tight
     }
 }
 
@@ -56,15 +61,18 @@ pub struct Aabb {
 }
 
 impl Aabb {
-    /// The tight box around `points`; an empty slice gives an inverted box that overlaps nothing.
+    /// The inverted box that holds no point and overlaps nothing: where [`Self::including`] starts.
+    pub const EMPTY: Self = Self { min: DVec2::splat(f64::INFINITY), max: DVec2::splat(f64::NEG_INFINITY) };
+
+    /// The tight box around `points`; an empty slice gives [`Self::EMPTY`].
     pub fn of_points(points: &[DVec2]) -> Self {
-        let mut min = DVec2::splat(f64::INFINITY);
-        let mut max = DVec2::splat(f64::NEG_INFINITY);
-        for &p in points {
-            min = min.min(p);
-            max = max.max(p);
-        }
-        Self { min, max }
+        points.iter().fold(Self::EMPTY, |tight, &p| tight.including(p))
+    }
+
+    /// The smallest box that holds this one and `point`.
+    #[inline]
+    pub fn including(&self, point: DVec2) -> Self {
+        Self { min: self.min.min(point), max: self.max.max(point) }
     }
 
     /// The box grown by `margin` on every side.
@@ -95,8 +103,10 @@ mod tests {
     fn scale_multiplies_body_coordinates() {
         let pose = Pose { position: DVec2::ZERO, angle: 0.0, scale: 1.5 };
         let mut out = [DVec2::ZERO; 2];
-        pose.transform_into(&[DVec2::new(1.0, 0.0), DVec2::new(0.0, -2.0)], &mut out);
+        let tight = pose.transform_into(&[DVec2::new(1.0, 0.0), DVec2::new(0.0, -2.0)], &mut out);
         assert_eq!(out, [DVec2::new(1.5, 0.0), DVec2::new(0.0, -3.0)]);
+        assert_eq!(tight, Aabb::of_points(&out));
+        assert_eq!(tight, Aabb { min: DVec2::new(0.0, -3.0), max: DVec2::new(1.5, 0.0) });
     }
 
     #[test]
