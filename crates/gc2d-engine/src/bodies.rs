@@ -261,8 +261,14 @@ impl Bodies {
     /// The columns the integrator writes (state, pose, velocities; with kind and liveness to read) and, beside them,
     /// the force columns and what the corrector reads with them, borrowed apart so both can be used at once.
     pub(crate) fn split_for_integration(&mut self) -> (KinematicsColumns<'_>, ForceColumns<'_>) {
-        (
-            KinematicsColumns {
+        let StepColumns { kinematics, forces, .. } = self.split_for_step();
+        (kinematics, forces)
+    }
+
+    /// Every column the passes of a step over the bodies write or read, borrowed apart.
+    fn split_for_step(&mut self) -> StepColumns<'_> {
+        StepColumns {
+            kinematics: KinematicsColumns {
                 gear: &mut self.gear,
                 pose: &mut self.pose,
                 velocity: &mut self.velocity,
@@ -272,14 +278,21 @@ impl Bodies {
                 alive: &self.alive,
                 reach: &self.reach,
             },
-            ForceColumns {
+            forces: ForceColumns {
                 force: &mut self.force,
                 torque: &mut self.torque,
                 mass: &self.mass,
                 inverse_mass: &self.inverse_mass,
                 inverse_inertia: &self.inverse_inertia,
             },
-        )
+            transform: TransformInputs {
+                ranges: &self.vertices,
+                body: &self.body_vertices,
+                alive: &self.alive,
+                radius: &self.radius,
+            },
+            world_vertices: &mut self.world_vertices,
+        }
     }
 
     /// Area of body `i` at its current scale for overlap fractions: a particle's area, infinite for a wall (an overlap
@@ -331,31 +344,16 @@ impl Bodies {
     ) {
         let count = self.len();
         debug_assert_eq!(boxes.len(), count, "the box writer covers every body slot");
-        let inputs = TransformInputs {
-            ranges: &self.vertices,
-            body: &self.body_vertices,
-            alive: &self.alive,
-            radius: &self.radius,
-        };
-        let mut columns = KinematicsColumns {
-            gear: &mut self.gear,
-            pose: &mut self.pose,
-            velocity: &mut self.velocity,
-            angular_velocity: &mut self.angular_velocity,
-            travel: &mut self.travel,
-            kind: &self.kind,
-            alive: &self.alive,
-            reach: &self.reach,
-        };
+        let StepColumns { kinematics: mut columns, transform: inputs, world_vertices, .. } = self.split_for_step();
         if !steps_in_parallel(count) {
             move_range(0, &mut columns);
-            transform_range(0, count, &inputs, columns.pose, &mut self.world_vertices, boxes);
+            transform_range(0, count, &inputs, columns.pose, world_vertices, boxes);
             return;
         }
         let per_range = BodyRanges::of_pool(count).per_range();
-        let vertex_count = self.world_vertices.len();
+        let vertex_count = world_vertices.len();
         let first_vertex = |body: usize| inputs.ranges.get(body).map_or(vertex_count, |range| range.start as usize);
-        let (mut world, mut boxes) = (&mut self.world_vertices[..], Some(boxes));
+        let (mut world, mut boxes) = (world_vertices, Some(boxes));
         let mut first = 0;
         let ranges = columns.ranges(per_range).map_while(|rows| {
             let remaining_boxes = boxes.take()?;
@@ -471,6 +469,14 @@ pub(crate) struct ForceColumns<'a> {
     pub mass: &'a [f64],
     pub inverse_mass: &'a [f64],
     pub inverse_inertia: &'a [f64],
+}
+
+/// Every column the passes of a step over the bodies write or read, borrowed apart ([`Bodies::split_for_step`]).
+struct StepColumns<'a> {
+    kinematics: KinematicsColumns<'a>,
+    forces: ForceColumns<'a>,
+    transform: TransformInputs<'a>,
+    world_vertices: &'a mut [DVec2],
 }
 
 /// The columns [`transform_range`] reads besides the poses, over all bodies.
