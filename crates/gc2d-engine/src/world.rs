@@ -1515,7 +1515,9 @@ fn evaluate_chunk(
     *sums = PairSums::default();
     for (position, pair) in chunk.iter_mut().enumerate() {
         let evaluation = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
-        let overlap_fraction = context.overlap_fraction(pair.a(), pair.b(), &pair.payload);
+        // Only a touching pair has an overlap (and only a touching pair's counts in the sums).
+        let overlap_fraction =
+            if pair.payload.touching { context.overlap_fraction(pair.a(), pair.b(), &pair.payload) } else { 0.0 };
         sums.add_pair(&pair.payload, &evaluation, overlap_fraction);
         if pair.payload.touching {
             touching(position, pair);
