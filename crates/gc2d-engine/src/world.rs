@@ -823,7 +823,7 @@ impl World {
         if corrected_with_forces {
             self.add_forces_and_correct(self.config.gravity.acceleration(t_next));
         } else if forces_added == ForcesAdded::Later {
-            self.add_contact_forces();
+            self.accumulate_contact_forces();
         }
         self.book_pair_sums();
         if self.stages.rotors {
@@ -1062,7 +1062,7 @@ impl World {
     /// parallel over ranges of bodies, where the narrowphase pass did not add them ([`ForcesAdded::Later`]): one range
     /// per thread, each on its home thread (crate::home_threads), as the narrowphase marked them, so that a range reads
     /// only the touching pairs that reach it.
-    fn add_contact_forces(&mut self) {
+    fn accumulate_contact_forces(&mut self) {
         let pairs = self.broadphase.pairs();
         let (ranges, masks) = (&self.body_ranges, &self.range_masks);
         let per_range = ranges.per_range();
@@ -1073,11 +1073,11 @@ impl World {
         });
     }
 
-    /// [`Self::add_contact_forces`], gravity ([`BodyForce::Gravity`]) and [`Self::correct`] in one pass: each range
-    /// of bodies adds its contact forces and weights and is corrected on its home thread before the pass ends. For a
-    /// World stepping in parallel whose only body force is gravity and that writes no contact events (which read the
-    /// predicted velocities after the forces): it spares two passes over the bodies, each of which costs a wake-up of
-    /// every thread and a wait for the slowest one (about 20 µs a step on 16 threads, docs/performance.md, "One pass
+    /// [`Self::accumulate_contact_forces`], gravity ([`BodyForce::Gravity`]) and [`Self::correct`] in one pass: each
+    /// range of bodies adds its contact forces and weights and is corrected on its home thread before the pass ends.
+    /// For a World stepping in parallel whose only body force is gravity and that writes no contact events (which read
+    /// the predicted velocities after the forces): it spares two passes over the bodies, each of which costs a wake-up
+    /// of every thread and a wait for the slowest one (about 20 µs a step on 16 threads, docs/performance.md, "One pass
     /// for the forces and the corrector"). The same additions in the same order as the three passes, so the same
     /// results bit for bit.
     fn add_forces_and_correct(&mut self, gravity: DVec2) {
