@@ -259,10 +259,11 @@ impl Bodies {
     }
 
     /// The columns the integrator writes (state, pose, velocities; with kind and liveness to read) and, beside them,
-    /// the force columns and what the corrector reads with them, borrowed apart so both can be used at once.
-    pub(crate) fn split_for_integration(&mut self) -> (KinematicsColumns<'_>, ForceColumns<'_>) {
-        let StepColumns { kinematics, forces, .. } = self.split_for_step();
-        (kinematics, forces)
+    /// the force columns and what the corrector and the closing pass read with them, borrowed apart so all can be
+    /// used at once.
+    pub(crate) fn split_for_integration(&mut self) -> IntegrationColumns<'_> {
+        let StepColumns { kinematics, forces, inscribed_radius, .. } = self.split_for_step();
+        IntegrationColumns { kinematics, forces, inscribed_radius }
     }
 
     /// Every column the passes of a step over the bodies write or read, borrowed apart.
@@ -292,6 +293,7 @@ impl Bodies {
                 radius: &self.radius,
             },
             world_vertices: &mut self.world_vertices,
+            inscribed_radius: &self.inscribed_radius,
         }
     }
 
@@ -471,12 +473,22 @@ pub(crate) struct ForceColumns<'a> {
     pub inverse_inertia: &'a [f64],
 }
 
+/// The columns of [`Bodies::split_for_integration`]: the kinematics, the forces, and the inscribed radii that the
+/// closing pass's travel check reads where it runs in the corrector's pass.
+pub(crate) struct IntegrationColumns<'a> {
+    pub kinematics: KinematicsColumns<'a>,
+    pub forces: ForceColumns<'a>,
+    /// Each body's inscribed radius at scale 1, m.
+    pub inscribed_radius: &'a [f64],
+}
+
 /// Every column the passes of a step over the bodies write or read, borrowed apart ([`Bodies::split_for_step`]).
 struct StepColumns<'a> {
     kinematics: KinematicsColumns<'a>,
     forces: ForceColumns<'a>,
     transform: TransformInputs<'a>,
     world_vertices: &'a mut [DVec2],
+    inscribed_radius: &'a [f64],
 }
 
 /// The columns [`transform_range`] reads besides the poses, over all bodies.

@@ -8,6 +8,7 @@
 //! what limits more threads (docs/performance.md, "Two threads and the trip of a cache line"), so a range reads no
 //! record it has no use for, not even to find out that it has none.
 
+use crate::body_sums::BODIES_PER_CHUNK;
 use crate::broadphase::PairEntry;
 use crate::narrowphase::PairContact;
 use crate::pair_sums::PAIRS_PER_CHUNK;
@@ -26,8 +27,7 @@ pub(crate) struct BodyRanges {
     /// and range length from 2 (Lemire, Kaser and Kurz 2019, "Faster remainder by direct computation"), a
     /// multiplication instead of a division for each touching pair.
     reciprocal: u64,
-    /// Ranges there can be: the threads. The last ones hold no body where there are fewer than twice as many bodies
-    /// as threads.
+    /// Ranges there can be: the threads. The last ones hold no body where the bodies fill fewer ranges.
     pub count: usize,
 }
 
@@ -39,11 +39,12 @@ impl Default for BodyRanges {
 }
 
 impl BodyRanges {
-    /// `bodies` cut into `threads` ranges, of at least 2 bodies each (the reciprocal needs it; a World of fewer than
-    /// twice as many bodies as threads leaves the last ranges empty).
+    /// `bodies` cut into `threads` ranges of whole chunks of the closing pass ([`BODIES_PER_CHUNK`]), so that each
+    /// range can sum its own chunks after its correction; a World of fewer bodies than `BODIES_PER_CHUNK` times the
+    /// threads leaves the last ranges empty.
     pub fn new(bodies: usize, threads: usize) -> Self {
-        let per_range = u32::try_from(bodies.div_ceil(threads).max(2)).expect("body ids are u32");
-        Self::with_per_range(per_range, threads)
+        let per_range = bodies.div_ceil(threads).next_multiple_of(BODIES_PER_CHUNK).max(BODIES_PER_CHUNK);
+        Self::with_per_range(u32::try_from(per_range).expect("body ids are u32"), threads)
     }
 
     /// `count` ranges of `per_range` bodies, at least 2.
@@ -169,8 +170,12 @@ mod tests {
             expected_torque[a] += c.torque_on_a;
             expected_torque[b] += c.torque_on_b;
         }
-        for threads in [1, 2, 7, 16, 3000, 4000] {
-            let ranges = BodyRanges::new(bodies, threads);
+        let by_threads = [1, 2, 7, 16].map(|threads| BodyRanges::new(bodies, threads));
+        // Ranges shorter than a chunk of the closing pass, down to the reciprocal's least, as `new` makes none.
+        let short =
+            [(2, 1500), (3, 1000), (31, 97)].map(|(per_range, count)| BodyRanges::with_per_range(per_range, count));
+        for ranges in by_threads.into_iter().chain(short) {
+            let threads = ranges.count;
             let masks = marks(&pairs, &ranges);
             let mut force = vec![DVec2::splat(f64::NAN); bodies];
             let mut torque = vec![f64::NAN; bodies];
@@ -213,6 +218,18 @@ mod tests {
         }
     }
 
+    /// The ranges start at whole chunks of the closing pass and share the bodies out to within a chunk.
+    #[test]
+    fn ranges_are_whole_chunks_of_the_closing_pass_and_nearly_equal() {
+        for (bodies, threads) in [(512, 2), (804, 2), (10_003, 16), (12_803, 16), (100_000, 16), (40, 16), (1, 1)] {
+            let ranges = BodyRanges::new(bodies, threads);
+            let what = format!("{bodies} bodies on {threads} threads");
+            assert_eq!(ranges.per_range() % BODIES_PER_CHUNK, 0, "{what}");
+            assert!(ranges.per_range() * threads >= bodies, "{what}: every body in a range");
+            assert!(ranges.per_range() < bodies.div_ceil(threads) + BODIES_PER_CHUNK, "{what}");
+        }
+    }
+
     /// A range's mask holds exactly the chunk's touching pairs with a body in the range.
     #[test]
     fn a_range_is_marked_for_exactly_the_touching_pairs_that_reach_it() {
@@ -223,8 +240,7 @@ mod tests {
             PairEntry::for_test(12, 13, touching),
             PairEntry::for_test(3, 31, touching),
         ];
-        let ranges = BodyRanges::new(32, 3);
-        assert_eq!((ranges.per_range(), ranges.count), (11, 3));
+        let ranges = BodyRanges::with_per_range(11, 3);
         assert_eq!(marks(&chunk, &ranges), [0b1001, 0b0100, 0b1000]);
     }
 }

@@ -490,8 +490,14 @@ pub fn deepest_initial_overlap(bodies: &Bodies, tolerance: f64) -> Option<(BodyI
 /// The largest distance a point of particle `i` travels in a step of `dt` at its current velocities,
 /// (|v| + |ω|·R)·Δt with R the distance of its farthest point from the centroid (at the current scale).
 pub fn step_travel(bodies: &Bodies, i: usize, dt: f64) -> f64 {
-    let reach = bodies.reach[i] * bodies.pose[i].scale;
-    (bodies.velocity[i].length() + bodies.angular_velocity[i].abs() * reach) * dt
+    travel_in_step(bodies.velocity[i], bodies.angular_velocity[i], bodies.reach[i] * bodies.pose[i].scale, dt)
+}
+
+/// (|v| + |ω|·R)·Δt: the largest distance a point at most `reach` R (m) from the centroid of a body moving at
+/// `velocity` v and `angular_velocity` ω travels in a step of `dt`.
+#[inline]
+pub(crate) fn travel_in_step(velocity: DVec2, angular_velocity: f64, reach: f64, dt: f64) -> f64 {
+    (velocity.length() + angular_velocity.abs() * reach) * dt
 }
 
 /// The time step to suggest after a blow-up: a quarter of the current one, and never above the stable bound.

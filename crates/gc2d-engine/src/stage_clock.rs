@@ -21,15 +21,17 @@ pub enum Stage {
     /// Contact forces added to the bodies in pair order (parallel over ranges of bodies; on one thread in the
     /// narrowphase instead), the chunks' sums booked, contact events (sequential). On several threads, where gravity
     /// is the only body force and no events are written, each range also adds its weights and is corrected in the
-    /// same pass, so this stage then holds the time of the two next ones too.
+    /// same pass (and sums its chunks of the closing pass), so this stage then holds the time of the two next ones too.
     Accumulation,
     /// Gravity, drag springs and fluid drag.
     BodyForces,
-    /// Integrator's corrector (parallel over the bodies).
+    /// Integrator's corrector (parallel over the bodies); where no particle is removed or added after it, each range
+    /// of bodies also sums its chunks of the closing pass here.
     Correct,
     /// Pistons, gravity changes, outlets, the domain, sources and inlets.
     Boundaries,
-    /// The ledger's kinetic and potential energies, the finiteness, overlap, travel and energy checks.
+    /// The ledger's kinetic and potential energies (summed here where the corrector's pass did not sum them), the
+    /// finiteness, overlap, travel and energy checks.
     LedgerAndChecks,
 }
 

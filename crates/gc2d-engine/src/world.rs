@@ -7,11 +7,12 @@
 //! nothing for drag springs, moving walls, heating, sources, inlets or outlets. On several threads, stages that need
 //! nothing of other bodies in between share a pass over each range of bodies: predict with vertices and boxes where
 //! no wall moves and nothing heats, accumulation with gravity and correct where gravity is the only body force and no
-//! contact events are written.
+//! contact events are written. On any thread count, the ledger's kinetic and potential sums are taken in the
+//! corrector's pass where no particle is removed or added after it.
 
-use crate::bodies::{Bodies, BodyId, BodyKind, ForceColumns, KinematicsColumns, travel_bound};
+use crate::bodies::{Bodies, BodyId, BodyKind, ForceColumns, IntegrationColumns, KinematicsColumns, travel_bound};
 use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid, WeighedBodies, add_weights};
-use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingPass};
+use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingColumns, ClosingPass};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::clearance::Clearance;
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
@@ -816,12 +817,13 @@ impl World {
         self.lap(Stage::Broadphase);
         let forces_added = self.evaluate_pairs();
         self.lap(Stage::Narrowphase);
+        let closing_with_corrector = self.closing_pass_with_corrector(t_next);
         // Gravity alone and no events: each range of bodies is corrected in the pass that adds its forces.
         let corrected_with_forces = forces_added == ForcesAdded::Later
             && self.events.is_none()
             && matches!(self.body_forces.as_slice(), [BodyForce::Gravity]);
         if corrected_with_forces {
-            self.add_forces_and_correct(self.config.gravity.acceleration(t_next));
+            self.add_forces_and_correct(self.config.gravity.acceleration(t_next), closing_with_corrector.as_ref());
         } else if forces_added == ForcesAdded::Later {
             self.accumulate_contact_forces();
         }
@@ -838,7 +840,7 @@ impl World {
         if !corrected_with_forces {
             self.apply_body_forces(t_next)?;
             self.lap(Stage::BodyForces);
-            self.correct();
+            self.correct(closing_with_corrector.as_ref());
         }
         self.lap(Stage::Correct);
         if self.stages.moving_walls {
@@ -863,7 +865,8 @@ impl World {
             self.run_inlets()?;
         }
         self.lap(Stage::Boundaries);
-        let closing = self.refresh_stored_energies();
+        let closing =
+            if closing_with_corrector.is_some() { self.book_stored_energies() } else { self.refresh_stored_energies() };
         let checked = self.check_blow_up(&closing);
         self.lap(Stage::LedgerAndChecks);
         if let Some(clock) = &mut self.stage_clock {
@@ -910,7 +913,7 @@ impl World {
     /// walls, s(t) for everyone.
     fn predict(&mut self, t_next: f64) {
         let integrator = RowIntegrator::of(&self.integrator, self.stages.polygon_particles);
-        let (rows, _) = self.bodies.split_for_integration();
+        let rows = self.bodies.split_for_integration().kinematics;
         for_each_kinematics_row(rows, |_, row| integrator.predict(row));
         let b = &mut self.bodies;
         if self.stages.moving_walls {
@@ -1074,22 +1077,25 @@ impl World {
     }
 
     /// [`Self::accumulate_contact_forces`], gravity ([`BodyForce::Gravity`]) and [`Self::correct`] in one pass: each
-    /// range of bodies adds its contact forces and weights and is corrected on its home thread before the pass ends.
+    /// range of bodies adds its contact forces and weights and is corrected on its home thread before the pass ends
+    /// (and, with `closing`, sums its chunks of the closing pass, as in [`Self::correct`]).
     /// For a World stepping in parallel whose only body force is gravity and that writes no contact events (which read
     /// the predicted velocities after the forces): it spares two passes over the bodies, each of which costs a wake-up
     /// of every thread and a wait for the slowest one (about 20 µs a step on 16 threads, docs/performance.md, "One pass
     /// for the forces and the corrector"). The same additions in the same order as the three passes, so the same
     /// results bit for bit.
-    fn add_forces_and_correct(&mut self, gravity: DVec2) {
+    fn add_forces_and_correct(&mut self, gravity: DVec2, closing: Option<&ClosingPass>) {
         let pairs = self.broadphase.pairs();
         let (ranges, masks) = (&self.body_ranges, &self.range_masks);
         let per_range = ranges.per_range();
         let integrator = RowIntegrator::of(&self.integrator, self.stages.polygon_particles);
-        let (rows, forces) = self.bodies.split_for_integration();
+        let IntegrationColumns { kinematics: rows, forces, inscribed_radius } = self.bodies.split_for_integration();
         let ForceColumns { force, torque, mass, inverse_mass, inverse_inertia } = forces;
         let weighed = WeighedBodies { mass, kind: rows.kind, alive: rows.alive };
-        let pieces = rows.ranges(per_range).zip(force.chunks_mut(per_range).zip(torque.chunks_mut(per_range)));
-        for_each_on_home_thread(pieces, |range, (mut rows, (forces, torques))| {
+        let range_forces = force.chunks_mut(per_range).zip(torque.chunks_mut(per_range));
+        let range_sums = self.body_sums.chunks_mut(per_range / BODIES_PER_CHUNK);
+        let pieces = rows.ranges(per_range).zip(range_forces).zip(range_sums);
+        for_each_on_home_thread(pieces, |range, ((mut rows, (forces, torques)), sums)| {
             add_contact_forces(pairs, masks, ranges, range, forces, torques);
             let first = range * per_range;
             add_weights(forces, first, &weighed, gravity);
@@ -1097,6 +1103,10 @@ impl World {
                 let k = i - first;
                 integrator.correct(row, forces[k] * inverse_mass[i], torques[k] * inverse_inertia[i]);
             });
+            if let Some(pass) = closing {
+                let columns = ClosingColumns::of_rows(&rows, first, mass, inverse_inertia, inscribed_radius);
+                pass.sum_chunks(&columns, first, sums);
+            }
         });
     }
 
@@ -1138,15 +1148,33 @@ impl World {
         Ok(())
     }
 
-    /// Integrator's correct (Gear corrector or Verlet's second kick) for particles with a = F/m, α = τ/I.
-    fn correct(&mut self) {
+    /// Integrator's correct (Gear corrector or Verlet's second kick) for particles with a = F/m, α = τ/I; with
+    /// `closing`, each range of bodies then sums its chunks of the closing pass ([`Self::closing_pass_with_corrector`]).
+    fn correct(&mut self, closing: Option<&ClosingPass>) {
         let integrator = RowIntegrator::of(&self.integrator, self.stages.polygon_particles);
-        let (rows, forces) = self.bodies.split_for_integration();
-        let ForceColumns { force, torque, inverse_mass, inverse_inertia, .. } = forces;
+        let IntegrationColumns { kinematics: mut rows, forces, inscribed_radius } = self.bodies.split_for_integration();
+        let ForceColumns { force, torque, mass, inverse_mass, inverse_inertia } = forces;
         let (force, torque) = (&*force, &*torque);
-        for_each_kinematics_row(rows, |i, row| {
-            integrator.correct(row, force[i] * inverse_mass[i], torque[i] * inverse_inertia[i]);
-        });
+        let correct_range = |first: usize, rows: &mut KinematicsColumns, sums: &mut [BodySums]| {
+            for_each_row(first, rows, |i, row| {
+                integrator.correct(row, force[i] * inverse_mass[i], torque[i] * inverse_inertia[i]);
+            });
+            if let Some(pass) = closing {
+                pass.sum_chunks(
+                    &ClosingColumns::of_rows(rows, first, mass, inverse_inertia, inscribed_radius),
+                    first,
+                    sums,
+                );
+            }
+        };
+        let bodies = rows.len();
+        if !steps_in_parallel(bodies) {
+            correct_range(0, &mut rows, &mut self.body_sums);
+            return;
+        }
+        let per_range = BodyRanges::of_pool(bodies).per_range();
+        let pieces = rows.ranges(per_range).zip(self.body_sums.chunks_mut(per_range / BODIES_PER_CHUNK));
+        for_each_on_home_thread(pieces, |range, (mut rows, sums)| correct_range(range * per_range, &mut rows, sums));
     }
 
     /// Force-controlled pistons react to the force the particles exerted on them this step.
@@ -1354,19 +1382,43 @@ impl World {
     /// [`state_is_finite`] and every particle the travel limit; returns what the checks found. The contact energy is
     /// summed where the pairs are visited anyway, in [`Self::evaluate_pairs`].
     fn refresh_stored_energies(&mut self) -> BodySums {
-        let pass = ClosingPass {
-            gravity: self.config.gravity.magnitude(self.time),
-            dt: self.config.time_step,
-            max_travel_fraction: self.config.safety.max_travel_fraction,
-        };
-        let b = &self.bodies;
-        self.body_sums.resize(b.len().div_ceil(BODIES_PER_CHUNK), BodySums::default());
-        let sum_chunk = |(k, sums): (usize, &mut BodySums)| *sums = pass.chunk(b, k * BODIES_PER_CHUNK);
-        if steps_in_parallel(b.len()) {
+        let pass = self.closing_pass(self.time);
+        let columns = ClosingColumns::of_bodies(&self.bodies);
+        self.body_sums.resize(self.bodies.len().div_ceil(BODIES_PER_CHUNK), BodySums::default());
+        let sum_chunk = |(k, sums): (usize, &mut BodySums)| *sums = pass.chunk(&columns, k * BODIES_PER_CHUNK, 0);
+        if steps_in_parallel(self.bodies.len()) {
             self.body_sums.par_iter_mut().enumerate().for_each(sum_chunk);
         } else {
             self.body_sums.iter_mut().enumerate().for_each(sum_chunk);
         }
+        self.book_stored_energies()
+    }
+
+    /// The closing pass of the step that ends at `time`.
+    fn closing_pass(&self, time: f64) -> ClosingPass {
+        ClosingPass {
+            gravity: self.config.gravity.magnitude(time),
+            dt: self.config.time_step,
+            max_travel_fraction: self.config.safety.max_travel_fraction,
+        }
+    }
+
+    /// The closing pass of the step that ends at `t_next`, to be summed by the corrector's pass as each range of bodies
+    /// is corrected ([`Self::correct`], [`Self::add_forces_and_correct`]), where nothing after the corrector changes
+    /// what it reads: no particle is removed (outlets, the domain) or added (sources, inlets). The same chunks of the
+    /// same bodies in the same state, so the same sums bit for bit as the pass of its own, without another pass over
+    /// the bodies (on many threads, another wake-up of every thread and wait for the slowest: docs/performance.md, "The
+    /// closing sums in the corrector's pass"). Sizes the chunk sums for the bodies either way.
+    fn closing_pass_with_corrector(&mut self, t_next: f64) -> Option<ClosingPass> {
+        self.body_sums.resize(self.bodies.len().div_ceil(BODIES_PER_CHUNK), BodySums::default());
+        let s = &self.stages;
+        (!(s.outlets || s.domain || s.sources || s.inlets)).then(|| self.closing_pass(t_next))
+    }
+
+    /// Books the chunks' sums of the closing pass, in chunk order, as the ledger's kinetic and potential energies,
+    /// with the drag springs' stored energy; returns the sums of all chunks.
+    fn book_stored_energies(&mut self) -> BodySums {
+        let b = &self.bodies;
         let mut all = BodySums::default();
         self.body_sums.iter().for_each(|chunk| all.add(chunk));
         let drag_stored: f64 = self.body_forces.iter().map(|f| f.stored_energy(b, self.time)).sum();

@@ -3,7 +3,7 @@
 //! wide enough for the broadphase's y axis in bands, and across a checkpoint split. The pool of one thread adds the
 //! contact forces in the narrowphase pass, the others by ranges of bodies afterwards, so they compare the two ways;
 //! and on several threads, the predictor, gravity and the corrector in the passes of the vertex transform and the
-//! forces or in passes of their own.
+//! forces or in passes of their own; and the closing pass's sums in the corrector's pass or in a pass of their own.
 
 mod common;
 
@@ -21,29 +21,35 @@ const RADIUS: f64 = 1.5e-3;
 /// Lattice spacing: two largest radii plus 0.1 mm, so nothing overlaps at the start.
 const SPACING: f64 = 2.0 * 1.1 * RADIUS + 1e-4;
 const STEPS: usize = 3000;
-// The closing ledger pass must have more than one of its chunks of 512 bodies.
+// The engine's threshold for parallel stages.
 const _: () = assert!(COLUMNS * ROWS > 512);
 
 /// 1,080 random RAND1 7-gons on a lattice in a closed box, flying in random directions at up to 1 m/s, so that
 /// about 160 contacts are active by the end of the 6 ms run and the pair list holds more than eight of the
 /// narrowphase's chunks of 64 pairs, whose sums are added in chunk order (docs/model.md, "Narrowphase and ledger
-/// shortcuts"). More than the engine's 512-body threshold for parallel stages, and more than one of the closing
-/// ledger pass's fixed chunks of 512 bodies, whose sums are also added in chunk order.
+/// shortcuts"). More than the engine's 512-body threshold for parallel stages, and many of the closing pass's fixed
+/// chunks of 32 bodies, whose sums are also added in chunk order.
 fn random_pile() -> World {
-    random_lattice(COLUMNS, ROWS, 0.0, None)
+    random_lattice(COLUMNS, ROWS, 0.0, None, None)
 }
 
 /// A strip of the same 1,080 7-gons 540 wide and 2 high (1.8 m by 1 cm): wide enough that the broadphase splits its y
 /// axis into bands (broadphase::bands), and the grains flying at up to 1 m/s change bands during the run. The walls
 /// stand half a lattice spacing further out (a 7-gon's farthest vertex from its centroid can reach past the spacing).
 fn random_strip() -> World {
-    random_lattice(COLUMNS * ROWS / 2, 2, 0.5 * SPACING, None)
+    random_lattice(COLUMNS * ROWS / 2, 2, 0.5 * SPACING, None, None)
 }
 
 /// Random 7-gons on a lattice of `columns` by `rows` in a closed box `margin` wider on every side, flying in random
-/// directions; heated by `heating` if given.
-fn random_lattice(columns: usize, rows: usize, margin: f64, heating: Option<HeatingSchedule>) -> World {
-    let mut world = world(WorldConfig { heating, ..config(2e-6, law(E_THESIS, 0.5, 0.6), G) });
+/// directions; heated by `heating` and bounded by `domain` if given.
+fn random_lattice(
+    columns: usize,
+    rows: usize,
+    margin: f64,
+    heating: Option<HeatingSchedule>,
+    domain: Option<Aabb>,
+) -> World {
+    let mut world = world(WorldConfig { heating, domain, ..config(2e-6, law(E_THESIS, 0.5, 0.6), G) });
     let lattice = DVec2::new(columns as f64, rows as f64) * SPACING;
     let inner = Aabb { min: DVec2::splat(-margin), max: lattice + DVec2::splat(margin) };
     add_box(&mut world, inner, 0.01);
@@ -84,7 +90,16 @@ fn run_in_pool(threads: usize) -> RunEnd {
 /// The random pile recording contact events, with a heating schedule whose window never opens (gc2d's default): the
 /// grains keep their size, but the predictor and the vertex transform run as passes of their own.
 fn random_pile_in_separate_passes() -> World {
-    let mut world = random_lattice(COLUMNS, ROWS, 0.0, Some(HeatingSchedule::default()));
+    let mut world = random_lattice(COLUMNS, ROWS, 0.0, Some(HeatingSchedule::default()), None);
+    world.record_contact_events();
+    world
+}
+
+/// [`random_pile_in_separate_passes`] in a domain of 1 km around it, which removes no particle but makes the closing
+/// pass a pass of its own after the corrector's, as every stage that removes or adds particles does.
+fn random_pile_with_a_closing_pass_of_its_own() -> World {
+    let domain = Aabb { min: DVec2::splat(-1e3), max: DVec2::splat(1e3) };
+    let mut world = random_lattice(COLUMNS, ROWS, 0.0, Some(HeatingSchedule::default()), Some(domain));
     world.record_contact_events();
     world
 }
@@ -165,13 +180,16 @@ fn a_strip_in_bands_is_bitwise_identical_on_1_2_and_8_threads_and_across_a_check
 /// On several threads a World with gravity as its only body force adds each range's contact forces and weights and
 /// corrects it in one pass, and predicts each range in the vertex transform's pass; recording contact events (which
 /// read the velocities before the corrector) and a heating schedule (whose scale the predictor sets after the
-/// particles) keep those passes apart. Both end with the same bits.
+/// particles) keep those passes apart. The closing pass's chunks are summed in the corrector's pass in both, and in a
+/// pass of their own where a domain is set. All end with the same bits.
 #[test]
 fn fused_passes_give_the_bits_of_separate_ones() {
     let fused = run_in_pool(2);
-    let separate = run_scene_in_pool(random_pile_in_separate_passes, 2, None);
     assert!(fused.most_contacts > 50, "the run must exercise contacts, saw at most {}", fused.most_contacts);
-    let first_difference = fused.bits.iter().zip(&separate.bits).position(|(a, b)| a != b);
-    assert_eq!(first_difference, None, "particle {:?} differs", first_difference.map(|k| k / 6));
-    assert_eq!(fused.ledger, separate.ledger, "the ledger differs");
+    for scene in [random_pile_in_separate_passes, random_pile_with_a_closing_pass_of_its_own] {
+        let separate = run_scene_in_pool(scene, 2, None);
+        let first_difference = fused.bits.iter().zip(&separate.bits).position(|(a, b)| a != b);
+        assert_eq!(first_difference, None, "particle {:?} differs", first_difference.map(|k| k / 6));
+        assert_eq!(fused.ledger, separate.ledger, "the ledger differs");
+    }
 }
