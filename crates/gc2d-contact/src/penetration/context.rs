@@ -48,14 +48,12 @@ impl PenetrationGeometry {
     }
 
     /// True when the bodies touch (δ > 0) with a usable, finite geometry. NaN or infinite input counts as not
-    /// touching, so bad geometry produces no force rather than a NaN.
+    /// touching, so bad geometry produces no force rather than a NaN. The finiteness tests are combined without early
+    /// exits, as in [`ContactGeometry::is_overlapping`](crate::ContactGeometry::is_overlapping).
     #[inline]
     pub fn is_touching(&self) -> bool {
         self.depth > 0.0
-            && self.depth.is_finite()
-            && self.normal.is_finite()
-            && self.arm_i.is_finite()
-            && self.arm_j.is_finite()
+            && (self.depth.is_finite() & self.normal.is_finite() & self.arm_i.is_finite() & self.arm_j.is_finite())
     }
 }
 
