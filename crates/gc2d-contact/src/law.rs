@@ -118,7 +118,7 @@ impl ContactLaw {
                 None => return self.separate(previous),
             },
         };
-        let dt = if dt > 0.0 && dt.is_finite() { dt } else { 0.0 };
+        let dt = if (dt > 0.0) & dt.is_finite() { dt } else { 0.0 };
         let inv_dt = if dt > 0.0 { 1.0 / dt } else { 0.0 };
         let e = self.elastic.e_modulus;
         let area = geometry.area;
