@@ -184,7 +184,7 @@ impl PenetrationLaw {
         if !geometry.is_touching() {
             return self.separate(properties, previous);
         }
-        let dt = if dt > 0.0 && dt.is_finite() { dt } else { 0.0 };
+        let dt = if (dt > 0.0) & dt.is_finite() { dt } else { 0.0 };
         let (depth, radius, mass) = (geometry.depth, properties.effective_radius, properties.effective_mass);
         let normal = geometry.normal;
         // Relative velocity of the material contact points (the wall's virtual surface velocity acts only along the
