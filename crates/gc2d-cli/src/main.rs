@@ -449,7 +449,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         }
         (status, Ok(())) => status,
     };
-    let segment_written = segments.write(&world, status.name());
+    let (segment_written, wall_time_all_segments_s) = segments.finish(&world, status.name());
     let status = match (status, segment_written) {
         (RunStatus::Completed, Err(e)) => {
             RunStatus::Failed(format!("could not write {}: {e}", segments_path.display()))
@@ -460,10 +460,8 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         }
         (status, Ok(())) => status,
     };
-    let summary = Summary {
-        wall_time_all_segments_s: segments.total_wall_s(),
-        ..Summary::of(&world, &args.scene, status.clone(), chatter, wall_time)
-    };
+    let summary =
+        Summary { wall_time_all_segments_s, ..Summary::of(&world, &args.scene, status.clone(), chatter, wall_time) };
     let summary_path = out.join("summary.json");
     if let Err(e) = summary.write(&summary_path) {
         unwritten.push(format!("{} ({e})", summary_path.display()));

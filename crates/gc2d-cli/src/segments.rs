@@ -82,6 +82,19 @@ impl SegmentLog {
 
     /// Rewrites this process's row with the World's time and steps, the wall time so far and `status`.
     pub fn write(&self, world: &World, status: &str) -> io::Result<()> {
+        self.write_with_wall_time(world, status, self.started.elapsed().as_secs_f64())
+    }
+
+    /// Writes this process's last row with `status` and returns the wall-clock time of all processes of the run, s:
+    /// the earlier rows' and the one just written, read from the clock once, so that `summary.json`'s total is the
+    /// sum of the rows (to their millisecond rounding) however long the write takes.
+    pub fn finish(&self, world: &World, status: &str) -> (io::Result<()>, f64) {
+        let wall_s = self.started.elapsed().as_secs_f64();
+        (self.write_with_wall_time(world, status, wall_s), self.earlier_wall_s + wall_s)
+    }
+
+    /// Rewrites this process's row with the World's time and steps, `wall_s` and `status`.
+    fn write_with_wall_time(&self, world: &World, status: &str, wall_s: f64) -> io::Result<()> {
         let (alternation, time) = match self.largest {
             Some(window) => (window.alternation.to_string(), window.time_s.to_string()),
             None => (String::new(), String::new()),
@@ -93,7 +106,7 @@ impl SegmentLog {
             self.from_time_s,
             world.time(),
             world.steps() - self.from_steps,
-            self.started.elapsed().as_secs_f64(),
+            wall_s,
             self.resumed_from
         );
         let mut text = String::from(SEGMENT_COLUMNS);
@@ -111,11 +124,6 @@ impl SegmentLog {
     /// a fresh run): where the chatter watch of a resumed run starts.
     pub fn earlier_chatter(&self) -> Option<AlternationWindow> {
         self.largest
-    }
-
-    /// Wall-clock time of all processes of the run so far (the earlier rows' and this one's), s.
-    pub fn total_wall_s(&self) -> f64 {
-        self.earlier_wall_s + self.started.elapsed().as_secs_f64()
     }
 }
 
@@ -263,5 +271,24 @@ mod tests {
         let row = "1763766000,1,2.1,2.8,636364,4180.250,running,0.003,2.5,runs/a,b/checkpoint-0001909091.ckpt";
         assert_eq!(wall_of(row), Some(4180.25));
         assert_eq!(SEGMENT_COLUMNS.split(',').nth(WALL_COLUMN), Some("wall_s"));
+    }
+
+    #[test]
+    fn the_total_of_a_finished_run_is_the_sum_of_its_rows() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("segments.csv");
+        let scene_path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/scenes/tiny_pile.ron");
+        let text = std::fs::read_to_string(scene_path).unwrap();
+        let world = gc2d_scene::Scene::from_str(&text, "tiny_pile.ron").unwrap().build().unwrap();
+        std::fs::write(&path, format!("{SEGMENT_COLUMNS}\n1763766000,2,0,0,0,2.250,interrupted,,,\n")).unwrap();
+        let log = SegmentLog::start(&path, Some(Path::new("final.ckpt")), 1, &world, 1.0).unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        let (written, total) = log.finish(&world, "completed");
+        written.unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let rows: Vec<f64> = text.lines().skip(1).map(|row| wall_of(row).unwrap()).collect();
+        assert_eq!(rows.len(), 2, "{text}");
+        assert!(rows[1] >= 0.02, "{text}");
+        assert!((total - rows.iter().sum::<f64>()).abs() <= 0.0005, "total {total} s, rows {text}");
     }
 }
