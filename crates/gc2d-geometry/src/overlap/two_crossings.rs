@@ -261,8 +261,8 @@ fn proper_crossing(a: &[DVec2], i: usize, b: &[DVec2], j: usize, passage: Passag
 
 /// Whether `p` lies strictly inside the counter-clockwise convex polygon `points` (every side test positive; a NaN
 /// is not). The edge `likely_outside` (from vertex `likely_outside` to the next) is tested first, and alone where `p`
-/// is beyond it: the walks from an exit end on a vertex beyond the other polygon's crossed edge, almost always, and
-/// that one test instead of a whole outline's took 7 % of the dense 7-gon pile's instructions (docs/performance.md,
+/// is beyond it: the walks from an exit mostly end on a vertex beyond the other polygon's crossed edge, and that one
+/// test instead of a whole outline's took 7 % off the dense 7-gon pile's instructions (docs/performance.md,
 /// "The walk's last vertex tested against the crossed edge first"). The answer is the same with any `likely_outside`:
 /// the edge is tested again with the others.
 fn strictly_inside(points: &[DVec2], p: DVec2, likely_outside: usize) -> bool {
@@ -534,7 +534,7 @@ mod tests {
         #![proptest_config(seeded(2000, 0x6c2d_0004))]
 
         /// The edge tested first changes nothing: `strictly_inside` is every side test positive, whichever edge it
-        /// starts from, for points inside, outside, on the outline's edges and at its vertices.
+        /// starts from, for points inside, outside, on the outline's edges, at its vertices and NaN.
         #[test]
         fn the_edge_tested_first_does_not_change_the_answer(
             polygon in outline(1.0), x in -1.2..1.2f64, y in -1.2..1.2f64, edge in 0usize..12, along in 0.0..1.0f64,
