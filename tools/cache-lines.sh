@@ -29,7 +29,8 @@ ll=${LL:-33554432,16,64}
 top=${TOP:-12}
 [ -n "$binary" ] && [ -x "$binary" ] || { echo "$1 is not an executable gc2d-rs" >&2; exit 2; }
 for tool in valgrind callgrind_annotate; do
-  command -v "$tool" > /dev/null || { echo "$tool is not installed (Debian and Ubuntu: apt-get install valgrind)" >&2; exit 2; }
+  command -v "$tool" > /dev/null ||
+    { echo "$tool is not installed (Debian and Ubuntu: apt-get install valgrind)" >&2; exit 2; }
 done
 case $size in '' | *[!0-9]*) echo "SIZE must be a number of grains, not '$size'" >&2; exit 2 ;; esac
 case $steps in '' | *[!0-9]* | 0) echo "STEPS must be a positive number, not '$steps'" >&2; exit 2 ;; esac
