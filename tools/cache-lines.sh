@@ -32,8 +32,12 @@ for tool in valgrind callgrind_annotate; do
   command -v "$tool" > /dev/null ||
     { echo "$tool is not installed (Debian and Ubuntu: apt-get install valgrind)" >&2; exit 2; }
 done
-case $size in '' | *[!0-9]*) echo "SIZE must be a number of grains, not '$size'" >&2; exit 2 ;; esac
-case $steps in '' | *[!0-9]* | 0) echo "STEPS must be a positive number, not '$steps'" >&2; exit 2 ;; esac
+# Positive whole numbers only (the particle-steps divide the counts).
+positive() { case $1 in '' | *[!0-9]*) false ;; *) [ "$((10#$1))" -gt 0 ] ;; esac; }
+positive "$size" || { echo "SIZE must be a positive number of grains, not '$size'" >&2; exit 2; }
+positive "$steps" || { echo "STEPS must be a positive number of steps, not '$steps'" >&2; exit 2; }
+size=$((10#$size))
+steps=$((10#$steps))
 
 bench=(bench --pile "$pile" --size "$size" --threads 1 --quiet)
 if [ -n "${CACHE:-}" ]; then
