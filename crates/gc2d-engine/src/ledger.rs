@@ -43,6 +43,10 @@ pub struct EnergyLedger {
     pub energy_removed: f64,
     /// Total energy at the start of the run.
     pub initial_total: f64,
+    /// The largest kinetic energy (translational and rotational) at the end of any step since the start, J: part of
+    /// [`Self::energy_scale`], so that a run judges its balance against the energy it has set in motion, not only
+    /// against what moves now (an elastic ball at the top of its bounce has almost none).
+    pub peak_kinetic: f64,
 }
 
 impl EnergyLedger {
@@ -83,11 +87,14 @@ impl EnergyLedger {
         (self.total() - self.initial_total) - (self.work_in() - self.dissipated() - self.opening_residual)
     }
 
-    /// A scale against which the balance error is judged: the largest of the energies moved around in the run, and
-    /// never below a millionth of the initial total energy (so a World at rest does not judge round-off against 0).
+    /// A scale against which the balance error is judged: the largest of the energies moved around in the run (the
+    /// kinetic energy now and at its peak, the contacts' stored energy, the dissipated energy, the work from outside and
+    /// the change of the total), and never below a millionth of the initial total energy (so a World at rest does not
+    /// judge round-off against 0).
     pub fn energy_scale(&self) -> f64 {
         [
             self.kinetic(),
+            self.peak_kinetic,
             self.contact_stored.abs(),
             self.dissipated(),
             self.work_in().abs(),

@@ -370,10 +370,11 @@ impl World {
             self.ledger.work_insertions += translational + rotational + potential;
         } else {
             // Before the first step the ledger shows the start's energies (the first step recomputes them all), so
-            // that a time series row at t = 0 is not zero for particles that move.
+            // that a time series row at t = 0 is not zero for particles that move, and its balance error is zero.
             self.ledger.kinetic_translational += translational;
             self.ledger.kinetic_rotational += rotational;
             self.ledger.potential += potential;
+            self.ledger.initial_total += translational + rotational + potential;
         }
         Ok(id)
     }
@@ -1425,6 +1426,7 @@ impl World {
         let l = &mut self.ledger;
         l.kinetic_translational = all.translational;
         l.kinetic_rotational = all.rotational;
+        l.peak_kinetic = l.peak_kinetic.max(l.kinetic());
         l.potential = all.potential;
         l.drag_stored = drag_stored;
         // A finite velocity can still overflow ½mv²: that poisons the ledger, so it counts as not finite.
