@@ -461,7 +461,8 @@ pub const INITIAL_OVERLAP_TOLERANCE: f64 = 1e-12;
 /// The deepest overlap between living bodies at their current poses, as (a, b, overlap over the smaller particle's
 /// area), if it exceeds `tolerance` (see [`SafetyLimits::max_initial_overlap_fraction`]). Walls are not paired with
 /// walls. Meant to run once before the first step: a sweep along x over the boxes sorted by their lower x bound, so it
-/// allocates.
+/// allocates. A particle entirely outside the box of an inner-circle wall (a chamber, solid everywhere outside its
+/// circle) lies wholly in its solid, an overlap of 100 %, though the two boxes do not meet.
 pub fn deepest_initial_overlap(bodies: &Bodies, tolerance: f64) -> Option<(BodyId, BodyId, f64)> {
     let boxes: Vec<Aabb> = (0..bodies.len()).map(|i| bodies.aabb(i)).collect();
     let mut order: Vec<usize> = (0..bodies.len()).filter(|&i| bodies.alive[i]).collect();
@@ -482,6 +483,17 @@ pub fn deepest_initial_overlap(bodies: &Bodies, tolerance: f64) -> Option<(BodyI
             if fraction > tolerance && deepest.is_none_or(|d| fraction > d.2) {
                 deepest = Some((a, b, fraction));
             }
+        }
+    }
+    let chambers = order.iter().filter(|&&i| bodies.shape[i] == ShapeKind::InnerCircle);
+    for &chamber in chambers {
+        let outside =
+            order.iter().find(|&&i| bodies.kind[i] == BodyKind::Particle && !boxes[i].overlaps(&boxes[chamber]));
+        if let Some(&particle) = outside
+            && tolerance < 1.0
+            && deepest.is_none_or(|d| 1.0 > d.2)
+        {
+            deepest = Some((BodyId(chamber.min(particle) as u32), BodyId(chamber.max(particle) as u32), 1.0));
         }
     }
     deepest

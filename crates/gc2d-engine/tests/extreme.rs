@@ -625,3 +625,25 @@ fn initially_overlapping_particles_are_refused_with_the_bodies_named() {
     run_until(&mut touching, 1e-4);
     assert!(touching.ledger().kinetic() < 1e-20, "touching squares stay at rest: {:e} J", touching.ledger().kinetic());
 }
+
+/// A chamber (an inner-circle wall) is solid everywhere outside its circle, also beyond its bounding box, where the
+/// broadphase never pairs it with anything: a particle there lies wholly in the wall, an overlap of 100 %.
+#[test]
+fn a_particle_outside_a_chambers_box_is_refused_as_lying_in_its_wall() {
+    for (chamber_x, refused) in [(1.0, true), (0.0, false)] {
+        let mut world = world(config(1e-6, law(E_THESIS, 0.3, 0.3), G));
+        let shape = gc2d_engine::BodyShape::InnerCircle { radius: 0.05 };
+        let chamber =
+            world.add_wall(shape, Pose::new(DVec2::new(chamber_x, 0.0), 0.0), DVec2::ZERO, Default::default());
+        let origin = Pose::new(DVec2::ZERO, 0.0);
+        let grain = world.add_particle(&square(0.004).unwrap(), origin, RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+        match world.step() {
+            Err(WorldError::Safety(SafetyError::InitialOverlap { a, b, percent })) => {
+                assert!(refused, "a grain inside the chamber was refused");
+                assert_eq!((BodyId(a), BodyId(b), percent), (chamber, grain, 100.0));
+            }
+            Ok(()) => assert!(!refused, "a grain outside the chamber started"),
+            Err(other) => panic!("{other}"),
+        }
+    }
+}

@@ -134,6 +134,17 @@ fn overlapping_initial_particles_are_refused() {
     assert!(error.message().contains("20.00 %"), "{}", error.message());
 }
 
+/// A chamber (an inner-circle wall) is solid everywhere outside its circle, also beyond its bounding box, where the
+/// broadphase never pairs it with anything: a particle placed there used to fall freely through the "solid".
+#[test]
+fn a_particle_outside_a_chamber_is_refused_as_lying_in_its_wall() {
+    let text = "Scene(\n    walls: [Wall(shape: InnerCircle(radius_m: 0.05), position_m: (1, 0))],\n    particles: [(shape: Disk(radius_m: 0.005))],\n)";
+    let error = check("outside_chamber", text, ErrorKind::Overlap, "particles[0]", (3, 17));
+    assert!(error.message().contains("100.00 %") && error.message().contains("`walls[0]`"), "{}", error.message());
+    let inside = text.replace("position_m: (1, 0)", "position_m: (0, 0)");
+    assert!(Scene::from_str(&inside, "ok.ron").unwrap().build().is_ok());
+}
+
 #[test]
 fn all_errors_of_a_pass_are_reported_together() {
     let text = "Scene(\n    run: (end_time_s: -1),\n    materials: [(name: \"sand\", gamma: -0.5)],\n    heating: (window_s: (2, 1)),\n)";

@@ -454,7 +454,9 @@ pub(crate) fn particles(
     Ok(planned)
 }
 
-/// Positions and velocities of balls placed uniformly at random in the chamber, each added to `occupied`.
+/// Positions and velocities of balls placed uniformly at random in the chamber, each added to `occupied`; refused
+/// where the chamber could not hold them even densely packed, or where a ball finds no room in
+/// [`PLACEMENT_ATTEMPTS_PER_BALL`] attempts (the ones before it placed).
 fn random_balls(
     mill: &Mill,
     occupied: &mut Vec<Occupied>,
@@ -465,16 +467,31 @@ fn random_balls(
     let (r, speed) = (balls.radius_m, balls.start_speed());
     let centre = DVec2::from_array(mill.centre_m);
     let reach = outer_radius(mill) - r;
+    let most = densest_disk_count(outer_radius(mill), r);
+    if balls.count as f64 > most {
+        return Err(SceneError::value(
+            field_path(path, "count"),
+            format!(
+                "{} balls of radius {r} m cannot fit in a chamber of radius {} m: packed as densely as disks can be, \
+                 it would hold at most {}",
+                balls.count,
+                outer_radius(mill),
+                most.floor()
+            ),
+        )
+        .with_help("use fewer or smaller balls, or a larger chamber"));
+    }
     let walls = occupied.len();
     let mut attempts = 0;
     let mut placed = Vec::with_capacity(balls.count);
     while placed.len() < balls.count {
         attempts += 1;
-        if attempts > PLACEMENT_ATTEMPTS_PER_BALL * balls.count.max(1) {
+        if attempts > PLACEMENT_ATTEMPTS_PER_BALL {
             return Err(SceneError::value(
                 field_path(path, "count"),
                 format!(
-                    "only {} of {} balls found room in the chamber after {attempts} attempts",
+                    "only {} of {} balls found room in the chamber ({PLACEMENT_ATTEMPTS_PER_BALL} attempts for the \
+                     next)",
                     placed.len(),
                     balls.count
                 ),
@@ -490,8 +507,17 @@ fn random_balls(
         }
         occupied.push(candidate);
         placed.push((position, speed * DVec2::from_angle(TAU * rng.random::<f64>())));
+        attempts = 0;
     }
     Ok(placed)
+}
+
+/// The most disks of radius `r` that a circle of radius `radius` could hold at the density of the densest packing of
+/// equal disks in the plane, π/(2√3) ≈ 0.907 of the area: an upper bound (the rim and the rotor leave less), so that a
+/// ball count far beyond it is refused at once instead of after a thousand futile attempts for each ball.
+fn densest_disk_count(radius: f64, r: f64) -> f64 {
+    let densest_packing = std::f64::consts::PI / (2.0 * 3f64.sqrt());
+    densest_packing * (radius / r).powi(2)
 }
 
 /// Positions of balls at rest in a loose triangular packing (neighbours 1 % of a diameter apart), rows from the

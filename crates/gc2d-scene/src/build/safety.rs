@@ -3,7 +3,7 @@
 
 use crate::error::{ErrorKind, SceneError};
 use gc2d_engine::safety::{ParticleInertia, particle_time_steps};
-use gc2d_engine::{BodyShape, ContactModel, MassModel, ParticleRecipe, shape_view};
+use gc2d_engine::{BodyShape, ContactModel, MassModel, ParticleRecipe, ShapeKind, shape_view};
 use gc2d_geometry::{Aabb, DVec2, Pose, area_contact};
 use rand_chacha::ChaCha8Rng;
 
@@ -166,7 +166,7 @@ pub struct PlacedBody<'a> {
 const MAX_REPORTED_OVERLAPS: usize = 8;
 
 /// Overlaps between particles, and between particles and walls, larger than `max_fraction` of the smaller
-/// particle's area. Sweeps the bodies sorted by their lower x bound, so the cost is O(N log N) plus the pairs whose
+/// particle's area; a particle outside a chamber (an inner-circle wall) overlaps it by its whole area. Sweeps the bodies sorted by their lower x bound, so the cost is O(N log N) plus the pairs whose
 /// boxes overlap.
 pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneError> {
     let world: Vec<Vec<DVec2>> =
@@ -198,6 +198,21 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
             }
         }
         active.push(i);
+    }
+    // An inner-circle wall (a chamber) is solid everywhere outside its circle: a particle entirely outside its box
+    // lies wholly in that solid, though the boxes do not meet.
+    let chambers = (0..bodies.len()).filter(|&k| bodies[k].is_wall && bodies[k].shape.kind() == ShapeKind::InnerCircle);
+    for chamber in chambers {
+        if max_fraction >= 1.0 {
+            break;
+        }
+        for particle in (0..bodies.len()).filter(|&k| !bodies[k].is_wall && !boxes[k].overlaps(&boxes[chamber])) {
+            let (a, b) = (chamber.min(particle), chamber.max(particle));
+            errors.push(overlap_error(&bodies[a], &bodies[b], bodies[particle].pose.position, 1.0, max_fraction));
+            if errors.len() == MAX_REPORTED_OVERLAPS {
+                return errors;
+            }
+        }
     }
     errors
 }
