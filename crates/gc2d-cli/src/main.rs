@@ -154,7 +154,8 @@ impl From<Colour> for ColourBy {
 struct RunArgs {
     /// The scene file (.ron).
     scene: PathBuf,
-    /// Output directory [default: the --resume directory, else out/<scene name>].
+    /// Output directory [default: the run directory --resume continues (the directory given, or the one that holds
+    /// the checkpoint given), else out/<scene name>].
     #[arg(long)]
     out: Option<PathBuf>,
     /// Worker threads [default: all cores]. Results are identical for any count.
@@ -329,8 +330,8 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     };
     let out = match (&args.out, &args.resume) {
         (Some(out), _) => out.clone(),
-        (None, Some(from)) if from.is_dir() => from.clone(),
-        (None, _) => default_out_dir(&args.scene),
+        (None, Some(from)) => gc2d_cli::resume::run_directory_of(from).unwrap_or_else(|| default_out_dir(&args.scene)),
+        (None, None) => default_out_dir(&args.scene),
     };
     std::fs::create_dir_all(&out)
         .map_err(|e| CommandFailure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
@@ -707,7 +708,7 @@ fn report_outcome(
                 world.time(),
                 world.steps(),
                 out.display(),
-                out.join("final.ckpt").display()
+                out.display()
             ));
             Ok(130)
         }

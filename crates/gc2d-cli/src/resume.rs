@@ -42,6 +42,19 @@ pub fn load_resume_point(from: &Path) -> Result<ResumePoint, String> {
     })
 }
 
+/// The run directory that `--resume FROM` continues by default: FROM itself where it is a directory; for a checkpoint
+/// file, the run directory that holds it (as `final.ckpt` or under `checkpoints/`), recognised by the time series or
+/// the segments a run writes there. `None` for a checkpoint kept outside a run directory.
+pub fn run_directory_of(from: &Path) -> Option<PathBuf> {
+    if from.is_dir() {
+        return Some(from.to_path_buf());
+    }
+    let folder = from.parent()?;
+    let folder = if folder.file_name().is_some_and(|name| name == "checkpoints") { folder.parent()? } else { folder };
+    let is_run = ["timeseries.csv", "segments.csv"].iter().any(|file| folder.join(file).is_file());
+    is_run.then(|| folder.to_path_buf())
+}
+
 fn load(path: &Path) -> Result<ResumePoint, String> {
     World::load_checkpoint_file(path)
         .map(|world| ResumePoint { path: path.to_path_buf(), world })

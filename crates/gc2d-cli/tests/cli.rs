@@ -137,6 +137,33 @@ fn a_run_split_by_resume_ends_bitwise_identical() {
     assert_eq!(series.lines().filter(|l| l.starts_with("time_s")).count(), 1);
 }
 
+/// `--resume DIR/final.ckpt` without `--out`, as the message of an interrupted run used to advise, continues into DIR
+/// (it wrote the rest of the run to out/<scene> instead, leaving DIR's outputs stopped at the interruption).
+#[test]
+fn resuming_from_a_checkpoint_of_a_run_directory_continues_into_it() {
+    let whole = unsplit_tiny_pile();
+    let split = tempfile::tempdir().unwrap();
+    let elsewhere = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.025", "--out"])
+        .arg(split.path())
+        .assert()
+        .success();
+    gc2d()
+        .current_dir(elsewhere.path())
+        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
+        .arg(split.path().join("final.ckpt"))
+        .assert()
+        .success();
+    assert!(!elsewhere.path().join("out").exists(), "the resumed run wrote outside its run directory");
+    let a = std::fs::read(whole.path().join("final.ckpt")).unwrap();
+    let b = std::fs::read(split.path().join("final.ckpt")).unwrap();
+    assert!(a == b, "the resumed run's final state differs from the unsplit run's");
+    let series = std::fs::read_to_string(split.path().join("timeseries.csv")).unwrap();
+    assert_eq!(series, std::fs::read_to_string(whole.path().join("timeseries.csv")).unwrap());
+}
+
 #[test]
 fn resuming_from_an_earlier_checkpoint_rewrites_the_later_rows_of_the_series() {
     // A run stopped at 0.045 s after checkpoints at 0.02 and 0.04 s, then resumed from the 0.02 s one (as after a
