@@ -81,6 +81,9 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
     if let Some(zero) = args.size.iter().chain(&args.threads).find(|&&n| n == 0) {
         return Err(CommandFailure::input(format!("--size and --threads take counts of at least 1, got {zero}")));
     }
+    for &threads in &args.threads {
+        crate::refuse_too_many_threads("--threads", threads).map_err(CommandFailure::input)?;
+    }
     if args.particle_steps == 0 || args.steps == Some(0) {
         return Err(CommandFailure::input("--particle-steps and --steps must be at least 1"));
     }

@@ -271,6 +271,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     if args.threads == Some(0) {
         return Err(CommandFailure::input("--threads must be at least 1"));
     }
+    gc2d_cli::refuse_too_many_threads("--threads", args.threads.unwrap_or(0)).map_err(CommandFailure::input)?;
     // A recording cannot be continued (an MCAP file ends with its index): writing a resumed run into the file of the
     // run before would overwrite the frames recorded before the stop.
     if let (Some(_), Some(record)) = (&args.resume, &args.record)
@@ -312,6 +313,18 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     let (mut world, resumed_from) = match &args.resume {
         Some(from) => {
             let ResumePoint { path, world } = load_resume_point(from).map_err(CommandFailure::input)?;
+            if end_time < world.time() - 0.5 * world.time_step() {
+                let end = match args.until {
+                    Some(_) => format!("--until {end_time} s"),
+                    None => format!("the scene's end time, {end_time} s,"),
+                };
+                return Err(CommandFailure::input(format!(
+                    "{end} is before the time of {}, t = {:.6} s: a resumed run only goes on from there (to look \
+                     at an earlier state, export or draw an earlier checkpoint)",
+                    path.display(),
+                    world.time()
+                )));
+            }
             console::err(&format!(
                 "Resuming from {} at t = {:.6} s (step {}).",
                 path.display(),

@@ -422,6 +422,36 @@ fn zero_threads_is_refused() {
         .stderr(contains("--threads must be at least 1"));
 }
 
+/// A resumed run cannot go back in time: `--until` before its checkpoint is refused instead of ending at once with a
+/// zero-step segment and exit code 0.
+#[test]
+fn resuming_to_a_time_before_the_checkpoint_is_refused() {
+    let split = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.025", "--out"])
+        .arg(split.path())
+        .assert()
+        .success();
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.01", "--resume"])
+        .arg(split.path())
+        .assert()
+        .code(2)
+        .stderr(contains("--until 0.01 s is before the time of").and(contains("t = 0.025000 s")));
+}
+
+/// Thousands of threads took minutes to start, with nothing printed; a count above the limit is refused before any
+/// thread starts, by every command that takes one.
+#[test]
+fn thousands_of_threads_are_refused() {
+    let tiny = scene("tiny_pile.ron");
+    let tiny = tiny.to_str().unwrap();
+    for args in [vec!["run", tiny, "--threads", "10000"], vec!["bench", "--threads", "1,10000"]] {
+        gc2d().args(&args).assert().code(2).stderr(contains("--threads 10000 is more than the 1024 threads allowed"));
+    }
+}
+
 #[test]
 fn a_cadence_that_is_not_a_positive_time_is_refused() {
     for (flag, value) in [("--checkpoint-every", "0"), ("--png-every", "nan"), ("--checkpoint-every", "inf")] {

@@ -83,6 +83,7 @@ pub fn sweep(args: &SweepArgs) -> Result<u8, CommandFailure> {
             return Err(CommandFailure::input(format!("{flag} must be at least 1")));
         }
     }
+    crate::refuse_too_many_threads("--threads", args.threads.unwrap_or(0)).map_err(CommandFailure::input)?;
     if let Some(every) = args.checkpoint_every
         && !(every.is_finite() && every > 0.0)
     {
