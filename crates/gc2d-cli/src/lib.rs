@@ -6,6 +6,7 @@ pub mod bench;
 pub mod chatter;
 pub mod console;
 pub mod dumps;
+pub mod earlier_run;
 pub mod events;
 pub mod export;
 pub mod failure;

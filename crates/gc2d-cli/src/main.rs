@@ -349,6 +349,16 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     std::fs::create_dir_all(&out)
         .map_err(|e| CommandFailure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
     gc2d_cli::resume::remove_temporary_files(&out);
+    if args.resume.is_none() {
+        let removed = gc2d_cli::earlier_run::remove_earlier_run(&out).map_err(CommandFailure::input)?;
+        if removed > 0 {
+            console::err(&format!(
+                "Replacing the earlier run in {}: removed its {removed} output files (time series, summary, \
+                 checkpoints, dumps, frames); continue a run with --resume instead.",
+                out.display()
+            ));
+        }
+    }
     let copy = out.join(SCENE_COPY);
     // The copy records what a fresh run started from; a resumed run keeps it, and the user's own scene file is
     // never overwritten by it (a scene named scene.ron run into its own directory).

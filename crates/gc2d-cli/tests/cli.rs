@@ -422,6 +422,36 @@ fn zero_threads_is_refused() {
         .stderr(contains("--threads must be at least 1"));
 }
 
+/// A fresh run into a directory that holds an earlier run removes that run's checkpoints and dumps: they used to stay
+/// beside the new run's outputs, and `export` and `--resume DIR` took the old run's later checkpoint for the newest
+/// state of the new one.
+#[test]
+fn a_fresh_run_replaces_the_earlier_run_in_its_directory() {
+    let out = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    let run = |until: &str, extra: &[&str]| {
+        let mut command = gc2d();
+        command
+            .args(["run", path.to_str().unwrap(), "--quiet", "--until", until])
+            .args(extra)
+            .arg("--out")
+            .arg(out.path());
+        command.assert().success()
+    };
+    run("0.045", &["--checkpoint-every", "0.02", "--dump-every", "0.02"]);
+    assert!(out.path().join("checkpoints").read_dir().unwrap().count() > 1);
+    std::fs::write(out.path().join("notes.txt"), "mine").unwrap();
+    run("0.01", &[]).stderr(contains("Replacing the earlier run in"));
+    assert!(!out.path().join("checkpoints").exists() && !out.path().join("dumps").exists());
+    assert!(out.path().join("notes.txt").exists(), "a file of the user's was removed");
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.02", "--resume"])
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("at t = 0.010000 s"));
+}
+
 /// A resumed run cannot go back in time: `--until` before its checkpoint is refused instead of ending at once with a
 /// zero-step segment and exit code 0.
 #[test]
