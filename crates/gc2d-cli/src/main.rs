@@ -406,7 +406,6 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         dir: out.join("frames"),
         interval,
         options: PngOptions { colour_by: args.colour_by.into(), ..PngOptions::default() },
-        written: 0,
     });
     let mill = scene.mill.is_some();
     let dumps_by_default = mill || scene.fluid.is_some();

@@ -26,7 +26,8 @@ impl FrameSink for Recording {
     }
 }
 
-/// Writes `<dir>/frame-<n>.png` on its cadence.
+/// Writes `<dir>/frame-<k>.png` on its cadence, k the picture's place on it (taken at k·interval), so that a
+/// resumed run numbers its pictures on from where the earlier part stopped instead of overwriting them from 0.
 pub struct PngFrames {
     /// Output directory.
     pub dir: PathBuf,
@@ -34,8 +35,6 @@ pub struct PngFrames {
     pub interval: f64,
     /// How the pictures look.
     pub options: PngOptions,
-    /// Pictures written so far.
-    pub written: u32,
 }
 
 impl FrameSink for PngFrames {
@@ -45,10 +44,9 @@ impl FrameSink for PngFrames {
 
     fn take(&mut self, world: &World) -> Result<(), String> {
         std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
-        let path = self.dir.join(format!("frame-{:05}.png", self.written));
-        render_png(world, &path, &self.options).map_err(|e| format!("picture {}: {e}", path.display()))?;
-        self.written += 1;
-        Ok(())
+        let index = ((world.time() + 0.5 * world.time_step()) / self.interval).floor().max(0.0) as u64;
+        let path = self.dir.join(format!("frame-{index:05}.png"));
+        render_png(world, &path, &self.options).map_err(|e| format!("picture {}: {e}", path.display()))
     }
 }
 

@@ -452,6 +452,29 @@ fn a_fresh_run_replaces_the_earlier_run_in_its_directory() {
         .stderr(contains("at t = 0.010000 s"));
 }
 
+/// Pictures are numbered by their time on the cadence, so a resumed run adds to the earlier part's instead of
+/// overwriting them from frame-00000.png on.
+#[test]
+fn a_resumed_run_numbers_its_pictures_on() {
+    let out = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    let part = |until: &str| {
+        let mut command = gc2d();
+        command.args(["run", path.to_str().unwrap(), "--quiet", "--png-every", "0.02", "--until", until]);
+        command
+    };
+    part("0.025").arg("--out").arg(out.path()).assert().success();
+    let first = std::fs::read(out.path().join("frames/frame-00000.png")).unwrap();
+    part("0.045").arg("--resume").arg(out.path()).assert().success();
+    let mut frames: Vec<String> = std::fs::read_dir(out.path().join("frames"))
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().into_string().unwrap())
+        .collect();
+    frames.sort();
+    assert_eq!(frames, ["frame-00000.png", "frame-00001.png", "frame-00002.png"]);
+    assert!(std::fs::read(out.path().join("frames/frame-00000.png")).unwrap() == first, "the first picture changed");
+}
+
 /// A resumed run cannot go back in time: `--until` before its checkpoint is refused instead of ending at once with a
 /// zero-step segment and exit code 0.
 #[test]
