@@ -17,6 +17,7 @@ pub mod outputs;
 pub mod parquet_table;
 pub mod resume;
 pub mod resumed_csv;
+pub mod run_lock;
 pub mod runner;
 pub mod segments;
 pub mod sinks;

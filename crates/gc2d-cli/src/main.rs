@@ -348,6 +348,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     };
     std::fs::create_dir_all(&out)
         .map_err(|e| CommandFailure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
+    let _lock = gc2d_cli::run_lock::lock_run_directory(&out).map_err(CommandFailure::input)?;
     gc2d_cli::resume::remove_temporary_files(&out);
     if args.resume.is_none() {
         let removed = gc2d_cli::earlier_run::remove_earlier_run(&out).map_err(CommandFailure::input)?;

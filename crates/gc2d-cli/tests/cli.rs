@@ -277,6 +277,32 @@ fn a_killed_run_leaves_its_segment_row_with_the_time_so_far() {
     assert!(row[3].parse::<f64>().unwrap() >= 0.01, "the row was updated on the checkpoints' cadence: {segments}");
 }
 
+/// A second process into the directory of a run that still goes on is refused: the two used to interleave their
+/// rows in one time series, with holes of zero bytes, and both ended with success.
+#[test]
+fn a_run_directory_in_use_is_refused() {
+    let out = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    let bin = assert_cmd::cargo::cargo_bin("gc2d-rs");
+    let mut child = std::process::Command::new(bin)
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "1000", "--checkpoint-every", "0.01", "--out"])
+        .arg(out.path())
+        .spawn()
+        .unwrap();
+    let checkpoints = out.path().join("checkpoints");
+    wait_for("checkpoints", || std::fs::read_dir(&checkpoints).map_or(0, |d| d.count()) >= 1);
+    let second = gc2d().args(["run", path.to_str().unwrap(), "--quiet", "--resume"]).arg(out.path()).assert();
+    child.kill().unwrap();
+    child.wait().unwrap();
+    second.code(2).stderr(contains("is in use by another gc2d-rs process (pid ").and(contains("choose another --out")));
+    // Killed, the first process no longer holds the directory.
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
+        .arg(out.path())
+        .assert()
+        .success();
+}
+
 #[test]
 fn resuming_a_directory_without_checkpoints_names_it() {
     let empty = tempfile::tempdir().unwrap();
