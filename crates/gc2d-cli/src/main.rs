@@ -171,7 +171,9 @@ struct RunArgs {
     #[arg(long)]
     checkpoint_every: Option<f64>,
     /// Continue from a checkpoint written by an earlier run of the same scene, or from the newest checkpoint in a
-    /// run directory (its final.ckpt or checkpoints/checkpoint-<step>.ckpt, whichever took more steps).
+    /// run directory (its final.ckpt or checkpoints/checkpoint-<step>.ckpt, whichever took more steps). A scene that
+    /// differs from the run directory's scene.ron in more than its end time, output cadences, seed, name and view is
+    /// refused: the checkpoint's state would go on, ignoring the change.
     #[arg(long)]
     resume: Option<PathBuf>,
     /// Use this random seed instead of the scene's run.seed: one member of an ensemble of runs that differ only in
@@ -312,6 +314,11 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     }
     let (mut world, resumed_from) = match &args.resume {
         Some(from) => {
+            if let Some(mismatch) = gc2d_cli::resume::run_directory_of(from)
+                .and_then(|run_dir| gc2d_cli::resume::another_scene(&scene, &args.scene, &run_dir))
+            {
+                return Err(CommandFailure::input(mismatch));
+            }
             let ResumePoint { path, world } = load_resume_point(from).map_err(CommandFailure::input)?;
             if end_time < world.time() - 0.5 * world.time_step() {
                 let end = match args.until {

@@ -2,7 +2,9 @@
 //! holds. A long run killed without warning (a batch system's wall-time limit, a closed session) leaves no
 //! `final.ckpt`, only its periodic checkpoints; naming the directory spares the user finding the newest one.
 
+use crate::outputs::SCENE_COPY;
 use gc2d_engine::World;
+use gc2d_scene::Scene;
 use std::path::{Path, PathBuf};
 
 /// The file a run resumes from and the World it holds.
@@ -53,6 +55,46 @@ pub fn run_directory_of(from: &Path) -> Option<PathBuf> {
     let folder = if folder.file_name().is_some_and(|name| name == "checkpoints") { folder.parent()? } else { folder };
     let is_run = ["timeseries.csv", "segments.csv"].iter().any(|file| folder.join(file).is_file());
     is_run.then(|| folder.to_path_buf())
+}
+
+/// Why `scene` (read from `scene_path`) cannot continue the run in `run_dir`: it is not the scene that run started
+/// from, its `scene.ron`, apart from what a resumed run may change (its name and description, end time, output
+/// cadences, seed and view). A resumed run goes on with the checkpoint's World, so an edited material, wall or law
+/// would be silently ignored, and a scene of another kind would name the outputs after objects that are not there.
+/// `None` where they agree, or where `run_dir` holds no readable `scene.ron` (then nothing is known to compare).
+pub fn another_scene(scene: &Scene, scene_path: &Path, run_dir: &Path) -> Option<String> {
+    let copy_path = run_dir.join(SCENE_COPY);
+    let copy = Scene::from_path(&copy_path).ok()?;
+    let comparable = |scene: &Scene| {
+        let mut scene = scene.clone();
+        scene.name.clear();
+        scene.description.clear();
+        scene.view = None;
+        scene.run.end_time_s = 0.0;
+        scene.run.frames_per_second = 0.0;
+        scene.run.checkpoint_interval_s = None;
+        scene.run.seed = 0;
+        scene.to_ron_string().ok()
+    };
+    let (given, started) = (comparable(scene)?, comparable(&copy)?);
+    let (line, (now, before)) =
+        given.lines().zip(started.lines()).enumerate().find(|(_, (a, b))| a != b).or_else(|| {
+            let lines = given.lines().count().min(started.lines().count());
+            (given.lines().count() != started.lines().count()).then_some((lines, ("(the end)", "(the end)")))
+        })?;
+    Some(format!(
+        "{} is not the scene the run in {} started from ({}): line {} of both written out in full reads `{}` against \
+         `{}` there. A resumed run goes on with the checkpoint's state, so changes to the scene would be ignored \
+         (only its end time, output cadences, name and view may change); resume with {}, or start a new run of the \
+         changed scene",
+        scene_path.display(),
+        run_dir.display(),
+        copy_path.display(),
+        line + 1,
+        now.trim(),
+        before.trim(),
+        copy_path.display()
+    ))
 }
 
 fn load(path: &Path) -> Result<ResumePoint, String> {

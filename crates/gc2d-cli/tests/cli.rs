@@ -501,6 +501,32 @@ fn a_resumed_run_numbers_its_pictures_on() {
     assert!(std::fs::read(out.path().join("frames/frame-00000.png")).unwrap() == first, "the first picture changed");
 }
 
+/// A resumed run goes on with its checkpoint's state, so a scene edited since (or another scene) would be silently
+/// ignored: it is refused, naming the line that differs. What a resumed run may change (its end time, the output
+/// cadences) is accepted.
+#[test]
+fn resuming_with_another_scene_is_refused() {
+    let out = tempfile::tempdir().unwrap();
+    let path = scene("tiny_pile.ron");
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
+        .arg(out.path())
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let edited = |from: &str, to: &str| {
+        let edited = out.path().join("edited.ron");
+        std::fs::write(&edited, text.replace(from, to)).unwrap();
+        let mut command = gc2d();
+        command.args(["run", edited.to_str().unwrap(), "--quiet", "--until", "0.02", "--resume"]).arg(out.path());
+        command.assert()
+    };
+    edited("mu: 0.6", "mu: 0.1")
+        .code(2)
+        .stderr(contains("is not the scene the run in").and(contains("reads `mu: 0.1,` against `mu: 0.6,` there")));
+    edited("end_time_s: 0.08, frames_per_second: 100", "end_time_s: 0.5, frames_per_second: 50").success();
+}
+
 /// A resumed run cannot go back in time: `--until` before its checkpoint is refused instead of ending at once with a
 /// zero-step segment and exit code 0.
 #[test]
