@@ -62,6 +62,18 @@ fn bad_segments_rates_materials_and_names_are_refused_where_they_are_written() {
         (GOOD.replace("rate_per_s: 10", "rate_per_s: 1e9"), "inlets[0].rate_per_s", "more than the"),
         (GOOD.replace("\"glass\"", "\"glas\""), "inlets[0].material", "glass"),
         (GOOD.replace("\"feed\"", "\"feed,2\""), "inlets[0].name", "column name"),
+        // An inlet without a name goes by its index: named `1` beside the unnamed inlets[1], or unnamed beside one
+        // named `0`, the time series had the same columns twice.
+        (
+            format!("{}), ({}", GOOD.replace("\"feed\"", "\"1\""), GOOD.replace("name: \"feed\", ", "")),
+            "inlets[1]",
+            "go by its index, `1`",
+        ),
+        (
+            format!("{}), ({}", GOOD.replace("name: \"feed\", ", ""), GOOD.replace("\"feed\"", "\"0\"")),
+            "inlets[1].name",
+            "used twice",
+        ),
     ];
     for (inlet, path, words) in cases {
         let error = error_of(&scene_text(&inlet));

@@ -16,19 +16,32 @@ fn counter_name(name: Option<&str>, index: usize) -> String {
     name.map_or_else(|| index.to_string(), str::to_owned)
 }
 
-/// Checks a name for a CSV column: letters, digits, `_` and `-`, not empty.
-fn check_name(name: Option<&str>, path: &str, seen: &mut Vec<String>, errors: &mut Vec<SceneError>) {
-    let Some(name) = name else { return };
-    if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
+/// Checks a name for a CSV column (letters, digits, `_` and `-`, not empty) and that the name the counters of entry
+/// `index` go by ([`counter_name`]: its own, or its index) is not another entry's: two inlets named `1` and `1` by
+/// default would give the time series the same columns twice.
+fn check_name(name: Option<&str>, index: usize, path: &str, seen: &mut Vec<String>, errors: &mut Vec<SceneError>) {
+    if let Some(name) = name
+        && (name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-'))
+    {
         errors.push(
             SceneError::value(field_path(path, "name"), format!("`{name}` is not a usable column name"))
                 .with_help("use letters, digits, `_` and `-`"),
         );
-    } else if seen.iter().any(|s| s == name) {
-        errors.push(SceneError::value(field_path(path, "name"), format!("the name `{name}` is used twice")));
-    } else {
-        seen.push(name.to_owned());
+        return;
     }
+    let counters = counter_name(name, index);
+    if !seen.contains(&counters) {
+        seen.push(counters);
+        return;
+    }
+    let error = match name {
+        Some(name) => SceneError::value(field_path(path, "name"), format!("the name `{name}` is used twice")),
+        None => SceneError::value(
+            path,
+            format!("without a name its counters go by its index, `{counters}`, which another one has as its name"),
+        ),
+    };
+    errors.push(error.with_help("give each a name of its own (one without a name goes by its index in the list)"));
 }
 
 /// Checks a segment: finite end points that differ.
@@ -65,7 +78,7 @@ pub(crate) fn check(scene: &Scene, materials: &Materials, errors: &mut Vec<Scene
     for (i, inlet) in scene.inlets.iter().enumerate() {
         let path = format!("inlets[{i}]");
         let at = |field: &str| field_path(&path, field);
-        check_name(inlet.name.as_deref(), &path, &mut names, errors);
+        check_name(inlet.name.as_deref(), i, &path, &mut names, errors);
         let segment_ok = check_segment(inlet.from_m, inlet.to_m, &path, errors);
         if let Err(error) = materials.resolve(inlet.material.as_deref(), &at("material")) {
             errors.push(error);
@@ -134,7 +147,7 @@ pub(crate) fn check(scene: &Scene, materials: &Materials, errors: &mut Vec<Scene
     let mut names = Vec::new();
     for (i, outlet) in scene.outlets.iter().enumerate() {
         let path = format!("outlets[{i}]");
-        check_name(outlet.name.as_deref(), &path, &mut names, errors);
+        check_name(outlet.name.as_deref(), i, &path, &mut names, errors);
         check_segment(outlet.from_m, outlet.to_m, &path, errors);
     }
 }
