@@ -187,6 +187,19 @@ impl Summary {
     }
 }
 
+/// `value` (≥ 0) with four significant digits, in fixed notation from 0.001 to 9999.5, else in scientific notation:
+/// a speed or mass of any size stays readable (a 1.5 mm pellet's 1.3e-5 kg read "0.0000 kg" with four decimals).
+fn significant(value: f64) -> String {
+    if value == 0.0 || !value.is_finite() {
+        return format!("{value}");
+    }
+    if !(1e-3..9999.5).contains(&value) {
+        return format!("{value:.3e}");
+    }
+    let decimals = (3 - value.log10().floor() as i32).max(0) as usize;
+    format!("{value:.decimals$}")
+}
+
 /// `value` with three significant digits (for values from 1 to 999.5).
 fn three_digits(value: f64) -> String {
     let decimals = if value < 9.995 {
@@ -243,8 +256,10 @@ impl fmt::Display for Summary {
         };
         writeln!(
             f,
-            "  particles: {} at the start ({:.4} {unit}, masses {model}), {} with a drag spring",
-            self.particles, self.particle_mass_kg_m, self.drag_springs
+            "  particles: {} at the start ({} {unit}, masses {model}), {} with a drag spring",
+            self.particles,
+            significant(self.particle_mass_kg_m),
+            self.drag_springs
         )?;
         writeln!(
             f,
@@ -254,10 +269,16 @@ impl fmt::Display for Summary {
         if let Some(fluid) = &self.fluid {
             writeln!(f, "  fluid: {}", fluid.description)?;
             for scale in &fluid.scales {
+                let speed = scale.terminal_speed_m_s;
+                let motion = match speed {
+                    s if s > 0.0 => format!("sinks at {} m/s", significant(s)),
+                    s if s < 0.0 => format!("rises at {} m/s", significant(-s)),
+                    _ => "floats".to_owned(),
+                };
                 writeln!(
                     f,
-                    "    {}: terminal speed {:.4} m/s in still fluid, drag relaxation time {:.3e} s",
-                    scale.entry, scale.terminal_speed_m_s, scale.relaxation_time_s
+                    "    {}: {motion} in still fluid (terminal speed), drag relaxation time {:.3e} s",
+                    scale.entry, scale.relaxation_time_s
                 )?;
             }
             for scale in fluid.too_fast_for(self.time_step_s) {

@@ -50,6 +50,24 @@ fn a_ball_in_a_stream_at_its_terminal_speed_stays_at_rest() {
     assert!(vy < -0.9 * w_t && vy > -w_t, "{vy}");
 }
 
+/// A ball lighter than the fluid it displaces rises: its terminal speed is negative, `check` says it rises (it printed
+/// a terminal speed of 0 for it), and in still fluid it rises towards that speed.
+#[test]
+fn a_ball_lighter_than_its_fluid_rises_at_its_terminal_speed() {
+    let text = ball_in_air("0.0", "").replace("density_kg_m3: 1.25", "density_kg_m3: 30.0");
+    let scene = Scene::from_str(&text, "rising.ron").unwrap();
+    let summary = scene.summary().unwrap();
+    let w_t = (8.0f64 * 0.02 * 9.81 * (30.0 - 15.0) / (3.0 * 30.0 * 0.47)).sqrt();
+    let terminal = summary.fluid.as_ref().unwrap().scales[0].terminal_speed_m_s;
+    assert!((terminal + w_t).abs() < 1e-9 * w_t, "{terminal} against −{w_t}");
+    assert!(summary.to_string().contains(&format!("rises at {w_t:.4} m/s")), "{summary}");
+    let mut world = scene.build().unwrap();
+    world.run_until(1.0).unwrap();
+    let ball = world.bodies().particles().next().unwrap().index();
+    let vy = world.bodies().velocity[ball].y;
+    assert!(vy > 0.9 * w_t && vy < w_t, "{vy} against {w_t}");
+}
+
 #[test]
 fn a_ramp_switches_the_stream_on_and_buoyancy_can_be_switched_off() {
     let w_t = styrofoam_terminal_speed();

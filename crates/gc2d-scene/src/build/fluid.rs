@@ -171,7 +171,8 @@ pub(crate) fn scene_folder(scene: &Scene) -> PathBuf {
 pub struct DragScale {
     /// The scene entry the particles come from (`particles[0]`, `inlets[1]`, …).
     pub entry: String,
-    /// The terminal speed in still fluid, m/s (0 for a particle not heavier than the fluid it displaces).
+    /// The terminal speed in still fluid, m/s, downwards: negative for a particle lighter than the fluid it displaces,
+    /// which rises, and 0 for one as heavy.
     pub terminal_speed_m_s: f64,
     /// The drag's relaxation time m/(∂F/∂w) at the reference slip, s: how fast the drag brings a particle to the
     /// fluid's speed.
@@ -276,8 +277,11 @@ pub(crate) fn summary(
             // Where the drag balances the weight less buoyancy (if on); for a constant c_w this is
             // √(2·(m − ρ_f·V)·g/(ρ_f·c_w·A)), the thesis's w_t.
             let buoyancy = if fluid.buoyancy { fluid.density_kg_m3 * body.volume_m3 } else { 0.0 };
-            let terminal = speed_where(drag, (p.mass - buoyancy) * g);
-            let slip = terminal.max(speed_scale).max(1e-3);
+            // A particle lighter than the fluid it displaces rises at the speed where the drag balances its lift:
+            // a negative terminal speed.
+            let net_weight = (p.mass - buoyancy) * g;
+            let terminal = speed_where(drag, net_weight.abs()).copysign(net_weight);
+            let slip = terminal.abs().max(speed_scale).max(1e-3);
             // ∂F/∂w by a difference: the drag law's own stiffness at the reference slip.
             let step = slip * 1e-6;
             let stiffness = (drag(slip + step) - drag(slip)) / step;
