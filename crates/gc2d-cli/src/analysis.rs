@@ -3,7 +3,8 @@
 
 use clap::ValueEnum;
 use gc2d_analysis::{
-    AnalysisError, AnalyzeOptions, FeedpipeOptions, MillOptions, SceneKind, analyze_feedpipe, analyze_mill, analyze_run,
+    AnalysisError, AnalyzeOptions, FeedpipeOptions, MillOptions, Report, SceneKind, analyze_feedpipe, analyze_mill,
+    analyze_run,
 };
 use serde::Deserialize;
 use std::path::Path;
@@ -63,29 +64,73 @@ impl AnalysisSettings {
     }
 }
 
+/// What [`analyze`] returns: the report, and what the user should know before trusting it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AnalysisOutput {
+    /// The report as pretty-printed JSON (in the report's field order).
+    pub json: String,
+    /// Why the numbers may mean little: a run that did not complete, a pile most of whose particles are not in it.
+    pub warnings: Vec<String>,
+}
+
 /// Runs the `kind` analysis of the finished run in `run_dir`, which writes its tables, figures and
-/// [`AnalysisKind::report_file`] there, and returns the report as pretty-printed JSON (in the report's field order).
-pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) -> Result<String, String> {
-    let as_json = |report: Result<String, serde_json::Error>| report.map_err(|e| e.to_string());
+/// [`AnalysisKind::report_file`] there, and returns the report with its warnings.
+pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) -> Result<AnalysisOutput, String> {
+    let mut warnings: Vec<String> = unfinished_run(run_dir).into_iter().collect();
     let failed = |e: AnalysisError| e.to_string();
-    let scene = match kind {
-        AnalysisKind::Auto => SceneKind::Auto,
-        AnalysisKind::Pile => SceneKind::Pile,
-        AnalysisKind::Silo => SceneKind::Silo,
+    let json = match kind {
         AnalysisKind::Mill => {
             let report = analyze_mill(run_dir, &MillOptions { warm_up_s: settings.warm_up_s }).map_err(failed)?;
-            return as_json(serde_json::to_string_pretty(&report));
+            serde_json::to_string_pretty(&report)
         }
         AnalysisKind::Feedpipe => {
             let options = FeedpipeOptions { warm_up_s: settings.warm_up_s, bins: settings.bins };
-            let report = analyze_feedpipe(run_dir, &options).map_err(failed)?;
-            return as_json(serde_json::to_string_pretty(&report));
+            serde_json::to_string_pretty(&analyze_feedpipe(run_dir, &options).map_err(failed)?)
+        }
+        AnalysisKind::Auto | AnalysisKind::Pile | AnalysisKind::Silo => {
+            let scene = match kind {
+                AnalysisKind::Pile => SceneKind::Pile,
+                AnalysisKind::Silo => SceneKind::Silo,
+                _ => SceneKind::Auto,
+            };
+            let options = AnalyzeOptions {
+                scene,
+                window_half_width: settings.window_half_width_m,
+                grid_cell: settings.grid_cell_m,
+            };
+            let report = analyze_run(run_dir, &options).map_err(failed)?;
+            warnings.extend(pile_not_formed(&report));
+            serde_json::to_string_pretty(&report)
         }
     };
-    let options =
-        AnalyzeOptions { scene, window_half_width: settings.window_half_width_m, grid_cell: settings.grid_cell_m };
-    let report = analyze_run(run_dir, &options).map_err(failed)?;
-    as_json(serde_json::to_string_pretty(&report))
+    Ok(AnalysisOutput { json: json.map_err(|e| e.to_string())?, warnings })
+}
+
+/// A warning where the run in `run_dir` did not complete (its `summary.json` says `interrupted`, `failed` or
+/// `running`): its final state is where it stopped.
+fn unfinished_run(run_dir: &Path) -> Option<String> {
+    let status = crate::sweep::outcome(run_dir)?;
+    (status != "completed").then(|| {
+        format!(
+            "the run in {} did not complete (summary.json: {status}): the analysis describes the state where it \
+             stopped",
+            run_dir.display()
+        )
+    })
+}
+
+/// A warning where fewer than half of the particles are in the pile (its largest group in contact): the others are
+/// still in flight or lie apart, and the pile's packing fraction, height and angle of repose describe a heap that has
+/// not formed (a run of 17 falling grains gave a "pile" of one grain, a packing fraction of 1 and 77°).
+fn pile_not_formed(report: &Report) -> Option<String> {
+    let pile = report.pile.as_ref()?;
+    (2 * pile.particles < report.particles).then(|| {
+        format!(
+            "only {} of the {} particles are in the pile (its largest group in contact); the rest are in flight or \
+             apart, so the pile's numbers describe a heap that has not formed: analyse a settled state",
+            pile.particles, report.particles
+        )
+    })
 }
 
 #[cfg(test)]

@@ -659,9 +659,12 @@ fn analyze(
     bins: usize,
 ) -> Result<u8, CommandFailure> {
     let settings = AnalysisSettings { window_half_width_m: window, grid_cell_m: grid, warm_up_s: warm_up, bins };
-    let json = gc2d_cli::analysis::analyze(run, kind, &settings)
+    let analysis = gc2d_cli::analysis::analyze(run, kind, &settings)
         .map_err(|e| CommandFailure::input(format!("cannot analyse {}: {e}", run.display())))?;
-    console::out(&json).map_err(|e| CommandFailure::stdout(&e))?;
+    console::out(&analysis.json).map_err(|e| CommandFailure::stdout(&e))?;
+    for warning in &analysis.warnings {
+        console::err(&format!("warning: {warning}"));
+    }
     console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
     Ok(0)
 }

@@ -597,6 +597,34 @@ fn record_pictures_snapshot_and_analysis_of_a_run() {
     assert!(out.path().join("analysis/analysis.json").exists());
 }
 
+/// The pile analysis of grains still falling (a run stopped early) warns that the pile has not formed, and of an
+/// interrupted run that it did not complete: it used to report a "pile" of one grain, a packing fraction of 1 and an
+/// angle of repose of 77° without a word.
+#[test]
+fn analysing_a_pile_that_has_not_formed_warns() {
+    let out = tempfile::tempdir().unwrap();
+    gc2d()
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
+        .arg(out.path())
+        .assert()
+        .success();
+    gc2d()
+        .arg("analyze")
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("warning: only 1 of the 5 particles are in the pile").and(contains("did not complete").not()));
+    let summary = out.path().join("summary.json");
+    let text = std::fs::read_to_string(&summary).unwrap().replace("\"completed\"", "\"interrupted\"");
+    std::fs::write(&summary, text).unwrap();
+    gc2d()
+        .arg("analyze")
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("did not complete (summary.json: interrupted)"));
+}
+
 #[test]
 fn snapshot_of_a_missing_run_is_an_input_error() {
     gc2d().args(["snapshot", "no/such/run"]).assert().code(2).stderr(contains("no/such/run"));

@@ -22,6 +22,7 @@ use local::{RunSettings, Tally, run_points};
 use scenes::PointScene;
 use slurm::{ScriptPaths, SlurmOptions};
 use spec::Sweep;
+pub(crate) use state::outcome;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
