@@ -311,6 +311,14 @@ fn bad_sweep_files_are_located() {
         "    parameters: [(path: \"materials[0].mu\", values: List([0.5])), (path: \"run.end_time_s\", name: \"mu\", values: List([0.1]))],\n",
     );
     assert!(error.contains("a second parameter (or the seed) is named `mu`"), "{error}");
+    // One path set by two parameters: every run used the later value while the table showed both.
+    let error = sweep_error(
+        "    parameters: [(path: \"materials[0].mu\", values: List([0.3])), (path: \"materials[0].mu\", name: \"mu2\", values: List([0.6]))],\n",
+    );
+    assert!(error.contains("`parameters[1].path`: another parameter sets `materials[0].mu` already"), "{error}");
+    // One value written two ways: the same run twice, as two points of the table.
+    let error = sweep_error("    parameters: [(path: \"materials[0].mu\", values: List([0.3, 0.5, 3e-1]))],\n");
+    assert!(error.contains("the value `3e-1` is `0.3` again, written another way"), "{error}");
     let error = sweep_error("    seeds: Count(0),\n");
     assert!(error.contains("`seeds`: at least one seed is needed"), "{error}");
     let error = sweep_error("    parameters: [(path: \"run.seed\", values: List([1]))],\n");

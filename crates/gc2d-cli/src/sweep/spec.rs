@@ -71,10 +71,21 @@ impl Sweep {
         });
         let mut parameters = Vec::new();
         let mut names = HashSet::from([SEED.to_owned()]);
+        let mut paths = HashSet::new();
         for (index, parameter) in file.parameters.iter().enumerate() {
             let field = |name: &str| format!("parameters[{index}].{name}");
             if parameter.path == "run.seed" {
                 return Err(error(field("path"), "the seed is set by `seeds`, not as a parameter".into()));
+            }
+            if !paths.insert(parameter.path.as_str()) {
+                return Err(error(
+                    field("path"),
+                    format!(
+                        "another parameter sets `{}` already: the later value would win in every run while the table \
+                         showed both; give each path one parameter",
+                        parameter.path
+                    ),
+                ));
             }
             let name = parameter.name.clone().unwrap_or_else(|| last_field(&parameter.path).to_owned());
             if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.') {
@@ -100,8 +111,13 @@ impl Sweep {
             if values.is_empty() {
                 return Err(error(field("values"), "the list of values is empty".into()));
             }
-            if let Some(twice) = first_repeat(&values) {
-                return Err(error(field("values"), format!("the value `{twice}` is given twice")));
+            if let Some((first, again)) = same_value_twice(&values) {
+                let message = if first == again {
+                    format!("the value `{again}` is given twice")
+                } else {
+                    format!("the value `{again}` is `{first}` again, written another way: the same run twice")
+                };
+                return Err(error(field("values"), message));
             }
             parameters.push(ParameterSpec { path: parameter.path.clone(), name, values, index });
         }
@@ -280,6 +296,14 @@ fn list_value(source: &SourceText, field: &str, value: &ron::Value) -> String {
         Some(span) if source.path_at(span.start) == Some(field) => source.text()[span].trim().to_owned(),
         _ => ron::to_string(value).unwrap_or_default(),
     }
+}
+
+/// The first value of a parameter's list that repeats an earlier one, with that earlier one: as numbers where both
+/// read as numbers (`0.3`, `0.30` and `3e-1` are one value), else as text.
+fn same_value_twice(values: &[String]) -> Option<(&str, &str)> {
+    let key = |value: &str| value.parse::<f64>().map_or_else(|_| value.to_owned(), |number| format!("{number:e}"));
+    let mut seen = std::collections::HashMap::new();
+    values.iter().find_map(|value| seen.insert(key(value), value.as_str()).map(|first| (first, value.as_str())))
 }
 
 /// The first element that occurs twice.
