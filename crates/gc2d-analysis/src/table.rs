@@ -1,27 +1,41 @@
 //! CSV outputs of a run (`timeseries.csv`, `events.csv`, `transits.csv`) read as columns by name.
 
 use crate::error::AnalysisError;
+use crate::particle_state::csv::split_fields;
 use std::path::Path;
 
 /// A CSV file read as columns by name.
 pub(crate) struct Table {
     /// Column names.
     pub header: Vec<String>,
-    /// Rows with as many fields as the header (shorter or longer lines, such as a half-written last one, are left
-    /// out).
+    /// Rows, each with as many fields as the header (quoted fields unquoted).
     pub rows: Vec<Vec<String>>,
 }
 
 impl Table {
-    /// Reads `path`.
+    /// Reads `path`. A line with more or fewer fields than the header is an error naming the file and the line: the
+    /// analyses read files of a run that ended, whose rows are all whole, so such a line is damage (a file cut short,
+    /// an edit), and leaving it out silently would change counts and sums without a word.
     pub fn read(path: &Path) -> Result<Self, AnalysisError> {
         let text =
             std::fs::read_to_string(path).map_err(|source| AnalysisError::Io { path: path.to_path_buf(), source })?;
         let mut lines = text.lines();
-        let header: Vec<String> = lines.next().unwrap_or_default().split(',').map(str::to_owned).collect();
-        let rows =
-            lines.map(|l| l.split(',').map(str::to_owned).collect::<Vec<_>>()).filter(|r| r.len() == header.len());
-        Ok(Self { rows: rows.collect(), header })
+        let header = split_fields(lines.next().unwrap_or_default());
+        let mut rows = Vec::new();
+        for (k, line) in lines.enumerate().filter(|(_, line)| !line.is_empty()) {
+            let row = split_fields(line);
+            if row.len() != header.len() {
+                return Err(AnalysisError::NotEnoughData(format!(
+                    "{}:{}: {} fields, expected {} (the file is damaged: cut short or edited)",
+                    path.display(),
+                    k + 2,
+                    row.len(),
+                    header.len()
+                )));
+            }
+            rows.push(row);
+        }
+        Ok(Self { rows, header })
     }
 
     /// The index of column `name`, or an error naming the file's kind.

@@ -134,7 +134,7 @@ pub fn quoted(text: &str) -> std::borrow::Cow<'_, str> {
 }
 
 /// The fields of one CSV line, with quoted fields unquoted.
-fn split_fields(line: &str) -> Vec<String> {
+pub(crate) fn split_fields(line: &str) -> Vec<String> {
     let mut fields = vec![String::new()];
     let mut in_quotes = false;
     let mut chars = line.chars().peekable();
