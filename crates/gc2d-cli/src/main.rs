@@ -374,9 +374,10 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         write_scene_copy(&copy, &scene)
             .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", copy.display())))?;
     }
+    let frame_interval = 1.0 / scene.run.frames_per_second;
     let series_path = out.join("timeseries.csv");
     let mut series = if args.resume.is_some() && series_path.exists() {
-        TimeSeriesWriter::continue_at(&series_path, world.time(), 0.5 * world.time_step())
+        TimeSeriesWriter::continue_at(&series_path, world.time(), 0.5 * world.time_step(), frame_interval)
     } else {
         TimeSeriesWriter::create(&series_path)
     }
@@ -390,7 +391,6 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
 
     let checkpoint_interval = args.checkpoint_every.or(scene.run.checkpoint_interval_s);
     let mut checkpoints = checkpoint_interval.map(|interval| Checkpoints { dir: out.join("checkpoints"), interval });
-    let frame_interval = 1.0 / scene.run.frames_per_second;
     let segments_path = out.join("segments.csv");
     let mut segments = SegmentLog::start(
         &segments_path,

@@ -95,8 +95,9 @@ impl TimeSeriesWriter {
     /// (written by the earlier run after its checkpoint, when it went on before it was stopped) and any line that is
     /// not a whole row (a run killed mid-write) are dropped, so that the resumed run's rows follow on without
     /// repeating a time. A row at `resumed_at` itself (within `slack`, half a time step) was written from the same
-    /// state and is kept.
-    pub fn continue_at(path: &Path, resumed_at: f64, slack: f64) -> io::Result<Self> {
+    /// state and is kept where it lies on the rows' cadence (`row_interval`); off it, it is the last row an
+    /// interrupted run wrote where it stopped, which the unsplit run does not have, and is dropped.
+    pub fn continue_at(path: &Path, resumed_at: f64, slack: f64, row_interval: f64) -> io::Result<Self> {
         let text = std::fs::read_to_string(path)?;
         let mut lines = text.lines();
         let header = lines.next().unwrap_or_default();
@@ -115,9 +116,11 @@ impl TimeSeriesWriter {
         };
         let mut kept = String::with_capacity(text.len());
         let mut kept_last_row = None;
+        let on_cadence = |time: f64| ((time / row_interval).round() * row_interval - time).abs() <= slack;
         for line in lines {
             if let Some(time) = row_time(line)
                 && time < resumed_at + slack
+                && (time < resumed_at - slack || on_cadence(time))
             {
                 kept.push_str(line);
                 kept.push('\n');

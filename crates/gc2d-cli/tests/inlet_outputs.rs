@@ -53,11 +53,18 @@ fn the_counter_columns_balance_on_every_row_and_survive_a_resume() {
     assert_eq!((last[column("inlet_feed_injected")], last[column("outlet_top_removed")]), (10.0, 6.0));
 
     // A resumed run keeps the header with its counter columns and the rows up to its time.
-    let series = TimeSeriesWriter::continue_at(&path, 0.25, 5e-4).unwrap();
+    let series = TimeSeriesWriter::continue_at(&path, 0.25, 5e-4, 0.01).unwrap();
     drop(series);
     let kept = std::fs::read_to_string(&path).unwrap();
     assert_eq!(kept.lines().next(), text.lines().next());
     assert_eq!(kept.lines().count(), 1 + 26);
+    // Resumed where an interrupted run stopped between two rows: the last row it wrote there, off the rows'
+    // cadence, is dropped, as the unsplit run has no row at that time.
+    let last = kept.lines().last().unwrap().to_owned();
+    let off_cadence = format!("0.253,{}", last.split_once(',').unwrap().1);
+    std::fs::write(&path, format!("{kept}{off_cadence}\n")).unwrap();
+    drop(TimeSeriesWriter::continue_at(&path, 0.253, 5e-4, 0.01).unwrap());
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), kept);
 }
 
 #[test]

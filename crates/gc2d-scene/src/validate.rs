@@ -317,6 +317,12 @@ fn youngs_modulus_in_range(path: &str, modulus: f64) -> Result<(), SceneError> {
     })
 }
 
+/// True for the characters that turn the direction of the text after them (U+202A–U+202E, U+2066–U+2069): printed
+/// in a name, they make a terminal show the rest of the line reversed.
+fn is_direction_override(c: char) -> bool {
+    matches!(c, '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}')
+}
+
 /// Ranges of each material and unique names.
 fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
     if scene.materials.is_empty() && scene.mass_model == MassModel::SphereEquivalent {
@@ -331,6 +337,18 @@ fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
         let at = |field: &str| format!("materials[{i}].{field}");
         if material.name.is_empty() {
             errors.push(SceneError::value(at("name"), "a material needs a name"));
+        } else if let Some(c) = material.name.chars().find(|&c| c.is_control() || is_direction_override(c)) {
+            errors.push(
+                SceneError::value(
+                    at("name"),
+                    format!(
+                        "the name holds the invisible character U+{:04X}: it would break the lines of `check`, the \
+                         events and the dumps that print it",
+                        u32::from(c)
+                    ),
+                )
+                .with_help("use visible characters only"),
+            );
         } else if scene.materials[..i].iter().any(|m| m.name == material.name) {
             errors.push(SceneError::value(at("name"), format!("material `{}` is defined twice", material.name)));
         }

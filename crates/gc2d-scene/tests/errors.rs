@@ -145,6 +145,18 @@ fn a_particle_outside_a_chamber_is_refused_as_lying_in_its_wall() {
     assert!(Scene::from_str(&inside, "ok.ron").unwrap().build().is_ok());
 }
 
+/// A material's name is printed by `check` and written into the events and the dumps: a line break or a character that
+/// reverses the text would break those lines or make them read wrongly.
+#[test]
+fn material_names_with_invisible_characters_are_refused() {
+    for name in ["sand\\nstone", "sand\\u{202E}enots"] {
+        let text = format!("Scene(\n    materials: [(name: \"{name}\")],\n)");
+        let error = error_of(&text);
+        assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "materials[0].name"), "{}", error.render_plain());
+        assert!(error.message().contains("invisible character U+"), "{}", error.message());
+    }
+}
+
 #[test]
 fn all_errors_of_a_pass_are_reported_together() {
     let text = "Scene(\n    run: (end_time_s: -1),\n    materials: [(name: \"sand\", gamma: -0.5)],\n    heating: (window_s: (2, 1)),\n)";
