@@ -133,8 +133,8 @@ pub fn quoted(text: &str) -> std::borrow::Cow<'_, str> {
     }
 }
 
-/// The fields of one CSV line, with quoted fields unquoted.
-pub(crate) fn split_fields(line: &str) -> Vec<String> {
+/// The fields of one CSV line, with quoted fields unquoted (the reverse of [`quoted`]).
+pub fn split_fields(line: &str) -> Vec<String> {
     let mut fields = vec![String::new()];
     let mut in_quotes = false;
     let mut chars = line.chars().peekable();
