@@ -179,9 +179,10 @@ fn largest_up_to(rows: &[String], time: f64) -> Option<AlternationWindow> {
 
 /// An earlier row as the run resumed at `time` keeps it. A row that claims progress past `time` (a process killed
 /// after its last checkpoint had run on, or one whose later checkpoint the user passed over) is cut back: `to_time_s`
-/// to `time` (not before its `from_time_s`), `steps` in proportion (Δt is fixed for a run), and a `running` status,
-/// which only a killed process leaves, becomes `killed`. `wall_s` stays: that time was spent. Rows ending within
-/// `slack` (half a step) of `time`, and rows that do not parse, are kept as they are.
+/// to `time` (not before its `from_time_s`), `steps` in proportion (Δt is fixed for a run). A `running` status, which
+/// only a killed process leaves (the resumed one holds the directory's lock, so no other runs there), becomes `killed`,
+/// also where the row ends at `time` (a process killed right after a checkpoint). `wall_s` stays: that time was spent.
+/// Other rows ending within `slack` (half a step) of `time`, and rows that do not parse, are kept as they are.
 fn cut_back(row: &str, time: f64, slack: f64) -> String {
     let fields: Vec<&str> = row.splitn(SEGMENT_COLUMNS.split(',').count(), ',').collect();
     let (Some(from), Some(to), Some(steps)) = (
@@ -191,16 +192,19 @@ fn cut_back(row: &str, time: f64, slack: f64) -> String {
     ) else {
         return row.to_owned();
     };
-    if to <= time + slack || fields.len() < 7 {
+    if fields.len() < 7 || (to <= time + slack && fields[6] != "running") {
         return row.to_owned();
     }
-    let kept_to = time.max(from);
-    let kept_steps = if to > from { (steps as f64 * (kept_to - from) / (to - from)).round() as u64 } else { 0 };
-    let status = if fields[6] == "running" { "killed" } else { fields[6] };
     let mut cut: Vec<String> = fields.iter().map(|f| (*f).to_owned()).collect();
-    cut[3] = kept_to.to_string();
-    cut[4] = kept_steps.to_string();
-    cut[6] = status.to_owned();
+    if to > time + slack {
+        let kept_to = time.max(from);
+        let kept_steps = if to > from { (steps as f64 * (kept_to - from) / (to - from)).round() as u64 } else { 0 };
+        cut[3] = kept_to.to_string();
+        cut[4] = kept_steps.to_string();
+    }
+    if fields[6] == "running" {
+        cut[6] = "killed".to_owned();
+    }
     cut.join(",")
 }
 
@@ -225,6 +229,9 @@ mod tests {
         let finished = "1763766000,2,0,0.1,100,1.000,interrupted,,,";
         assert_eq!(cut_back(finished, 0.1, 5e-4), finished);
         assert_eq!(cut_back(finished, 0.0999, 5e-4), finished);
+        // A process killed right after a checkpoint left its row ending there, still `running`: it is `killed`.
+        let killed_at_checkpoint = "1763766000,2,0,0.3,300,3.000,running,,,";
+        assert_eq!(cut_back(killed_at_checkpoint, 0.3, 5e-4), "1763766000,2,0,0.3,300,3.000,killed,,,");
         // Resumed from a checkpoint before the row began: nothing of it is kept.
         assert_eq!(
             cut_back(row, 0.05, 5e-4),
