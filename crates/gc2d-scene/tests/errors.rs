@@ -145,6 +145,25 @@ fn a_particle_outside_a_chamber_is_refused_as_lying_in_its_wall() {
     assert!(Scene::from_str(&inside, "ok.ron").unwrap().build().is_ok());
 }
 
+/// A particle whose size gives no usable mass (a radius of 1e-300 m or 1e300 m) blew up at step 1 with advice to
+/// reduce the time step, and one that starts faster than the first step allows stopped there: both are refused at
+/// the entry, so that `check` does not pass what `run` refuses at its start.
+#[test]
+fn particles_the_first_step_would_lose_are_refused_at_their_entry() {
+    for radius in ["1e-300", "1e300"] {
+        let text = format!("Scene(\n    particles: [(shape: Disk(radius_m: {radius}))],\n)");
+        let error = error_of(&text);
+        assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "particles[0]"), "{}", error.render_plain());
+        assert!(error.message().contains("not positive finite numbers"), "{}", error.message());
+    }
+    let text = "Scene(\n    particles: [(shape: Disk(radius_m: 0.005), velocity_m_s: (1000, 0))],\n)";
+    let error = error_of(text);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "particles[0]"), "{}", error.render_plain());
+    assert!(error.message().contains("it starts at 1000 m/s and would move"), "{}", error.message());
+    let slower = text.replace("(1000, 0)", "(10, 0)");
+    assert!(Scene::from_str(&slower, "ok.ron").unwrap().build().is_ok());
+}
+
 /// A material's name is printed by `check` and written into the events and the dumps: a line break or a character that
 /// reverses the text would break those lines or make them read wrongly.
 #[test]

@@ -157,6 +157,9 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
         particles.extend(mill::particles(mill, &mill_walls, &materials, scene.mass_model, &mut rng, "mill")?);
         walls.extend(mill_walls);
     }
+    if let Some(error) = SceneError::combine(safety::unusable_masses(&particles, scene.mass_model)) {
+        return Err(error);
+    }
     let sources = plan_sources(scene, &materials)?;
     let (inlets, outlets) = inlets::plan(scene, &materials)?;
 
@@ -201,6 +204,11 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
         Some(b) if error.kind() == ErrorKind::TimeStep => error.with_related(limiting_note(b)),
         _ => error,
     })?;
+
+    let travel_limit = SafetyLimits::default().max_travel_fraction;
+    if let Some(error) = SceneError::combine(safety::too_fast_at_start(&particles, time_step, travel_limit)) {
+        return Err(error);
+    }
 
     let placed: Vec<PlacedBody> = walls
         .iter()

@@ -150,6 +150,75 @@ fn round_down_to_two_digits(x: f64) -> f64 {
     if rounded > 0.0 && rounded <= x { rounded } else { x }
 }
 
+/// Particles whose size and density give no usable mass or moment of inertia (zero, infinite or not a number: a
+/// radius of 1e-300 m or 1e300 m), one error per scene entry. Such a particle blew up at the first step with advice to
+/// reduce the time step, which cannot help, and `check` reported its scene as having "no particles to bound" Δt.
+pub(crate) fn unusable_masses(particles: &[super::PlannedParticle], mass_model: MassModel) -> Vec<SceneError> {
+    let mut reported: Vec<&str> = Vec::new();
+    let mut errors = Vec::new();
+    for p in particles {
+        let mass = mass_model.mass_properties(&p.shape, p.density);
+        let usable = |x: f64| x.is_finite() && x > 0.0;
+        if usable(mass.mass) && usable(mass.inertia) || reported.contains(&p.path.as_str()) {
+            continue;
+        }
+        reported.push(&p.path);
+        errors.push(
+            SceneError::value(
+                &p.path,
+                format!(
+                    "its size ({:.3e} m across) and density give a mass of {:e} and a moment of inertia of {:e}, \
+                     not positive finite numbers: the engine cannot move it",
+                    2.0 * p.shape.reach(),
+                    mass.mass,
+                    mass.inertia
+                ),
+            )
+            .with_help("check the units of the size (metres) and of the material's density"),
+        );
+    }
+    errors
+}
+
+/// Particles that start so fast that their first step of `time_step` would move a point of them further than
+/// `max_travel_fraction` of their inscribed radius, the run's travel limit (`SafetyLimits::max_travel_fraction`): the
+/// run would stop at step 1, so `check` refuses them, one error per scene entry.
+pub(crate) fn too_fast_at_start(
+    particles: &[super::PlannedParticle],
+    time_step: f64,
+    max_travel_fraction: f64,
+) -> Vec<SceneError> {
+    let mut reported: Vec<&str> = Vec::new();
+    let mut errors = Vec::new();
+    for p in particles {
+        let travel = (p.velocity.length() + p.angular_velocity.abs() * p.shape.reach()) * time_step;
+        let limit = max_travel_fraction * p.shape.inscribed_radius();
+        if travel <= limit || reported.contains(&p.path.as_str()) {
+            continue;
+        }
+        reported.push(&p.path);
+        errors.push(
+            SceneError::value(
+                &p.path,
+                format!(
+                    "it starts at {} m/s and would move {:.3e} m in its first step of {:.3e} s, more than its \
+                     inscribed radius of {:.3e} m: it could pass through a wall or a particle unseen, and the run would \
+                     stop at that step",
+                    crate::checks::number(p.velocity.length()),
+                    travel,
+                    time_step,
+                    p.shape.inscribed_radius()
+                ),
+            )
+            .with_help(format!(
+                "start it slower, or use a time step below {:.3e} s",
+                time_step * limit / travel
+            )),
+        );
+    }
+    errors
+}
+
 /// A body placed for the overlap check.
 pub struct PlacedBody<'a> {
     /// Its outline.
