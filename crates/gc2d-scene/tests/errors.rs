@@ -164,6 +164,19 @@ fn particles_the_first_step_would_lose_are_refused_at_their_entry() {
     assert!(Scene::from_str(&slower, "ok.ron").unwrap().build().is_ok());
 }
 
+/// Two walls with the same outline at the same place (a floor given twice) made every contact with it twice as stiff:
+/// contacts lasted 1/√2 as long, without a word. They are refused; walls that only touch or overlap are not.
+#[test]
+fn a_wall_given_twice_is_refused() {
+    let floor = "Wall(shape: Rectangle(width_m: 0.2, height_m: 0.01), position_m: (0, -0.005))";
+    let text = format!("Scene(\n    walls: [\n        {floor},\n        {floor},\n    ],\n)");
+    let error = error_of(&text);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "walls[1]"), "{}", error.render_plain());
+    assert!(error.message().contains("lies exactly on `walls[0]`"), "{}", error.message());
+    let shifted = text.replacen("position_m: (0, -0.005)", "position_m: (0.1, -0.005)", 1);
+    assert!(Scene::from_str(&shifted, "ok.ron").unwrap().build().is_ok());
+}
+
 /// A material's name is printed by `check` and written into the events and the dumps: a line break or a character that
 /// reverses the text would break those lines or make them read wrongly.
 #[test]

@@ -251,7 +251,16 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
         active.retain(|&j| boxes[j].max.x >= boxes[i].min.x);
         for &j in &active {
             let (a, b) = (i.min(j), i.max(j));
-            if (bodies[a].is_wall && bodies[b].is_wall) || !boxes[a].overlaps(&boxes[b]) {
+            if bodies[a].is_wall && bodies[b].is_wall {
+                if coincide(&bodies[a], &world[a], &bodies[b], &world[b]) {
+                    errors.push(coinciding_walls_error(&bodies[a], &bodies[b]));
+                    if errors.len() == MAX_REPORTED_OVERLAPS {
+                        return errors;
+                    }
+                }
+                continue;
+            }
+            if !boxes[a].overlaps(&boxes[b]) {
                 continue;
             }
             let (particle, other) = if bodies[a].is_wall { (b, a) } else { (a, b) };
@@ -284,6 +293,30 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
         }
     }
     errors
+}
+
+/// True when two walls have the same outline at the same place (the same kind, radius and points, to round-off):
+/// a particle touching one touches both, at twice the stiffness.
+fn coincide(a: &PlacedBody, points_a: &[DVec2], b: &PlacedBody, points_b: &[DVec2]) -> bool {
+    let size = points_a.iter().chain(points_b).map(|p| p.abs().max_element()).fold(a.shape.radius(), f64::max);
+    let close = |x: DVec2, y: DVec2| (x - y).abs().max_element() <= 1e-12 * size;
+    a.shape.kind() == b.shape.kind()
+        && (a.shape.radius() * a.pose.scale - b.shape.radius() * b.pose.scale).abs() <= 1e-12 * size
+        && points_a.len() == points_b.len()
+        && points_a.iter().all(|&p| points_b.iter().any(|&q| close(p, q)))
+}
+
+fn coinciding_walls_error(a: &PlacedBody, b: &PlacedBody) -> SceneError {
+    let other = if a.path == b.path { "another wall of the same entry".to_owned() } else { format!("`{}`", a.path) };
+    SceneError::value(
+        b.path,
+        format!(
+            "this wall lies exactly on {other}: a particle touching one touches both, and feels twice the contact \
+             stiffness and damping"
+        ),
+    )
+    .with_help("give each wall once (a mill's `rotor.arms_rad` lists each blade's angle once)")
+    .with_label("given twice")
 }
 
 /// A percentage to two decimals, or to three significant digits below 0.01 %.
