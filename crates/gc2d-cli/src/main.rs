@@ -348,6 +348,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
             (world, None)
         }
     };
+    refuse_cadences_below_the_step(&args, &scene, world.time_step())?;
     let out = match (&args.out, &args.resume) {
         (Some(out), _) => out.clone(),
         (None, Some(from)) => gc2d_cli::resume::run_directory_of(from).unwrap_or_else(|| default_out_dir(&args.scene)),
@@ -623,6 +624,27 @@ fn refuse_a_run_shorter_than_its_step(
         );
     }
     Err(CommandFailure::input(render(error.located(scene.source.as_ref()))))
+}
+
+/// Refuses a cadence of output files shorter than the time step `dt`: it would write a file at every step (a unit
+/// typo such as `--checkpoint-every 1e-9` wrote 31,251 checkpoints for a 0.05 s run and filled the disk).
+fn refuse_cadences_below_the_step(args: &RunArgs, scene: &Scene, dt: f64) -> Result<(), CommandFailure> {
+    let cadences = [
+        ("--checkpoint-every", args.checkpoint_every),
+        (
+            "run.checkpoint_interval_s",
+            args.checkpoint_every.is_none().then_some(scene.run.checkpoint_interval_s).flatten(),
+        ),
+        ("--dump-every", args.dump_every.filter(|&interval| interval > 0.0)),
+        ("--png-every", args.png_every),
+    ];
+    match cadences.into_iter().find_map(|(name, interval)| interval.filter(|&t| t < dt).map(|t| (name, t))) {
+        Some((name, interval)) => Err(CommandFailure::input(format!(
+            "{name} {interval} s is shorter than the time step, {dt:.3e} s: it would write a file at every step; give \
+             at least the time step (the unit is seconds of simulated time)"
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// `snapshot`: draws a checkpoint (a run directory's final.ckpt, or the given file).

@@ -566,6 +566,16 @@ fn a_cadence_that_is_not_a_positive_time_is_refused() {
             .code(2)
             .stderr(contains(format!("{flag} must be a positive time in seconds")));
     }
+    // Shorter than the time step: a file at every step (31,251 checkpoints for a 0.05 s run).
+    let out = tempfile::tempdir().unwrap();
+    for flag in ["--checkpoint-every", "--dump-every", "--png-every"] {
+        gc2d()
+            .args(["run", scene("tiny_pile.ron").to_str().unwrap(), flag, "1e-9", "--out"])
+            .arg(out.path())
+            .assert()
+            .code(2)
+            .stderr(contains(format!("{flag} 0.000000001 s is shorter than the time step")));
+    }
 }
 
 #[test]
