@@ -32,11 +32,23 @@ impl From<PartSizeOption> for PartSizeConvention {
 }
 
 /// Converts `gsi` into a RON scene at `output` (default: `gsi` with the extension `.ron`), reading PART_SIZE as
-/// `part_size` says. Returns the path written.
-pub fn import_gsi(gsi: &Path, output: Option<&Path>, part_size: PartSizeOption) -> Result<PathBuf, CommandFailure> {
+/// `part_size` says; an existing `output` is replaced only with `force`. Returns the path written.
+pub fn import_gsi(
+    gsi: &Path,
+    output: Option<&Path>,
+    part_size: PartSizeOption,
+    force: bool,
+) -> Result<PathBuf, CommandFailure> {
     let output = output.map_or_else(|| gsi.with_extension("ron"), Path::to_path_buf);
     if output == gsi {
         return Err(CommandFailure::input(format!("the output {} would overwrite the input", output.display())));
+    }
+    if output.exists() && !force {
+        return Err(CommandFailure::input(format!(
+            "{} exists (perhaps a scene edited since an earlier import); write elsewhere with -o, or replace it with \
+             --force",
+            output.display()
+        )));
     }
     let file = gsi.display().to_string();
     let text = std::fs::read_to_string(gsi).map_err(|e| CommandFailure::input(format!("cannot read {file}: {e}")))?;

@@ -108,6 +108,10 @@ enum Command {
         /// How PART_SIZE is read: as the ellipse's semi-axes, its full axes, or decided per file (auto).
         #[arg(long, value_enum, default_value_t)]
         part_size: gc2d_cli::import::PartSizeOption,
+        /// Replace the scene file if it exists (without it, an existing file, perhaps edited since an earlier import,
+        /// is left alone and the import refused).
+        #[arg(long)]
+        force: bool,
     },
     /// Run a parameter sweep or ensemble: a run per point, several at once, resumable; a table and plots of the
     /// results; or a Slurm job-array script (docs/sweeps.md).
@@ -223,8 +227,8 @@ fn main() -> ExitCode {
         Command::Convergence { out, quick } => convergence(out, quick),
         Command::Sweep(args) => gc2d_cli::sweep::sweep(&args),
         Command::Bench(args) => gc2d_cli::bench::bench(&args),
-        Command::ImportGsi { gsi, output, part_size } => {
-            gc2d_cli::import::import_gsi(&gsi, output.as_deref(), part_size).map(|_| 0)
+        Command::ImportGsi { gsi, output, part_size, force } => {
+            gc2d_cli::import::import_gsi(&gsi, output.as_deref(), part_size, force).map(|_| 0)
         }
     };
     match result {

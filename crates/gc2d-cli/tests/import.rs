@@ -2,6 +2,7 @@
 
 use assert_cmd::Command;
 use gc2d_scene::Scene;
+use predicates::prelude::*;
 use predicates::str::contains;
 use std::path::{Path, PathBuf};
 
@@ -36,6 +37,12 @@ fn the_piston_file_imports_warns_about_part_size_and_the_scene_builds_and_runs()
     let summary = scene.summary().unwrap();
     assert_eq!((summary.wall_bodies, summary.moving_walls, summary.particles), (4, 1, 1251));
     assert!(summary.time_step_is_automatic);
+    // A second import does not replace the scene (it may have been edited since) unless asked to.
+    std::fs::write(&ron, format!("{text}// edited\n")).unwrap();
+    gc2d().arg("import-gsi").arg(&gsi).assert().code(2).stderr(contains("piston.ron exists").and(contains("--force")));
+    assert!(std::fs::read_to_string(&ron).unwrap().ends_with("// edited\n"));
+    gc2d().arg("import-gsi").arg(&gsi).arg("--force").assert().success();
+    assert_eq!(std::fs::read_to_string(&ron).unwrap(), text);
     let out = dir.path().join("out");
     gc2d()
         .args(["run", ron.to_str().unwrap(), "--quiet", "--until", "0.002", "--out"])
