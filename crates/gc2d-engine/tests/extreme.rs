@@ -636,7 +636,7 @@ fn a_particle_outside_a_chambers_box_is_refused_as_lying_in_its_wall() {
         let chamber =
             world.add_wall(shape, Pose::new(DVec2::new(chamber_x, 0.0), 0.0), DVec2::ZERO, Default::default());
         let origin = Pose::new(DVec2::ZERO, 0.0);
-        let grain = world.add_particle(&square(0.004).unwrap(), origin, RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
+        let grain = world.add_particle(square(0.004).unwrap(), origin, RHO_THESIS, DVec2::ZERO, 0.0).unwrap();
         match world.step() {
             Err(WorldError::Safety(SafetyError::InitialOverlap { a, b, percent })) => {
                 assert!(refused, "a grain inside the chamber was refused");
