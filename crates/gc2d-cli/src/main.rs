@@ -502,6 +502,9 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     if let Err(e) = summary.write(&summary_path) {
         unwritten.push(format!("{} ({e})", summary_path.display()));
     }
+    if let Some(warning) = nothing_fed(&world) {
+        console::err(&warning);
+    }
     let code = report_outcome(&status, &world, &out, wall_time, &unwritten)?;
     if mill && status == RunStatus::Completed {
         print_mill_summary(&out, world.time());
@@ -716,6 +719,21 @@ fn convergence(out: PathBuf, quick: bool) -> Result<u8, CommandFailure> {
         .map_err(|e| CommandFailure { code: 1, report: format!("the convergence study failed: {e}") })?;
     console::err(&format!("{} problems; tables and figures in {}.", report.problems.len(), out.display()));
     Ok(0)
+}
+
+/// A warning where the run's sources and inlets tried to insert particles and found room for none: a source line or
+/// an inlet segment inside a wall ran to "completed" having fed nothing, with only the counters in summary.json to
+/// show it.
+fn nothing_fed(world: &World) -> Option<String> {
+    let stats = world.stats();
+    let tried = stats.insertions_skipped + stats.postponed;
+    (stats.inserted + stats.injected == 0 && tried > 0).then(|| {
+        format!(
+            "warning: no particle was inserted: the sources found no free spot {} times and the inlets {} times (is a \
+             source's line or an inlet's segment inside a wall or a packed bed?)",
+            stats.insertions_skipped, stats.postponed
+        )
+    })
 }
 
 /// Prints the one-paragraph outcome and maps it to the exit code. `unwritten` lists the end-of-run files that could

@@ -527,6 +527,29 @@ fn resuming_with_another_scene_is_refused() {
     edited("end_time_s: 0.08, frames_per_second: 100", "end_time_s: 0.5, frames_per_second: 50").success();
 }
 
+/// A source whose line lies inside a wall finds no free spot: the run used to end "completed" with no particle and
+/// no word, the skipped insertions only counted in summary.json.
+#[test]
+fn a_run_whose_sources_fed_nothing_warns() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("buried.ron");
+    let text = "Scene(\n    run: (end_time_s: 0.2),\n    walls: [Wall(shape: Rectangle(width_m: 1, height_m: 0.2))],\n    \
+                sources: [(position_m: (0, 0), width_m: 0.1, shape: (semi_axes_m: (0.005, 0.005)))],\n)";
+    std::fs::write(&path, text).unwrap();
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--out"])
+        .arg(dir.path().join("out"))
+        .assert()
+        .success()
+        .stderr(contains("warning: no particle was inserted: the sources found no free spot"));
+    gc2d()
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
+        .arg(dir.path().join("fed"))
+        .assert()
+        .success()
+        .stderr(contains("no particle was inserted").not());
+}
+
 /// A resumed run cannot go back in time: `--until` before its checkpoint is refused instead of ending at once with a
 /// zero-step segment and exit code 0.
 #[test]
