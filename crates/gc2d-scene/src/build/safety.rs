@@ -150,20 +150,33 @@ fn round_down_to_two_digits(x: f64) -> f64 {
     if rounded > 0.0 && rounded <= x { rounded } else { x }
 }
 
+/// The first error `check` finds for each scene entry among `particles` (a block's many particles give one).
+fn first_per_entry(
+    particles: &[super::PlannedParticle],
+    check: impl Fn(&super::PlannedParticle) -> Option<SceneError>,
+) -> Vec<SceneError> {
+    let mut reported: Vec<&str> = Vec::new();
+    let mut errors = Vec::new();
+    for p in particles {
+        if reported.contains(&p.path.as_str()) {
+            continue;
+        }
+        if let Some(error) = check(p) {
+            reported.push(&p.path);
+            errors.push(error);
+        }
+    }
+    errors
+}
+
 /// Particles whose size and density give no usable mass or moment of inertia (zero, infinite or not a number: a
 /// radius of 1e-300 m or 1e300 m), one error per scene entry. Such a particle blew up at the first step with advice to
 /// reduce the time step, which cannot help, and `check` reported its scene as having "no particles to bound" Δt.
 pub(crate) fn unusable_masses(particles: &[super::PlannedParticle], mass_model: MassModel) -> Vec<SceneError> {
-    let mut reported: Vec<&str> = Vec::new();
-    let mut errors = Vec::new();
-    for p in particles {
+    first_per_entry(particles, |p| {
         let mass = mass_model.mass_properties(&p.shape, p.density);
         let usable = |x: f64| x.is_finite() && x > 0.0;
-        if usable(mass.mass) && usable(mass.inertia) || reported.contains(&p.path.as_str()) {
-            continue;
-        }
-        reported.push(&p.path);
-        errors.push(
+        (!(usable(mass.mass) && usable(mass.inertia))).then(|| {
             SceneError::value(
                 &p.path,
                 format!(
@@ -174,10 +187,9 @@ pub(crate) fn unusable_masses(particles: &[super::PlannedParticle], mass_model: 
                     mass.inertia
                 ),
             )
-            .with_help("check the units of the size (metres) and of the material's density"),
-        );
-    }
-    errors
+            .with_help("check the units of the size (metres) and of the material's density")
+        })
+    })
 }
 
 /// Particles that start so fast that their first step of `time_step` would move a point of them further than
@@ -188,16 +200,10 @@ pub(crate) fn too_fast_at_start(
     time_step: f64,
     max_travel_fraction: f64,
 ) -> Vec<SceneError> {
-    let mut reported: Vec<&str> = Vec::new();
-    let mut errors = Vec::new();
-    for p in particles {
+    first_per_entry(particles, |p| {
         let travel = (p.velocity.length() + p.angular_velocity.abs() * p.shape.reach()) * time_step;
         let limit = max_travel_fraction * p.shape.inscribed_radius();
-        if travel <= limit || reported.contains(&p.path.as_str()) {
-            continue;
-        }
-        reported.push(&p.path);
-        errors.push(
+        (travel > limit).then(|| {
             SceneError::value(
                 &p.path,
                 format!(
@@ -210,13 +216,9 @@ pub(crate) fn too_fast_at_start(
                     p.shape.inscribed_radius()
                 ),
             )
-            .with_help(format!(
-                "start it slower, or use a time step below {:.3e} s",
-                time_step * limit / travel
-            )),
-        );
-    }
-    errors
+            .with_help(format!("start it slower, or use a time step below {:.3e} s", time_step * limit / travel))
+        })
+    })
 }
 
 /// A body placed for the overlap check.
