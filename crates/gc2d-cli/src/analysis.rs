@@ -106,8 +106,8 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
     Ok(AnalysisOutput { json: json.map_err(|e| e.to_string())?, warnings })
 }
 
-/// A warning where the run in `run_dir` did not complete (its `summary.json` says `interrupted`, `failed` or
-/// `running`): its final state is where it stopped.
+/// A warning where the run in `run_dir` did not complete (its `summary.json` says `interrupted` or `failed`):
+/// its final state is where it stopped.
 fn unfinished_run(run_dir: &Path) -> Option<String> {
     let status = crate::sweep::outcome(run_dir)?;
     (status != "completed").then(|| {

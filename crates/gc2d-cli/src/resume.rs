@@ -85,8 +85,8 @@ pub fn another_scene(scene: &Scene, scene_path: &Path, run_dir: &Path) -> Option
     Some(format!(
         "{} is not the scene the run in {} started from ({}): line {} of both written out in full reads `{}` against \
          `{}` there. A resumed run goes on with the checkpoint's state, so changes to the scene would be ignored \
-         (only its end time, output cadences, name and view may change); resume with {}, or start a new run of the \
-         changed scene",
+         (only its end time, output cadences, seed, name, description and view may change); resume with {}, or start \
+         a new run of the changed scene",
         scene_path.display(),
         run_dir.display(),
         copy_path.display(),
