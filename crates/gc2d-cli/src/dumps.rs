@@ -70,11 +70,6 @@ impl StateDumps {
         let path = self.dir.join("particles.pvd");
         std::fs::write(&path, vtk::collection(&entries)).map_err(|e| format!("cannot write {}: {e}", path.display()))
     }
-
-    /// The index of the last dump time reached at the World's time: ⌊(t + Δt/2)/T⌋.
-    fn index(&self, world: &World) -> u64 {
-        ((world.time() + 0.5 * world.time_step()) / self.interval).floor().max(0.0) as u64
-    }
 }
 
 impl FrameSink for StateDumps {
@@ -84,7 +79,7 @@ impl FrameSink for StateDumps {
 
     fn take(&mut self, world: &World) -> Result<(), String> {
         std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
-        let index = self.index(world);
+        let index = crate::runner::cadence_index(world, self.interval);
         let needs_rows = self.formats.iter().any(|&f| f != ExportFormat::Csv);
         let rows = if needs_rows { particle_rows(world, &self.materials, None) } else { Vec::new() };
         self.formats.iter().try_for_each(|&format| self.write(world, &rows, index, format))

@@ -3,6 +3,7 @@
 //! checkpoints and dumps, which `export` and `--resume DIR` would then take for the newest state.
 
 use crate::transits::TRANSITS_FILE;
+use gc2d_analysis::particle_state::csv::DUMPS_DIR;
 use std::io;
 use std::path::Path;
 
@@ -11,7 +12,7 @@ const RUN_FILES: [&str; 6] =
     ["final.ckpt", "summary.json", "segments.csv", "timeseries.csv", "events.csv", TRANSITS_FILE];
 
 /// Folders a run writes, each with the start of the names of the files it writes there.
-const RUN_FOLDERS: [(&str, &str); 3] = [("checkpoints", "checkpoint-"), ("dumps", "particles"), ("frames", "frame-")];
+const RUN_FOLDERS: [(&str, &str); 3] = [("checkpoints", "checkpoint-"), (DUMPS_DIR, "particles"), ("frames", "frame-")];
 
 /// Removes from `out` the files an earlier run wrote there (the list above, and the folders left empty by it) and
 /// returns how many it removed. Files of other names stay, and so do the `analysis/` and `export/` folders that

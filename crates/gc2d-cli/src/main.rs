@@ -316,10 +316,12 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     if !(end_time.is_finite() && end_time >= 0.0) {
         return Err(CommandFailure::input(format!("--until must be a non-negative time in seconds, got {end_time}")));
     }
+    // The run directory a resume continues: the one its scene is checked against and, without --out, written to.
+    let resumed_dir = args.resume.as_deref().and_then(gc2d_cli::resume::run_directory_of);
     let (mut world, resumed_from) = match &args.resume {
         Some(from) => {
-            if let Some(mismatch) = gc2d_cli::resume::run_directory_of(from)
-                .and_then(|run_dir| gc2d_cli::resume::another_scene(&scene, &args.scene, &run_dir))
+            if let Some(mismatch) =
+                resumed_dir.as_deref().and_then(|run_dir| gc2d_cli::resume::another_scene(&scene, &args.scene, run_dir))
             {
                 return Err(CommandFailure::input(mismatch));
             }
@@ -353,9 +355,9 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         }
     };
     refuse_cadences_below_the_step(&args, &scene, world.time_step())?;
-    let out = match (&args.out, &args.resume) {
+    let out = match (&args.out, resumed_dir) {
         (Some(out), _) => out.clone(),
-        (None, Some(from)) => gc2d_cli::resume::run_directory_of(from).unwrap_or_else(|| default_out_dir(&args.scene)),
+        (None, Some(run_dir)) => run_dir,
         (None, None) => default_out_dir(&args.scene),
     };
     std::fs::create_dir_all(&out)

@@ -24,6 +24,12 @@ pub trait FrameSink: Send {
     fn largest_alternation(&mut self, _window: AlternationWindow) {}
 }
 
+/// The place on a cadence of `interval` (s) of the last tick the World has reached: ⌊(t + Δt/2)/interval⌋, so that a
+/// file written on the tick k·interval is named k in every process of a run, a resumed one included.
+pub fn cadence_index(world: &World, interval: f64) -> u64 {
+    ((world.time() + 0.5 * world.time_step()) / interval).floor().max(0.0) as u64
+}
+
 /// Ticks at whole multiples of an interval of simulated time (not counted from the start), so that a resumed run
 /// writes its rows, frames and checkpoints at the times the uninterrupted run would have.
 struct Ticks {

@@ -44,7 +44,7 @@ impl FrameSink for PngFrames {
 
     fn take(&mut self, world: &World) -> Result<(), String> {
         std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
-        let index = ((world.time() + 0.5 * world.time_step()) / self.interval).floor().max(0.0) as u64;
+        let index = crate::runner::cadence_index(world, self.interval);
         let path = self.dir.join(format!("frame-{index:05}.png"));
         render_png(world, &path, &self.options).map_err(|e| format!("picture {}: {e}", path.display()))
     }

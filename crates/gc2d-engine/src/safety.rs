@@ -485,12 +485,14 @@ pub fn deepest_initial_overlap(bodies: &Bodies, tolerance: f64) -> Option<(BodyI
             }
         }
     }
+    if tolerance >= 1.0 {
+        return deepest;
+    }
     let chambers = order.iter().filter(|&&i| bodies.shape[i] == ShapeKind::InnerCircle);
     for &chamber in chambers {
         let outside =
             order.iter().find(|&&i| bodies.kind[i] == BodyKind::Particle && !boxes[i].overlaps(&boxes[chamber]));
         if let Some(&particle) = outside
-            && tolerance < 1.0
             && deepest.is_none_or(|d| 1.0 > d.2)
         {
             deepest = Some((BodyId(chamber.min(particle) as u32), BodyId(chamber.max(particle) as u32), 1.0));
@@ -506,9 +508,10 @@ pub fn step_travel(bodies: &Bodies, i: usize, dt: f64) -> f64 {
 }
 
 /// (|v| + |ω|·R)·Δt: the largest distance a point at most `reach` R (m) from the centroid of a body moving at
-/// `velocity` v and `angular_velocity` ω travels in a step of `dt`.
+/// `velocity` v and `angular_velocity` ω travels in a step of `dt`; the run's travel check, and the scene's check of
+/// particles that start too fast for it.
 #[inline]
-pub(crate) fn travel_in_step(velocity: DVec2, angular_velocity: f64, reach: f64, dt: f64) -> f64 {
+pub fn travel_in_step(velocity: DVec2, angular_velocity: f64, reach: f64, dt: f64) -> f64 {
     (velocity.length() + angular_velocity.abs() * reach) * dt
 }
 

@@ -466,16 +466,16 @@ fn random_balls(
     let balls = &mill.balls;
     let (r, speed) = (balls.radius_m, balls.start_speed());
     let centre = DVec2::from_array(mill.centre_m);
-    let reach = outer_radius(mill) - r;
-    let most = densest_disk_count(outer_radius(mill), r);
+    let chamber = outer_radius(mill);
+    let reach = chamber - r;
+    let most = densest_disk_count(chamber, r);
     if balls.count as f64 > most {
         return Err(SceneError::value(
             field_path(path, "count"),
             format!(
-                "{} balls of radius {r} m cannot fit in a chamber of radius {} m: packed as densely as disks can be, \
-                 it would hold at most {}",
+                "{} balls of radius {r} m cannot fit in a chamber of radius {chamber} m: packed as densely as disks \
+                 can be, it would hold at most {}",
                 balls.count,
-                outer_radius(mill),
                 most.floor()
             ),
         )

@@ -2,7 +2,7 @@
 //! the overlap of the initial bodies (reference §3.6, §10.4).
 
 use crate::error::{ErrorKind, SceneError};
-use gc2d_engine::safety::{ParticleInertia, particle_time_steps};
+use gc2d_engine::safety::{ParticleInertia, particle_time_steps, travel_in_step};
 use gc2d_engine::{BodyShape, ContactModel, MassModel, ParticleRecipe, ShapeKind, shape_view};
 use gc2d_geometry::{Aabb, DVec2, Pose, area_contact};
 use rand_chacha::ChaCha8Rng;
@@ -201,7 +201,7 @@ pub(crate) fn too_fast_at_start(
     max_travel_fraction: f64,
 ) -> Vec<SceneError> {
     first_per_entry(particles, |p| {
-        let travel = (p.velocity.length() + p.angular_velocity.abs() * p.shape.reach()) * time_step;
+        let travel = travel_in_step(p.velocity, p.angular_velocity, p.shape.reach(), time_step);
         let limit = max_travel_fraction * p.shape.inscribed_radius();
         (travel > limit).then(|| {
             SceneError::value(
@@ -237,8 +237,9 @@ pub struct PlacedBody<'a> {
 const MAX_REPORTED_OVERLAPS: usize = 8;
 
 /// Overlaps between particles, and between particles and walls, larger than `max_fraction` of the smaller
-/// particle's area; a particle outside a chamber (an inner-circle wall) overlaps it by its whole area. Sweeps the bodies sorted by their lower x bound, so the cost is O(N log N) plus the pairs whose
-/// boxes overlap.
+/// particle's area (a particle outside a chamber, an inner-circle wall, overlaps it by its whole area), and walls that
+/// lie exactly on each other. Sweeps the bodies sorted by their lower x bound, so the cost is O(N log N) plus the
+/// pairs whose boxes overlap.
 pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneError> {
     let world: Vec<Vec<DVec2>> =
         bodies.iter().map(|b| b.shape.body_points().iter().map(|v| b.pose.apply(*v)).collect()).collect();
@@ -281,11 +282,11 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
     }
     // An inner-circle wall (a chamber) is solid everywhere outside its circle: a particle entirely outside its box
     // lies wholly in that solid, though the boxes do not meet.
+    if max_fraction >= 1.0 {
+        return errors;
+    }
     let chambers = (0..bodies.len()).filter(|&k| bodies[k].is_wall && bodies[k].shape.kind() == ShapeKind::InnerCircle);
     for chamber in chambers {
-        if max_fraction >= 1.0 {
-            break;
-        }
         for particle in (0..bodies.len()).filter(|&k| !bodies[k].is_wall && !boxes[k].overlaps(&boxes[chamber])) {
             let (a, b) = (chamber.min(particle), chamber.max(particle));
             errors.push(overlap_error(&bodies[a], &bodies[b], bodies[particle].pose.position, 1.0, max_fraction));
