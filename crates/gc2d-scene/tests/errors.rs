@@ -164,6 +164,22 @@ fn particles_the_first_step_would_lose_are_refused_at_their_entry() {
     assert!(Scene::from_str(&slower, "ok.ron").unwrap().build().is_ok());
 }
 
+/// A particle that starts outside `run.domain` was removed at the first step without a word: the run had one particle
+/// fewer than the scene. It is refused, once per entry (a block half outside gives one error).
+#[test]
+fn particles_starting_outside_the_domain_are_refused() {
+    let text = "Scene(\n    run: (domain: (x_range_m: (-0.1, 0.1), y_range_m: (0, 0.2))),\n    particles: [(shape: \
+                Disk(radius_m: 0.005), position_m: (0.15, 0.05))],\n    blocks: [(x_range_m: (0, 0.3), y_range_m: (0.05, \
+                0.06), grid_spacing_m: (0.02, 0.02), shape: (semi_axes_m: (0.005, 0.005)))],\n)";
+    let error = error_of(text);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "particles[0]"), "{}", error.render_plain());
+    assert!(error.message().contains("starts at (0.15, 0.05) m, outside `run.domain`"), "{}", error.message());
+    let related: Vec<&str> = error.related_errors().iter().map(|e| e.path()).collect();
+    assert_eq!(related, ["blocks[0]"], "{}", error.render_plain());
+    let inside = text.replace("(0.15, 0.05)", "(0.05, 0.05)").replace("(0, 0.3)", "(0, 0.09)");
+    assert!(Scene::from_str(&inside, "ok.ron").unwrap().build().is_ok());
+}
+
 /// Two walls with the same outline at the same place (a floor given twice) made every contact with it twice as stiff:
 /// contacts lasted 1/√2 as long, without a word. They are refused; walls that only touch or overlap are not.
 #[test]

@@ -160,6 +160,15 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
     if let Some(error) = SceneError::combine(safety::unusable_masses(&particles, scene.mass_model)) {
         return Err(error);
     }
+    let domain = scene.run.domain.map(|d| Aabb {
+        min: DVec2::new(d.x_range_m[0], d.y_range_m[0]),
+        max: DVec2::new(d.x_range_m[1], d.y_range_m[1]),
+    });
+    if let Some(domain) = domain
+        && let Some(error) = SceneError::combine(safety::outside_domain(&particles, domain))
+    {
+        return Err(error);
+    }
     let sources = plan_sources(scene, &materials)?;
     let (inlets, outlets) = inlets::plan(scene, &materials)?;
 
@@ -250,10 +259,7 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
             max_impact_speed,
             ..SafetyLimits::default()
         },
-        domain: scene.run.domain.map(|d| Aabb {
-            min: DVec2::new(d.x_range_m[0], d.y_range_m[0]),
-            max: DVec2::new(d.x_range_m[1], d.y_range_m[1]),
-        }),
+        domain,
         seed: scene.run.seed,
     };
     let mut world = World::new(config).map_err(|e| world_error(&e, scene, bound.as_ref()))?;

@@ -221,6 +221,31 @@ pub(crate) fn too_fast_at_start(
     })
 }
 
+/// Particles whose centroid starts outside the run's `domain` (the engine removes them at the first step, before they
+/// move), one error per scene entry.
+pub(crate) fn outside_domain(particles: &[super::PlannedParticle], domain: Aabb) -> Vec<SceneError> {
+    first_per_entry(particles, |p| {
+        let at = p.pose.position;
+        let inside = domain.min.cmple(at).all() && at.cmple(domain.max).all();
+        (!inside).then(|| {
+            SceneError::value(
+                &p.path,
+                format!(
+                    "it starts at ({}, {}) m, outside `run.domain` (x {} to {} m, y {} to {} m): the run would remove it \
+                     at the first step",
+                    crate::checks::number(at.x),
+                    crate::checks::number(at.y),
+                    crate::checks::number(domain.min.x),
+                    crate::checks::number(domain.max.x),
+                    crate::checks::number(domain.min.y),
+                    crate::checks::number(domain.max.y),
+                ),
+            )
+            .with_help("move it inside the domain, or widen `run.domain`")
+        })
+    })
+}
+
 /// A body placed for the overlap check.
 pub struct PlacedBody<'a> {
     /// Its outline.
