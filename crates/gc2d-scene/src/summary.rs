@@ -17,6 +17,23 @@ pub(crate) fn interaction_lines(names: &[String], table: &InteractionTable) -> V
     lines
 }
 
+/// Where the power law e(v) = a/(v + b)^c exceeds 1 and the engine clips it to 1 (`ImpactLaw::restitution`), in
+/// words after the formula; empty where it stays ≤ 1 at every speed. e(v) = 1 at v* = a^(1/c) − b; a fit such as
+/// Reichardt's steel law reaches 1 only at v = 0.
+fn clipping(a: f64, b: f64, c: f64) -> String {
+    if c == 0.0 {
+        return if a > 1.0 { " (above 1 at every speed: clipped to 1)".to_owned() } else { String::new() };
+    }
+    let crossing = a.powf(1.0 / c) - b;
+    if c > 0.0 && crossing > 0.0 {
+        format!(" (above 1 below {} m/s: clipped to 1 there)", significant(crossing))
+    } else if c < 0.0 && a > 0.0 && crossing.is_finite() {
+        format!(" (above 1 above {} m/s: clipped to 1 there)", significant(crossing.max(0.0)))
+    } else {
+        String::new()
+    }
+}
+
 /// A contact model in words, with its parameters.
 fn describe(model: &ContactModel) -> String {
     match model {
@@ -51,7 +68,7 @@ fn describe(model: &ContactModel) -> String {
                     ", restitution e(v) of steel (Reichardt)".to_owned()
                 }
                 Some(PenetrationDamping::VelocityDependent(ImpactLaw::PowerLaw { a, b, c })) => {
-                    format!(", restitution e(v) = {}/(v + {})^{}", number(a), number(b), number(c))
+                    format!(", restitution e(v) = {}/(v + {})^{}{}", number(a), number(b), number(c), clipping(a, b, c))
                 }
                 Some(PenetrationDamping::VelocityDependent(ImpactLaw::Table(table))) => {
                     format!(", restitution e(v) from {} points", table.points().len())
@@ -319,5 +336,28 @@ impl fmt::Display for Summary {
             number(self.particle_steps()),
             PARTICLE_STEPS_PER_SECOND / 1e6
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::clipping;
+    use gc2d_contact::ImpactLaw;
+
+    /// The summary says where a fitted e(v) exceeds 1, at the speed where the engine's clipped law reaches 1.
+    #[test]
+    fn a_power_law_above_one_is_reported_where_it_is_clipped() {
+        let (a, b, c) = ImpactLaw::STEEL_REICHARDT;
+        assert_eq!(clipping(a, b, c), "", "Reichardt's steel law reaches 1 only at v = 0");
+        assert_eq!(clipping(0.7, 0.5, 0.3), "");
+        assert_eq!(clipping(0.0, 0.5, -0.3), "");
+        let text = clipping(1.2, 0.5, 0.3);
+        assert_eq!(text, " (above 1 below 1.336 m/s: clipped to 1 there)");
+        let law = ImpactLaw::PowerLaw { a: 1.2, b: 0.5, c: 0.3 };
+        assert_eq!(law.restitution(1.336), 1.0);
+        assert!(law.restitution(1.337) < 1.0);
+        assert_eq!(clipping(0.5, 0.5, -0.5), " (above 1 above 3.500 m/s: clipped to 1 there)");
+        assert_eq!(clipping(2.0, 0.5, -0.5), " (above 1 above 0 m/s: clipped to 1 there)");
+        assert_eq!(clipping(1.5, 0.5, 0.0), " (above 1 at every speed: clipped to 1)");
     }
 }

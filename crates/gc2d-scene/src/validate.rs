@@ -5,7 +5,9 @@ use crate::build::blocks::{Lattice, MAX_INITIAL_PARTICLES};
 use crate::build::{shapes, walls};
 use crate::checks::{finite, finite_pair, in_range, non_negative, number, ordered_range, positive, window};
 use crate::error::{SceneError, suggest};
-use crate::schema::{Area, Gravity, InteractionLaw, MassModel, Material, Particle, Scene, Source, defaults};
+use crate::schema::{
+    Area, Gravity, GravityProfile, InteractionLaw, MassModel, Material, Particle, Scene, Source, defaults,
+};
 use crate::spans::field_path;
 use gc2d_contact::{Cohesion, ContactLaw, CundallStrack, NormalDamping, NormalElastic};
 use rand::SeedableRng;
@@ -244,7 +246,13 @@ fn check_area(area: &Area, path: &str, errors: &mut Vec<SceneError>) {
 fn check_gravity_and_heating(scene: &Scene, errors: &mut Vec<SceneError>) {
     match scene.gravity {
         Gravity::Constant(g) => collect(errors, gravity_in_range("gravity", g)),
-        Gravity::Varying { from_m_s2, to_m_s2, window_s, ramp_fraction, .. } => {
+        Gravity::Varying { profile, from_m_s2, to_m_s2, window_s, steps, ramp_fraction } => {
+            if steps == 0 && profile != GravityProfile::Linear {
+                errors.push(
+                    SceneError::value("gravity.steps", format!("0: a {profile:?} change of g needs at least one step"))
+                        .with_help("`steps: 1` changes g in one jump"),
+                );
+            }
             collect(errors, gravity_in_range("gravity.from_m_s2", from_m_s2));
             collect(errors, gravity_in_range("gravity.to_m_s2", to_m_s2));
             collect(errors, window("gravity.window_s", window_s).map(drop));
@@ -415,6 +423,19 @@ fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
             );
         }
         collect(errors, non_negative(&at("cohesion_n_m"), material.cohesion_n_m).map(drop));
+        if !(material.poisson_ratio > -1.0 && material.poisson_ratio <= 0.5) {
+            errors.push(
+                SceneError::value(
+                    at("poisson_ratio"),
+                    format!(
+                        "{}: Poisson's ratio ν of an isotropic solid lies in (−1, 0.5]",
+                        number(material.poisson_ratio)
+                    ),
+                )
+                .with_label("out of range")
+                .with_help("steel and glass are about 0.3, rubber almost 0.5; at −1 the shear modulus is infinite"),
+            );
+        }
     }
 }
 

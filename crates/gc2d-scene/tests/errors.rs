@@ -180,6 +180,31 @@ fn particles_starting_outside_the_domain_are_refused() {
     assert!(Scene::from_str(&inside, "ok.ron").unwrap().build().is_ok());
 }
 
+/// A Poisson ratio outside (−1, 0.5] gave a negative or infinite E* or G*, reported against the interaction law that
+/// used it ("got 0"); a stepped change of g with `steps: 0` acted as one step. Both are refused at their field.
+#[test]
+fn poisson_ratios_and_gravity_steps_out_of_range_are_refused_at_their_field() {
+    for nu in ["1", "-1", "0.6", "NaN"] {
+        let text = format!(
+            "Scene(\n    mass_model: SphereEquivalent,\n    materials: [(name: \"steel\", density_kg_m3: 7850, \
+             youngs_modulus_pa: 2e11, poisson_ratio: {nu})],\n    interactions: [(materials: (\"steel\", \"steel\"), \
+             law: Hertz(damping: Restitution(0.9)))],\n)"
+        );
+        let error = error_of(&text);
+        assert_eq!(error.path(), "materials[0].poisson_ratio", "ν = {nu}: {}", error.render_plain());
+        assert!(error.message().contains("lies in (−1, 0.5]"), "{}", error.message());
+        let steel = text.replace(&format!("poisson_ratio: {nu}"), "poisson_ratio: 0.5");
+        assert!(Scene::from_str(&steel, "ok.ron").unwrap().validate().is_ok());
+    }
+    let text =
+        "Scene(\n    gravity: Varying(profile: Step, from_m_s2: 9.81, to_m_s2: 0, window_s: (0, 1), steps: 0),\n)";
+    let error = error_of(text);
+    assert_eq!(error.path(), "gravity.steps", "{}", error.render_plain());
+    assert!(Scene::from_str(&text.replace("steps: 0", "steps: 1"), "ok.ron").unwrap().validate().is_ok());
+    let linear = text.replace("Step", "Linear");
+    assert!(Scene::from_str(&linear, "ok.ron").unwrap().validate().is_ok(), "a linear change has no steps");
+}
+
 /// Two walls with the same outline at the same place (a floor given twice) made every contact with it twice as stiff:
 /// contacts lasted 1/√2 as long, without a word. They are refused; walls that only touch or overlap are not.
 #[test]
