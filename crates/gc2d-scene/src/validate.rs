@@ -2,6 +2,7 @@
 //! Every problem is reported with its field path; all found in one pass are returned together.
 
 use crate::build::blocks::{Lattice, MAX_INITIAL_PARTICLES};
+use crate::build::safety::MIN_TIME_STEP_S;
 use crate::build::{shapes, walls};
 use crate::checks::{finite, finite_pair, in_range, non_negative, number, ordered_range, positive, window};
 use crate::error::{SceneError, suggest};
@@ -200,10 +201,6 @@ fn collect(errors: &mut Vec<SceneError>, result: Result<(), SceneError>) {
         errors.push(error);
     }
 }
-
-/// Shortest time step a scene may give, s: a femtosecond, the step of molecular dynamics (the engine itself needs
-/// Δt⁵/120 to be a normal f64, about 1.5e-61 s).
-const MIN_TIME_STEP_S: f64 = 1e-15;
 
 fn check_run(scene: &Scene, errors: &mut Vec<SceneError>) {
     let run = &scene.run;

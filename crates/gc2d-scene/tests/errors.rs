@@ -205,6 +205,17 @@ fn poisson_ratios_and_gravity_steps_out_of_range_are_refused_at_their_field() {
     assert!(Scene::from_str(&linear, "ok.ron").unwrap().validate().is_ok(), "a linear change has no steps");
 }
 
+/// A particle 1e-20 m across got an automatic Δt of about 1e-23 s, below the femtosecond a scene may give itself.
+/// It is refused at the entry that needs it.
+#[test]
+fn an_automatic_time_step_below_a_femtosecond_is_refused_at_the_particle() {
+    let text = "Scene(\n    particles: [(shape: Disk(radius_m: 0.005)), (shape: Disk(radius_m: 1e-20), position_m: (0.1, 0))],\n)";
+    let error = error_of(text);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::TimeStep, "particles[1]"), "{}", error.render_plain());
+    assert!(error.message().contains("below the shortest a scene may have (1e-15 s)"), "{}", error.message());
+    assert!(Scene::from_str(&text.replace("1e-20", "1e-4"), "ok.ron").unwrap().build().is_ok());
+}
+
 /// Two walls with the same outline at the same place (a floor given twice) made every contact with it twice as stiff:
 /// contacts lasted 1/√2 as long, without a word. They are refused; walls that only touch or overlap are not.
 #[test]

@@ -15,6 +15,10 @@ pub const SOURCE_SAMPLES: usize = 256;
 /// to step (period-2 chatter), at 0.15 they do not (docs/model.md, "Automatic Δt").
 pub const AUTOMATIC_TIME_STEP_FRACTION: f64 = 0.15;
 
+/// Shortest time step a scene may give or get, s: a femtosecond, the step of molecular dynamics (the engine itself
+/// needs Δt⁵/120 to be a normal f64, about 1.5e-61 s).
+pub(crate) const MIN_TIME_STEP_S: f64 = 1e-15;
+
 /// Δt when the scene leaves it out and has no particles to bound it (gc2d's default `DELTA_T`), s.
 pub const FALLBACK_TIME_STEP: f64 = 1e-4;
 
@@ -117,7 +121,21 @@ pub fn choose_time_step(
     allow_unsafe: bool,
 ) -> Result<f64, SceneError> {
     let Some(dt) = requested else {
-        return Ok(bound.map_or(FALLBACK_TIME_STEP, |b| round_down_to_two_digits(b.automatic_time_step)));
+        let Some(bound) = bound else { return Ok(FALLBACK_TIME_STEP) };
+        let dt = round_down_to_two_digits(bound.automatic_time_step);
+        if dt < MIN_TIME_STEP_S {
+            return Err(SceneError::new(
+                ErrorKind::TimeStep,
+                bound.path.as_str(),
+                format!(
+                    "its particles (inscribed radius {:.3e} m) need a time step of {dt:.3e} s, below the shortest a \
+                     scene may have ({MIN_TIME_STEP_S:e} s)",
+                    bound.inscribed_radius
+                ),
+            )
+            .with_help("check the units of its size (metres) and of the materials' Young's moduli and densities"));
+        }
+        return Ok(dt);
     };
     if !(dt > 0.0 && dt.is_finite()) {
         return Err(SceneError::value("run.time_step_s", format!("{dt}: must be a positive finite number of seconds")));
