@@ -265,6 +265,7 @@ fn check(path: &Path) -> Result<u8, CommandFailure> {
     let scene = load(path)?;
     let summary = scene.summary().map_err(|e| CommandFailure::input(render(e)))?;
     refuse_a_run_shorter_than_its_step(&scene, summary.time_step_s, None, || summary.limiting_entry.clone())?;
+    refuse_more_steps_than_the_clock_counts(&scene, summary.time_step_s, 0.0, None)?;
     console::out(&summary.to_string()).map_err(|e| CommandFailure::stdout(&e))?;
     Ok(0)
 }
@@ -355,6 +356,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         }
     };
     refuse_cadences_below_the_step(&args, &scene, world.time_step())?;
+    refuse_more_steps_than_the_clock_counts(&scene, world.time_step(), world.time(), args.until)?;
     let out = match (&args.out, resumed_dir) {
         (Some(out), _) => out.clone(),
         (None, Some(run_dir)) => run_dir,
@@ -633,6 +635,39 @@ fn refuse_a_run_shorter_than_its_step(
         );
     }
     Err(CommandFailure::input(render(error.located(scene.source.as_ref()))))
+}
+
+/// Most steps a run may have: 2⁵³. The clock advances by t + Δt, which stops advancing once t is 2⁵³ steps long (the
+/// run would never end), and no run of that length could finish: at a billion steps per second it takes 104 days.
+const MAX_STEPS: f64 = 9_007_199_254_740_992.0;
+
+/// Refuses a run from `start` to its end (the scene's end time, or `--until`) of more than [`MAX_STEPS`] steps of
+/// `time_step`: usually an end time in the wrong unit (1e30 s printed as 18446744073709551615 steps).
+fn refuse_more_steps_than_the_clock_counts(
+    scene: &Scene,
+    time_step: f64,
+    start: f64,
+    until: Option<f64>,
+) -> Result<(), CommandFailure> {
+    let end_time = until.unwrap_or(scene.run.end_time_s);
+    let steps = (end_time - start) / time_step;
+    if steps <= MAX_STEPS {
+        return Ok(());
+    }
+    let message = format!(
+        "the run to {end_time:.3e} s takes {steps:.3e} steps of {time_step:.3e} s, more than the 2^53 ({MAX_STEPS:.3e}) a \
+         run may have: its clock would stop advancing, and even at a billion steps per second it would take more than \
+         100 days"
+    );
+    match until {
+        Some(_) => Err(CommandFailure::input(format!("--until: {message}"))),
+        None => Err(CommandFailure::input(render(
+            SceneError::new(ErrorKind::Value, "run.end_time_s", message)
+                .with_label("too long")
+                .with_help("check the unit of the end time (seconds of simulated time)")
+                .located(scene.source.as_ref()),
+        ))),
+    }
 }
 
 /// Refuses a cadence of output files shorter than the time step `dt`: it would write a file at every step (a unit

@@ -121,3 +121,32 @@ fn an_automatic_time_step_longer_than_the_run_is_refused() {
     .unwrap();
     assert_eq!(gc2d(&["check", "given.ron"]).status.code(), Some(0));
 }
+
+#[test]
+fn a_run_of_more_steps_than_its_clock_counts_is_refused() {
+    // An end time of 1e30 s was printed as 18446744073709551615 steps (a saturated u64), and its clock t + Δt would
+    // have stopped advancing after 2^53 steps.
+    let dir = tempfile::tempdir().unwrap();
+    let text = "Scene(\n    run: (end_time_s: 1e30),\n    particles: [(shape: Square(side_m: 0.01))],\n)\n";
+    std::fs::write(dir.path().join("long.ron"), text).unwrap();
+    let gc2d = |args: &[&str]| {
+        let output =
+            Command::cargo_bin("gc2d-rs").unwrap().current_dir(dir.path()).env("NO_COLOR", "1").args(args).output();
+        output.unwrap()
+    };
+    for args in [&["check", "long.ron"][..], &["run", "long.ron", "--quiet", "--out", "out"]] {
+        let output = gc2d(args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        let message: String = stderr.split_whitespace().filter(|w| *w != "│").collect::<Vec<_>>().join(" ");
+        assert!(message.contains("long.ron:2:23: `run.end_time_s`: the run to 1.000e30 s takes"), "{args:?}: {stderr}");
+        assert!(message.contains("more than the 2^53"), "{args:?}: {stderr}");
+    }
+    assert!(!dir.path().join("out").exists(), "nothing written");
+    let output = gc2d(&["run", "long.ron", "--quiet", "--out", "out", "--until", "1e25"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--until: the run to 1.000e25 s takes"), "{stderr}");
+    let output = gc2d(&["run", "long.ron", "--quiet", "--out", "out", "--until", "1e-3"]);
+    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+}
