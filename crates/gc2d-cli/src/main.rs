@@ -255,7 +255,7 @@ fn render(error: gc2d_scene::SceneError) -> String {
 /// Loads and validates a scene, printing its warnings (an inlet too slow for its rate) to stderr.
 fn load(path: &Path) -> Result<Scene, CommandFailure> {
     let scene = Scene::from_path(path).map_err(|e| CommandFailure::input(render(e)))?;
-    for warning in scene.inlet_warnings() {
+    for warning in scene.warnings() {
         console::err(&format!("warning: {warning}"));
     }
     Ok(scene)

@@ -23,7 +23,7 @@ fn error_of(text: &str) -> SceneError {
 #[test]
 fn ten_per_second_for_one_second_feed_ten_and_the_outlet_drains_them() {
     let scene = Scene::from_str(&scene_text(GOOD), "feed.ron").unwrap();
-    assert!(scene.inlet_warnings().is_empty());
+    assert!(scene.warnings().is_empty());
     let mut world = scene.build().unwrap();
     assert_eq!(world.inlets()[0].inlet().name, "feed");
     assert_eq!(world.outlets()[0].outlet().name, "top");
@@ -89,7 +89,7 @@ fn bad_segments_rates_materials_and_names_are_refused_where_they_are_written() {
 fn a_slow_inlet_is_warned_about_and_still_runs() {
     let slow = GOOD.replace("velocity_m_s: (0.0, 1.0)", "velocity_m_s: (3.0, 0.1)");
     let scene = Scene::from_str(&scene_text(&slow), "slow.ron").unwrap();
-    let warnings = scene.inlet_warnings();
+    let warnings = scene.warnings();
     assert_eq!(warnings.len(), 1);
     let field = scene_text(&slow).lines().position(|l| l.contains("velocity_m_s: (3.0, 0.1)")).unwrap() + 1;
     let place = format!("slow.ron:{field}:");
@@ -105,4 +105,37 @@ fn the_written_scene_reads_back_equal() {
     assert_eq!(copy.inlets, scene.inlets);
     assert_eq!(copy.outlets, scene.outlets);
     assert_eq!(copy.inlets[0].window_s, [0.0, f64::INFINITY]);
+}
+
+/// A source's drop line or an inlet's segment inside a wall fed nothing there: a line wholly inside walls is refused
+/// at the field that places it, one partly inside is warned about with the share and the wall.
+#[test]
+fn feed_lines_inside_walls_are_refused_or_warned_about() {
+    let block = "walls: [Wall(shape: Rectangle(width_m: 0.2, height_m: 0.1), position_m: (0.1, 0.5))],";
+    let scene_with = |feeds: &str| format!("Scene(\n    {block}\n    {feeds}\n)\n");
+    let source = |x: f64| {
+        format!("sources: [(position_m: ({x}, 0.5), width_m: 0.1, shape: (semi_axes_m: (0.005, 0.005), disk: true))],")
+    };
+    let buried = scene_with(&source(0.1));
+    let error = error_of(&buried);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "sources[0].position_m"), "{}", error.render_plain());
+    assert!(error.message().contains("drop line lies entirely inside `walls[0]`"), "{}", error.message());
+    let half = Scene::from_str(&scene_with(&source(0.0)), "half.ron").unwrap();
+    assert!(half.build().is_ok());
+    let warnings = half.warnings();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].starts_with("half.ron:3:"), "{warnings:?}");
+    assert!(
+        warnings[0].contains("sources[0].position_m: 50 % of its drop line lies inside `walls[0]`"),
+        "{warnings:?}"
+    );
+    assert!(Scene::from_str(&scene_with(&source(-0.1)), "free.ron").unwrap().warnings().is_empty());
+    // A source dropping above the pile is not checked: its height changes as the pile grows.
+    let above = scene_with(&source(0.1).replace("width_m", "height: AboveHighest, width_m"));
+    assert!(Scene::from_str(&above, "above.ron").unwrap().build().is_ok());
+    let inlet = "inlets: [(from_m: (0.05, 0.5), to_m: (0.15, 0.5), rate_per_s: 10, velocity_m_s: (0, 1), \
+                 shape: (semi_axes_m: (0.005, 0.005), disk: true))],";
+    let error = error_of(&scene_with(inlet));
+    assert_eq!(error.path(), "inlets[0].from_m", "{}", error.render_plain());
+    assert!(error.message().contains("segment lies entirely inside `walls[0]`"), "{}", error.message());
 }

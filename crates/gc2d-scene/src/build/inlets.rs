@@ -163,7 +163,7 @@ pub(crate) fn planned_insertions(inlet: &Inlet, end_time: f64) -> f64 {
 impl Scene {
     /// `path` prefixed with the file, line and column of its value where the scene was read from a text that holds
     /// it (`feed.ron:12:22: inlets[0].velocity_m_s`), else `path` alone.
-    fn located_field(&self, path: &str) -> String {
+    pub(crate) fn located_field(&self, path: &str) -> String {
         let place =
             self.source.as_ref().and_then(|source| Some(format!("{}: ", source.location(source.span_of(path)?.start))));
         format!("{}{path}", place.unwrap_or_default())
@@ -175,7 +175,7 @@ impl Scene {
     /// inlet and insertions be postponed. Each names the file, line and column of the inlet's field where the scene
     /// was read from a text (`feed.ron:12:22: inlets[0].velocity_m_s: …`), else the field alone; empty for a scene
     /// without such an inlet.
-    pub fn inlet_warnings(&self) -> Vec<String> {
+    pub(crate) fn inlet_warnings(&self) -> Vec<String> {
         self.inlets
             .iter()
             .enumerate()

@@ -6,6 +6,7 @@
 //! World's own stream 0 drives the sources during the run; stream 2 samples source shapes for the time-step bound.
 
 pub(crate) mod blocks;
+mod feed_lines;
 pub(crate) mod fluid;
 pub(crate) mod inlets;
 pub(crate) mod interactions;
@@ -121,6 +122,40 @@ impl Scene {
     }
 }
 
+impl Scene {
+    /// Warnings about the scene that do not stop it, each naming the file, line and column of the field where the
+    /// scene was read from a text (`feed.ron:12:22: inlets[0].velocity_m_s: …`), else the field alone:
+    /// - an inlet whose start speed across its segment is below 2R·rate: particles may pile up at it;
+    /// - a source's drop line or an inlet's segment that lies partly inside a wall that does not move: it feeds only
+    ///   on the rest (one wholly inside is refused by [`Scene::build`]).
+    ///
+    /// Empty for a scene without such entries, or one that does not build (its errors say why).
+    pub fn warnings(&self) -> Vec<String> {
+        let mut warnings = self.inlet_warnings();
+        let mut rng = ChaCha8Rng::seed_from_u64(self.run.seed);
+        rng.set_stream(BUILD_STREAM);
+        let Ok(mut walls) = scene_walls(self, &mut rng) else { return warnings };
+        if let Some(mill) = &self.mill {
+            let Ok(mill_walls) = mill::walls(mill, "mill") else { return warnings };
+            walls.extend(mill_walls);
+        }
+        for line in feed_lines::covered_lines(self, &walls).into_iter().filter(|line| line.share < 1.0) {
+            warnings.push(format!("{}: {}", self.located_field(&line.field), line.warning()));
+        }
+        warnings
+    }
+}
+
+/// The walls of the scene's `walls` entries, wall macros expanded, drawing from `rng` (the build's stream, whose
+/// first draws they are).
+fn scene_walls(scene: &Scene, rng: &mut ChaCha8Rng) -> Result<Vec<PlacedWall>, SceneError> {
+    let mut walls: Vec<PlacedWall> = Vec::new();
+    for (i, item) in scene.walls.iter().enumerate() {
+        walls.extend(walls::expand(item, &format!("walls[{i}]"), rng)?);
+    }
+    Ok(walls)
+}
+
 /// Whether the build refuses bodies that overlap at the start.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum StartOverlaps {
@@ -147,15 +182,16 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
     let mut rng = ChaCha8Rng::seed_from_u64(scene.run.seed);
     rng.set_stream(BUILD_STREAM);
 
-    let mut walls: Vec<PlacedWall> = Vec::new();
-    for (i, item) in scene.walls.iter().enumerate() {
-        walls.extend(walls::expand(item, &format!("walls[{i}]"), &mut rng)?);
-    }
+    let mut walls = scene_walls(scene, &mut rng)?;
     let mut particles = plan_particles(scene, &materials, &mut rng)?;
     if let Some(mill) = &scene.mill {
         let mill_walls = mill::walls(mill, "mill")?;
         particles.extend(mill::particles(mill, &mill_walls, &materials, scene.mass_model, &mut rng, "mill")?);
         walls.extend(mill_walls);
+    }
+    let buried = feed_lines::covered_lines(scene, &walls).into_iter().filter(|line| line.share == 1.0);
+    if let Some(error) = SceneError::combine(buried.map(|line| line.error()).collect()) {
+        return Err(error);
     }
     if let Some(error) = SceneError::combine(safety::unusable_masses(&particles, scene.mass_model)) {
         return Err(error);
