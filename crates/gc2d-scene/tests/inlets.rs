@@ -139,3 +139,18 @@ fn feed_lines_inside_walls_are_refused_or_warned_about() {
     assert_eq!(error.path(), "inlets[0].from_m", "{}", error.render_plain());
     assert!(error.message().contains("segment lies entirely inside `walls[0]`"), "{}", error.message());
 }
+
+/// An inlet feeding at 1,000 m/s passed `check`, and the run stopped at the first insertion (travel limit). It is
+/// refused at its velocity, as a particle that starts too fast is; with `allow_unsafe_time_step` the run decides.
+#[test]
+fn an_inlet_too_fast_for_the_time_step_is_refused_at_its_velocity() {
+    let fast = GOOD.replace("velocity_m_s: (0.0, 1.0)", "velocity_m_s: (0.0, 20.0)");
+    let error = error_of(&scene_text(&fast));
+    assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "inlets[0].velocity_m_s"), "{}", error.render_plain());
+    assert!(error.message().contains("enter at 20 m/s and would move 2.000e-2 m"), "{}", error.message());
+    assert!(error.help_text().is_some_and(|help| help.contains("below 5.000e-4 s")), "{}", error.render_plain());
+    let unsafe_text = scene_text(&fast).replace("seed: 3)", "seed: 3, allow_unsafe_time_step: true)");
+    assert!(Scene::from_str(&unsafe_text, "unsafe.ron").unwrap().build().is_ok());
+    let spinning = GOOD.replace("material:", "angular_velocity_rad_s: 5000, material:");
+    assert_eq!(error_of(&scene_text(&spinning)).path(), "inlets[0].velocity_m_s");
+}

@@ -3,7 +3,8 @@
 //!
 //! Random draws are deterministic per `run.seed`: the shapes of `Random` particles and of blocks (and the block
 //! scatter and velocities) come from ChaCha8 stream 1 of the seed, in scene order (particles, then blocks); the
-//! World's own stream 0 drives the sources during the run; stream 2 samples source shapes for the time-step bound.
+//! World's own stream 0 drives the sources during the run; stream 2 samples source shapes for the time-step bound,
+//! stream 3 inlet shapes for their start speed.
 
 pub(crate) mod blocks;
 mod feed_lines;
@@ -39,6 +40,8 @@ use walls::PlacedWall;
 const BUILD_STREAM: u64 = 1;
 /// ChaCha8 stream of the source samples for the time-step bound.
 const SOURCE_SAMPLE_STREAM: u64 = 2;
+/// ChaCha8 stream of the inlet samples for the start-speed check.
+const INLET_SPEED_STREAM: u64 = 3;
 
 /// A free particle ready for `World::add_particle`.
 pub(crate) struct PlannedParticle {
@@ -253,10 +256,14 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
     // A scene that allows unsafe time steps experiments with instability: its particles may start as fast as it says,
     // and the engine stops the run where they outrun their step.
     let travel_limit = SafetyLimits::default().max_travel_fraction;
-    if !scene.run.allow_unsafe_time_step
-        && let Some(error) = SceneError::combine(safety::too_fast_at_start(&particles, time_step, travel_limit))
-    {
-        return Err(error);
+    if !scene.run.allow_unsafe_time_step {
+        let mut errors = safety::too_fast_at_start(&particles, time_step, travel_limit);
+        let mut inlet_rng = ChaCha8Rng::seed_from_u64(scene.run.seed);
+        inlet_rng.set_stream(INLET_SPEED_STREAM);
+        errors.extend(safety::inlets_too_fast(&inlets, time_step, travel_limit, &mut inlet_rng));
+        if let Some(error) = SceneError::combine(errors) {
+            return Err(error);
+        }
     }
 
     let placed: Vec<PlacedBody> = walls

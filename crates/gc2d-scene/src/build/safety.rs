@@ -239,6 +239,46 @@ pub(crate) fn too_fast_at_start(
     })
 }
 
+/// Inlets whose particles enter so fast that their first step of `time_step` would move a point of them further than
+/// `max_travel_fraction` of their inscribed radius (the run's travel limit, as [`too_fast_at_start`] for the particles
+/// present at the start): the run would stop at the step of the first insertion. Judged on [`SOURCE_SAMPLES`] shapes
+/// drawn from each inlet's recipe (the worst of them), one error per inlet at its `velocity_m_s`.
+pub(crate) fn inlets_too_fast(
+    inlets: &[gc2d_engine::Inlet],
+    time_step: f64,
+    max_travel_fraction: f64,
+    rng: &mut ChaCha8Rng,
+) -> Vec<SceneError> {
+    let mut errors = Vec::new();
+    for (i, inlet) in inlets.iter().enumerate() {
+        let worst = (0..SOURCE_SAMPLES)
+            .filter_map(|_| inlet.recipe.draw(rng).ok())
+            .map(|(shape, _)| {
+                let travel = travel_in_step(inlet.velocity, inlet.angular_velocity, shape.reach(), time_step);
+                (travel, max_travel_fraction * shape.inscribed_radius())
+            })
+            .max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)));
+        if let Some((travel, limit)) = worst
+            && travel > limit
+        {
+            errors.push(
+                SceneError::value(
+                    format!("inlets[{i}].velocity_m_s"),
+                    format!(
+                        "its particles enter at {} m/s and would move {travel:.3e} m in their first step of \
+                         {time_step:.3e} s, more than the inscribed radius of the smallest ({limit:.3e} m): they could \
+                         pass through a wall or a particle unseen, and the run would stop at the first insertion",
+                        crate::checks::number(inlet.velocity.length()),
+                    ),
+                )
+                .with_label("too fast")
+                .with_help(format!("feed them slower, or use a time step below {:.3e} s", time_step * limit / travel)),
+            );
+        }
+    }
+    errors
+}
+
 /// Particles whose centroid starts outside the run's `domain` (the engine removes them at the first step, before they
 /// move), one error per scene entry.
 pub(crate) fn outside_domain(particles: &[super::PlannedParticle], domain: Aabb) -> Vec<SceneError> {
