@@ -216,6 +216,31 @@ fn an_automatic_time_step_below_a_femtosecond_is_refused_at_the_particle() {
     assert!(Scene::from_str(&text.replace("1e-20", "1e-4"), "ok.ron").unwrap().build().is_ok());
 }
 
+/// A drag spring of 1e15 N/m stopped the run at step 1 with advice that did not name the spring: its stiffness was not
+/// in the time-step bound. It is now, with the effective mass at the point it pulls: the automatic Δt follows it, and a
+/// given Δt above it is refused with the spring as the limiting entry.
+#[test]
+fn a_stiff_drag_spring_bounds_the_time_step() {
+    let text = "Scene(\n    gravity: Constant(0),\n    particles: [(shape: Square(side_m: 0.01), drag_spring: \
+                (stiffness_n_m: 1e9, fixing_point_m: (0.005, 0), speed_m_s: 0.01))],\n)";
+    let scene = Scene::from_str(text, "spring.ron").unwrap();
+    let summary = scene.summary().unwrap();
+    assert_eq!(summary.limiting_entry.as_deref(), Some("particles[0].drag_spring.stiffness_n_m"));
+    // m = 5000 kg/m² · 1e-4 m² = 0.5 kg, I = m·a²/6; at the middle of an edge 1/m_eff = 1/m + (a/2)²/I = 2.5/m.
+    let bound = std::f64::consts::PI / 10.0 * (0.2f64 / 1e9).sqrt();
+    assert!((summary.stable_time_step_s.unwrap() / bound - 1.0).abs() < 1e-12, "{summary:?}");
+    assert!(summary.time_step_s <= 0.15 * bound);
+    let mut world = scene.build().unwrap();
+    for _ in 0..2000 {
+        world.step().unwrap();
+    }
+    let given = text.replace("gravity: Constant(0),", "gravity: Constant(0),\n    run: (time_step_s: 1e-5),");
+    let error = error_of(&given);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::TimeStep, "run.time_step_s"), "{}", error.render_plain());
+    let limiting: Vec<&str> = error.related_errors().iter().map(|e| e.path()).collect();
+    assert_eq!(limiting, ["particles[0].drag_spring.stiffness_n_m"], "{}", error.render_plain());
+}
+
 /// Two walls with the same outline at the same place (a floor given twice) made every contact with it twice as stiff:
 /// contacts lasted 1/√2 as long, without a word. They are refused; walls that only touch or overlap are not.
 #[test]

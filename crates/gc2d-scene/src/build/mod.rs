@@ -218,6 +218,19 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
             TimeStepBound::of(&p.shape, p.density, scene.mass_model, models, max_impact_speed, &p.path)
         })
         .reduce(TimeStepBound::smaller);
+    for p in particles.iter() {
+        let Some(spring) = p.drag_spring else { continue };
+        let mass = scene.mass_model.mass_properties(&p.shape, p.density);
+        let path = field_path(&field_path(&p.path, "drag_spring"), "stiffness_n_m");
+        let spring_bound = TimeStepBound::of_drag_spring(
+            mass,
+            spring.fixing_point,
+            spring.stiffness,
+            p.shape.inscribed_radius(),
+            &path,
+        );
+        bound = TimeStepBound::min(bound, spring_bound);
+    }
     let mut sample_rng = ChaCha8Rng::seed_from_u64(scene.run.seed);
     sample_rng.set_stream(SOURCE_SAMPLE_STREAM);
     for (i, source) in sources.iter().enumerate() {

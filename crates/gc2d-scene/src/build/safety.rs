@@ -4,7 +4,7 @@
 use crate::error::{ErrorKind, SceneError};
 use gc2d_engine::safety::{ParticleInertia, particle_time_steps, travel_in_step};
 use gc2d_engine::{BodyShape, ContactModel, MassModel, ParticleRecipe, ShapeKind, shape_view};
-use gc2d_geometry::{Aabb, DVec2, Pose, area_contact};
+use gc2d_geometry::{Aabb, DVec2, MassProperties, Pose, area_contact};
 use rand_chacha::ChaCha8Rng;
 
 /// Shapes drawn per source to estimate the smallest particle it will insert.
@@ -66,6 +66,28 @@ impl TimeStepBound {
             automatic_time_step: bounds.automatic(AUTOMATIC_TIME_STEP_FRACTION),
             refusal_time_step: bounds.reference,
             inscribed_radius: inertia.inscribed_radius,
+            path: path.to_owned(),
+        })
+    }
+
+    /// The bound of a drag spring of `stiffness` K (N/m) pulling at the point `arm` (m, from the centroid) of a
+    /// particle of mass m and moment of inertia I: the spring and the effective mass 1/(1/m + |arm|²/I) at the point
+    /// it pulls form an oscillator, bounded as a penetration law's contact spring is, Δt ≤ (π/10)·sqrt(m_eff/K).
+    /// `None` for a spring without stiffness.
+    pub fn of_drag_spring(
+        mass: MassProperties,
+        arm: DVec2,
+        stiffness: f64,
+        inscribed_radius: f64,
+        path: &str,
+    ) -> Option<Self> {
+        let effective_mass = 1.0 / (1.0 / mass.mass + arm.length_squared() / mass.inertia);
+        let time_step = std::f64::consts::PI / 10.0 * (effective_mass / stiffness).sqrt();
+        (time_step > 0.0 && time_step.is_finite()).then(|| Self {
+            time_step,
+            automatic_time_step: AUTOMATIC_TIME_STEP_FRACTION * time_step,
+            refusal_time_step: time_step,
+            inscribed_radius,
             path: path.to_owned(),
         })
     }
