@@ -36,6 +36,8 @@ impl Scene {
     /// material references and shapes. Time-step and initial-overlap checks need the built World; see
     /// [`Scene::build`].
     pub fn from_str(text: &str, name: &str) -> Result<Scene, SceneError> {
+        // A byte-order mark, which some editors write at the start of UTF-8 files, is not part of the scene.
+        let text = text.strip_prefix('\u{FEFF}').unwrap_or(text);
         let source = Arc::new(SourceText::new(name, text));
         let options = ron::Options::default().with_default_extension(Extensions::IMPLICIT_SOME);
         let mut scene: Scene = options.from_str(text).map_err(|e| from_ron_error(&e, &source))?;
@@ -95,6 +97,9 @@ fn from_ron_error(error: &SpannedError, source: &Arc<SourceText>) -> SceneError 
         source.value_span_at(next).unwrap_or_else(|| widen_to_token(text, next..next))
     };
     let path = source.path_at(span.start).unwrap_or("").to_owned();
+    if let Some((scene_error, span)) = misread_number(&error.code, text, span.clone(), &path) {
+        return scene_error.at_span(source, Some(span));
+    }
     let mut scene_error = describe(&error.code, path);
     let written = &text[span.clone()];
     if scene_error.kind() == ErrorKind::Type
@@ -102,10 +107,73 @@ fn from_ron_error(error: &SpannedError, source: &Arc<SourceText>) -> SceneError 
         && written.len() <= 40
         && !written.contains('\n')
     {
-        let message = format!("{}, found `{written}`", scene_error.message());
+        let message = format!("{}, found `{}`", scene_error.message(), visible(written));
         scene_error = scene_error.with_message(message);
     }
     scene_error.at_span(source, Some(span))
+}
+
+/// The errors ron gives for a number it read in pieces, told as what was written (with the number's span): a negative
+/// whole number, whose sign ron leaves out of "out of bounds, found `1`"; a fraction where a whole number belongs,
+/// which ron reports as "expected comma" at its point; a number where a variant belongs (`gravity: 9.81`), which ron
+/// takes for an identifier and suggests writing `r#9.81`. `None` for every other error.
+fn misread_number(code: &RonError, text: &str, span: Range<usize>, path: &str) -> Option<(SceneError, Range<usize>)> {
+    match code {
+        RonError::IntegerOutOfBounds => {
+            let number = number_around(text, span.start);
+            let written = &text[number.clone()];
+            let message = if written.starts_with('-') {
+                format!("found `{written}`: this field takes a whole number ≥ 0")
+            } else {
+                format!("found `{written}`: too large a whole number for this field")
+            };
+            Some((SceneError::new(ErrorKind::Type, path, message).with_label("out of range"), number))
+        }
+        RonError::ExpectedComma => {
+            let at = text.as_bytes().get(span.start)?;
+            let after_digit = span.start > 0 && text.as_bytes()[span.start - 1].is_ascii_digit();
+            if !(*at == b'.' && after_digit) {
+                return None;
+            }
+            let number = number_around(text, span.start);
+            let written = &text[number.clone()];
+            written.parse::<f64>().ok()?;
+            let message = format!("expected a whole number, found `{written}`");
+            Some((SceneError::new(ErrorKind::Type, path, message).with_label("not a whole number"), number))
+        }
+        RonError::SuggestRawIdentifier(identifier) if identifier.parse::<f64>().is_ok() => {
+            let help = if path == "gravity" {
+                format!("a constant g is written `gravity: Constant({identifier})`")
+            } else {
+                "write one of the field's variants, `Name(…)`; docs/scene-format.md lists them".to_owned()
+            };
+            let message = format!("expected one of this field's variants, found the number `{identifier}`");
+            let error = SceneError::new(ErrorKind::Type, path, message).with_label("a number").with_help(help);
+            Some((error, span))
+        }
+        _ => None,
+    }
+}
+
+/// The span of the number literal (digits, sign, point, exponent, `_`) around byte `at` of `text`.
+fn number_around(text: &str, at: usize) -> Range<usize> {
+    let bytes = text.as_bytes();
+    let is_part = |b: u8| b.is_ascii_digit() || matches!(b, b'.' | b'e' | b'E' | b'+' | b'-' | b'_');
+    let mut start = at.min(bytes.len());
+    while start > 0 && is_part(bytes[start - 1]) {
+        start -= 1;
+    }
+    let mut end = at.min(bytes.len());
+    while end < bytes.len() && is_part(bytes[end]) {
+        end += 1;
+    }
+    start..end
+}
+
+/// `written` with control characters (a NUL, a tab) shown as `U+0000`, so that a message does not print them as
+/// blanks.
+fn visible(written: &str) -> String {
+    written.chars().map(|c| if c.is_control() { format!("U+{:04X}", u32::from(c)) } else { c.to_string() }).collect()
 }
 
 /// An empty span grows to the word (or the single character) at its start, so there is something to underline.

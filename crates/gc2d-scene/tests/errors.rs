@@ -57,6 +57,40 @@ fn wrong_types_show_what_was_found() {
     check("wrong_length", text, ErrorKind::Type, "particles[0].position_m", (2, 66));
 }
 
+/// Numbers ron reads in pieces are told as written: `seed: -1` read "out of bounds, found `1`", `seed: 1.5` read
+/// "expected comma", `gravity: 9.81` suggested the raw identifier `r#9.81`, and a NUL byte was shown as a blank.
+#[test]
+fn misread_numbers_are_reported_as_written() {
+    let cases = [
+        ("Scene(\n    run: (seed: -1),\n)", "run.seed", (2, 17), "found `-1`: this field takes a whole number ≥ 0"),
+        ("Scene(\n    run: (seed: 1.5),\n)", "run.seed", (2, 17), "expected a whole number, found `1.5`"),
+        (
+            "Scene(\n    gravity: 9.81,\n)",
+            "gravity",
+            (2, 14),
+            "expected one of this field's variants, found the number `9.81`",
+        ),
+        ("Scene(\n    run: (seed:\u{0} 1),\n)", "run.seed", (2, 16), "expected integer, found `U+0000`"),
+    ];
+    for (text, path, (line, column), message) in cases {
+        let error = error_of(text);
+        assert_eq!((error.kind(), error.path()), (ErrorKind::Type, path), "{}", error.render_plain());
+        let location = error.location().cloned().expect("located");
+        assert_eq!((location.line, location.column), (line, column), "{}", error.render_plain());
+        assert_eq!(error.message(), message, "{}", error.render_plain());
+    }
+    assert!(error_of(cases[2].0).help_text().is_some_and(|help| help.contains("`gravity: Constant(9.81)`")));
+}
+
+/// A UTF-8 byte-order mark, which some editors write, is not part of the scene.
+#[test]
+fn a_byte_order_mark_is_skipped() {
+    let scene = Scene::from_str("\u{FEFF}Scene(\n    run: (seed: 7),\n)", "bom.ron").unwrap();
+    assert_eq!(scene.run.seed, 7);
+    let error = error_of("\u{FEFF}Scene(\n    run: (seed: -7),\n)");
+    assert_eq!(error.location().map(|l| (l.line, l.column)), Some((2, 17)));
+}
+
 #[test]
 fn out_of_range_values_point_at_the_value() {
     let text = "Scene(\n    materials: [(name: \"sand\", mu: -0.1)],\n)";
