@@ -110,7 +110,8 @@ impl Scene {
         for (i, particle) in self.particles.iter().enumerate() {
             check_particle(particle, &format!("particles[{i}]"), &materials, &mut rng, &mut errors);
         }
-        let mut initial = self.particles.len();
+        // Where the start's particles come from: (field, count).
+        let mut initial: Vec<(String, usize)> = vec![("particles".to_owned(), self.particles.len())];
         for (i, block) in self.blocks.iter().enumerate() {
             let path = format!("blocks[{i}]");
             collect(
@@ -127,20 +128,15 @@ impl Scene {
                 ordered_range(&field_path(&path, "direction_range_rad"), block.direction_range_rad, false).map(drop),
             );
             match Lattice::of(block, &path) {
-                Ok(lattice) => initial = initial.saturating_add(lattice.len()),
+                Ok(lattice) => initial.push((path, lattice.len())),
                 Err(error) => errors.push(error),
             }
         }
         if let Some(mill) = &self.mill {
-            initial = initial.saturating_add(mill.balls.count);
-            initial = initial.saturating_add(mill.ore.as_ref().map_or(0, |ore| ore.count));
+            initial.push(("mill.balls.count".to_owned(), mill.balls.count));
+            initial.extend(mill.ore.as_ref().map(|ore| ("mill.ore.count".to_owned(), ore.count)));
         }
-        if initial > MAX_INITIAL_PARTICLES {
-            errors.push(SceneError::value(
-                "blocks",
-                format!("the scene starts with {initial} particles, more than the {MAX_INITIAL_PARTICLES} allowed"),
-            ));
-        }
+        collect(&mut errors, initial_count_in_range(&initial));
         let (mut insertions, mut most) = (0.0, 0.0f64);
         for (i, source) in self.sources.iter().enumerate() {
             let planned = check_source(source, &format!("sources[{i}]"), self.run.end_time_s, &materials, &mut errors);
@@ -194,6 +190,26 @@ impl Scene {
             .filter_map(|(i, b)| Lattice::of(b, &format!("blocks[{i}]")).ok())
             .fold(self.particles.len(), |n, lattice| n.saturating_add(lattice.len()))
     }
+}
+
+/// Refuses a start of more than [`MAX_INITIAL_PARTICLES`] particles, at the field of the entry that gives the most of
+/// them and naming every entry that gives some; `sources` are `(field, count)`.
+fn initial_count_in_range(sources: &[(String, usize)]) -> Result<(), SceneError> {
+    let total = sources.iter().fold(0usize, |total, (_, count)| total.saturating_add(*count));
+    if total <= MAX_INITIAL_PARTICLES {
+        return Ok(());
+    }
+    let mut given: Vec<&(String, usize)> = sources.iter().filter(|(_, count)| *count > 0).collect();
+    given.sort_by_key(|(_, count)| std::cmp::Reverse(*count));
+    let parts: Vec<String> = given.iter().map(|(field, count)| format!("{count} from `{field}`")).collect();
+    Err(SceneError::value(
+        &given[0].0,
+        format!(
+            "the scene starts with {total} particles ({}), more than the {MAX_INITIAL_PARTICLES} allowed",
+            parts.join(", ")
+        ),
+    )
+    .with_label("too many"))
 }
 
 fn collect(errors: &mut Vec<SceneError>, result: Result<(), SceneError>) {

@@ -275,6 +275,21 @@ fn a_stiff_drag_spring_bounds_the_time_step() {
     assert_eq!(limiting, ["particles[0].drag_spring.stiffness_n_m"], "{}", error.render_plain());
 }
 
+/// A start of more than a million particles is refused at the entry that gives the most, naming every one.
+#[test]
+fn too_many_particles_at_the_start_are_refused_at_the_largest_entry() {
+    let block = |height: f64| {
+        format!(
+            "(x_range_m: (0, 0.8), y_range_m: (0, {height}), grid_spacing_m: (0.001, 0.001), shape: (semi_axes_m: \
+             (0.0004, 0.0004)))"
+        )
+    };
+    let text = format!("Scene(\n    blocks: [{}, {}],\n)", block(0.5), block(1.0));
+    let error = error_of(&text);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "blocks[1]"), "{}", error.render_plain());
+    assert!(error.message().contains("from `blocks[1]`, ") && error.message().contains("from `blocks[0]`)"));
+}
+
 /// Two walls with the same outline at the same place (a floor given twice) made every contact with it twice as stiff:
 /// contacts lasted 1/√2 as long, without a word. They are refused; walls that only touch or overlap are not.
 #[test]

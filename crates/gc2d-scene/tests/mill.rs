@@ -75,6 +75,10 @@ fn mill_errors_name_the_field() {
         "{}",
         e.message()
     );
+    // Above the million particles a scene may start with: refused at the ball count (it was blamed on `blocks`).
+    let e = error(scene("rpm: 1000", "count: 2000000"));
+    assert_eq!((e.kind(), e.path()), (ErrorKind::Value, "mill.balls.count"), "{}", e.render_plain());
+    assert!(e.message().contains("2000000 from `mill.balls.count`"), "{}", e.message());
     let e = error(scene("rpm: 1000", "count: 10, material: \"stel\""));
     assert_eq!(e.path(), "mill.balls.material", "{}", e.render_plain());
 }
