@@ -783,6 +783,7 @@ fn report_outcome(
     unwritten: &[String],
 ) -> Result<u8, CommandFailure> {
     let particles = world.bodies().particles().count();
+    let folder = folder_in_words(out);
     if !unwritten.is_empty() {
         let (time, steps) = (world.time(), world.steps());
         let ended = match status {
@@ -793,11 +794,10 @@ fn report_outcome(
         return Err(CommandFailure {
             code: 1,
             report: format!(
-                "The run {ended}, but these files could not be written: {}. The other outputs in {} end where they \
-                 could be written; once there is room, run again or continue from its newest checkpoint with \
-                 --resume {}.",
+                "The run {ended}, but these files could not be written: {}. The other outputs in {folder} end where \
+                 they could be written; once there is room, run again or continue from its newest checkpoint with \
+                 `--resume {}`.",
                 unwritten.join("; "),
-                out.display(),
                 out.display()
             ),
         });
@@ -805,23 +805,21 @@ fn report_outcome(
     match status {
         RunStatus::Completed => {
             console::err(&format!(
-                "Finished at t = {:.6} s after {} steps in {:.2} s: {} particles, {} contacts. Results in {}.",
+                "Finished at t = {:.6} s after {} steps in {:.2} s: {} particles, {} contacts. Results in {folder}.",
                 world.time(),
                 world.steps(),
                 wall_time,
                 particles,
                 world.stats().contacts,
-                out.display()
             ));
             Ok(0)
         }
         RunStatus::Interrupted => {
             console::err(&format!(
-                "Interrupted at t = {:.6} s (step {}). The outputs in {} are complete up to this point; continue \
-                 with --resume {}.",
+                "Interrupted at t = {:.6} s (step {}). The outputs in {folder} are complete up to this point; \
+                 continue with `--resume {}`.",
                 world.time(),
                 world.steps(),
-                out.display(),
                 out.display()
             ));
             Ok(130)
@@ -829,14 +827,19 @@ fn report_outcome(
         RunStatus::Failed(message) => Err(CommandFailure {
             code: 1,
             report: format!(
-                "The run stopped at t = {:.6} s (step {}): {message}. The outputs in {} are complete up to this \
-                 point.",
+                "The run stopped at t = {:.6} s (step {}): {message}. The outputs in {folder} are complete up to \
+                 this point.",
                 world.time(),
                 world.steps(),
-                out.display()
             ),
         }),
     }
+}
+
+/// The output folder as a sentence names it: "the current folder" for `.`, which at the end of a sentence read
+/// "Results in ..", else its path.
+fn folder_in_words(out: &Path) -> String {
+    if out == Path::new(".") { "the current folder".to_owned() } else { out.display().to_string() }
 }
 
 /// `out/<scene file name without extension>`.

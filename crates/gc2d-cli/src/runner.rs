@@ -217,5 +217,12 @@ impl Progress {
             RunStatus::Completed => self.bar.finish_with_message("done"),
             _ => self.bar.abandon(),
         }
+        // indicatif leaves the cursor after the bar's line, padded to the width it believes the terminal has, for the
+        // terminal's wrap to end it; where that width is not the terminal's (a terminal recorded by `script`, a
+        // resized window) the next message was appended to the bar. A line break of our own ends it in any case (a
+        // carriage return and line feed after a wrap pending at the last column start the next line, no blank one).
+        if !self.bar.is_hidden() {
+            crate::console::err("");
+        }
     }
 }

@@ -410,7 +410,9 @@ fn stops_cleanly_with_readable_outputs_on(signal: &str) {
     assert!(killed.success());
     let output = child.wait_with_output().unwrap();
     assert_eq!(output.status.code(), Some(130));
-    assert!(String::from_utf8_lossy(&output.stderr).contains("Interrupted at t ="));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("Interrupted at t ="), "{stderr}");
+    assert!(stderr.contains(&format!("continue with `--resume {}`.", out.path().display())), "{stderr}");
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["outcome"]["status"], "interrupted");
@@ -432,6 +434,19 @@ fn a_scene_named_scene_ron_in_its_own_output_directory_is_not_overwritten() {
         .assert()
         .success();
     assert!(std::fs::read(&own).unwrap() == before, "the user's scene file (with its comments) was rewritten");
+}
+
+/// `--out .` ended the run's last line with "Results in ..".
+#[test]
+fn a_run_into_the_current_folder_says_so() {
+    let out = tempfile::tempdir().unwrap();
+    gc2d()
+        .current_dir(out.path())
+        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--until", "0.01", "--out", "."])
+        .assert()
+        .success()
+        .stderr(contains("Results in the current folder.\n"));
+    assert!(out.path().join("final.ckpt").exists());
 }
 
 #[test]
