@@ -51,7 +51,7 @@ enum Command {
         /// The run directory (written by `gc2d-rs run`).
         run: PathBuf,
         /// The simulated time to export, s: the last checkpoint at or before it [default: the latest checkpoint].
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         at: Option<f64>,
         /// The formats to write.
         #[arg(long, value_enum, value_delimiter = ',', default_values_t = [ExportFormat::Parquet, ExportFormat::Csv, ExportFormat::Vtk])]
@@ -166,13 +166,13 @@ struct RunArgs {
     #[arg(long)]
     threads: Option<usize>,
     /// Stop at this simulated time (s) instead of the scene's end time.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     until: Option<f64>,
     /// Hide the progress bar (it is also hidden when stderr is not a terminal).
     #[arg(long)]
     quiet: bool,
     /// Write a restartable checkpoint every this many simulated seconds (into <out>/checkpoints/).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     checkpoint_every: Option<f64>,
     /// Continue from a checkpoint written by an earlier run of the same scene, or from the newest checkpoint in a
     /// run directory (its final.ckpt or checkpoints/checkpoint-<step>.ckpt, whichever took more steps). A scene that
@@ -202,14 +202,14 @@ struct RunArgs {
     /// Write the state of every particle (position, angle, velocities, forces, contacts) every this many simulated
     /// seconds into <out>/dumps/particles_<k>.csv; 0 writes none [default: a mill scene and a scene with a fluid at
     /// its frames_per_second, other scenes none].
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     dump_every: Option<f64>,
     /// The formats of the dumps: csv (what `analyze` reads), parquet (the export's particle table) and vtk (.vtu per
     /// dump with dumps/particles.pvd for ParaView); docs/export.md.
     #[arg(long, value_enum, value_delimiter = ',', default_values_t = [ExportFormat::Csv])]
     dump_format: Vec<ExportFormat>,
     /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     png_every: Option<f64>,
     /// What the particle colours show in recordings and pictures.
     #[arg(long, value_enum, default_value_t = Colour::Speed)]
@@ -737,6 +737,9 @@ fn analyze(
 
 /// `export`: a run's state at a checkpoint as tables and VTK.
 fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: Option<PathBuf>) -> Result<u8, CommandFailure> {
+    if let Some(at) = at.filter(|at| !at.is_finite()) {
+        return Err(CommandFailure::input(format!("--at must be a finite time in seconds, got {at}")));
+    }
     let out = out.unwrap_or_else(|| run.join("export"));
     let done = gc2d_cli::export::export(run, at, formats, &out).map_err(CommandFailure::input)?;
     console::err(&format!(
