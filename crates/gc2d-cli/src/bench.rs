@@ -92,6 +92,9 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
     {
         return Err(CommandFailure::input(format!("--settle-time must be a time in seconds, at least 0; got {t}")));
     }
+    if let Some(path) = &args.csv {
+        refuse_unwritable_csv(path)?;
+    }
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let threads = if args.threads.is_empty() { default_threads(cores) } else { args.threads.clone() };
     let cache = if args.no_cache { None } else { args.cache.clone().or_else(default_cache) };
@@ -151,6 +154,22 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
         )));
     }
     Ok(0)
+}
+
+/// Refuses a `--csv` path that cannot take the table, before the measurements rather than after them: a folder, or a
+/// file in a folder that does not exist.
+fn refuse_unwritable_csv(path: &std::path::Path) -> Result<(), CommandFailure> {
+    if path.is_dir() {
+        return Err(CommandFailure::input(format!("--csv {} is a folder; give a file name", path.display())));
+    }
+    match path.parent().filter(|parent| !parent.as_os_str().is_empty()) {
+        Some(folder) if !folder.is_dir() => Err(CommandFailure::input(format!(
+            "--csv {}: the folder {} does not exist",
+            path.display(),
+            folder.display()
+        ))),
+        _ => Ok(()),
+    }
 }
 
 /// The checksum of a pile's state after the timed steps on `threads` threads.

@@ -160,6 +160,12 @@ fn bench_refuses_unknown_piles_and_zero_counts() {
     assert!(refusal(&["--threads", "1,0"]).contains("at least 1, got 0"));
     assert!(refusal(&["--settle-time=-1"]).contains("--settle-time must be a time in seconds"));
     assert!(refusal(&["--steps", "0"]).contains("--particle-steps and --steps must be at least 1"));
+    // A table that cannot be written is refused before the measurements, not after them.
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().to_str().unwrap();
+    assert!(refusal(&["--csv", folder]).contains("is a folder; give a file name"));
+    let nowhere = dir.path().join("no/such/folder/bench.csv");
+    assert!(refusal(&["--csv", nowhere.to_str().unwrap()]).contains("does not exist"));
 }
 
 /// `--steps` times every size for the same number of steps, whatever the particle-step budget, even below the
