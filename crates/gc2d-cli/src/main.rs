@@ -2,6 +2,11 @@
 //!
 //! Exit codes: 0 success, 1 the run failed (blow-up, I/O), 2 the input is invalid, 130 interrupted by
 //! Ctrl-C, SIGTERM or SIGHUP.
+#![allow(
+    rustdoc::invalid_html_tags,
+    rustdoc::broken_intra_doc_links,
+    reason = "the argument docs are clap's help text, where `<run>` is a placeholder and `[default: …]` is not a link"
+)]
 
 use clap::{Parser, Subcommand};
 use gc2d_analysis::{MillOptions, mill_report};

@@ -36,6 +36,11 @@ pub const MEANS_CSV: &str = "sweep_means.csv";
 
 /// The arguments of `gc2d-rs sweep`.
 #[derive(Debug, Clone, clap::Args)]
+#[allow(
+    rustdoc::invalid_html_tags,
+    rustdoc::broken_intra_doc_links,
+    reason = "the field docs are clap's help text, where `<out>` is a placeholder and `[default: …]` is not a link"
+)]
 pub struct SweepArgs {
     /// The sweep file (.ron, docs/sweeps.md).
     pub sweep: PathBuf,
