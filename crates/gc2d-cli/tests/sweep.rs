@@ -297,6 +297,29 @@ fn a_point_whose_scene_is_invalid_is_named_with_the_scene_error() {
     );
     assert!(error.contains("materials[0].mu"), "{error}");
     assert!(error.contains("2 of 3 points fail; the others: `mu=-2.0_seed=3`"), "{error}");
+    // Located in the point's scene, not in a scene.ron that was never written.
+    assert!(error.contains("point mu=-1.0_seed=3:") && !error.contains("scene.ron:"), "{error}");
+}
+
+/// A scene's VTK field is named relative to the scene file; the points' scenes live in their run directories, where
+/// that name found nothing, so no sweep of a scene with a loaded field could start.
+#[test]
+fn a_sweep_of_a_scene_with_a_vtk_field_finds_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../gc2d-fluid/tests/data/structured_points.vtk");
+    std::fs::create_dir_all(dir.path().join("scenes/fields")).unwrap();
+    std::fs::copy(&data, dir.path().join("scenes/fields/u.vtk")).unwrap();
+    let scene = "Scene(\n    run: (time_step_s: 1e-4, end_time_s: 0.002),\n    gravity: Constant(0.0),\n    \
+        particles: [(shape: Disk(radius_m: 0.01), position_m: (0.5, 0.5))],\n    \
+        fluid: (density_kg_m3: 1.2, field: Vtk(file: \"fields/u.vtk\", interpolation: Bilinear, outside: Nearest)),\n)\n";
+    std::fs::write(dir.path().join("scenes/air.ron"), scene).unwrap();
+    let sweep_file = "Sweep(\n    scene: \"scenes/air.ron\",\n    out: \"out\",\n    parameters: [(path: \
+        \"fluid.density_kg_m3\", values: List([1.2, 2.4]))],\n)\n";
+    std::fs::write(dir.path().join("sweep.ron"), sweep_file).unwrap();
+    sweep(dir.path()).assert().success();
+    for point in ["density_kg_m3=1.2_seed=0", "density_kg_m3=2.4_seed=0"] {
+        assert_eq!(summary(&dir.path().join("out").join(point))["outcome"]["status"], "completed", "{point}");
+    }
 }
 
 #[test]

@@ -6,7 +6,6 @@ use super::apply::{PathProblem, Target, put, target};
 use super::spec::{ParameterSpec, Point, Sweep};
 use crate::analysis::AnalysisKind;
 use crate::failure::CommandFailure;
-use crate::outputs::SCENE_COPY;
 use gc2d_scene::{ErrorKind, Scene};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -36,13 +35,17 @@ pub struct PointScene {
 
 /// Makes and checks the scene of every point.
 pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
-    let base = Scene::from_path(&sweep.scene).map_err(|e| {
+    let mut base = Scene::from_path(&sweep.scene).map_err(|e| {
         CommandFailure::input(format!(
             "the base scene of {} does not load:\n{}",
             sweep.path.display(),
             super::file::render(&e)
         ))
     })?;
+    // The points' scenes are written into their run directories: file names relative to the base scene's folder (a
+    // fluid's VTK files) would start from there.
+    base.anchor_file_names()
+        .map_err(|e| CommandFailure::input(format!("cannot find the folder of {}: {e}", sweep.scene.display())))?;
     let base_text =
         base.to_ron_string().map_err(|e| CommandFailure::failed(format!("cannot write the base scene: {e}")))?;
     for parameter in &sweep.parameters {
@@ -72,7 +75,9 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
         }
     }
     if let Some((first, report)) = failures.first() {
-        let mut message = format!("the scene of point {first} is invalid:\n{report}");
+        let mut message = format!(
+            "the scene of point {first} is invalid (lines as in the scene.ron the sweep would write):\n{report}"
+        );
         if failures.len() > 1 {
             let others: Vec<&str> = failures[1..].iter().take(LISTED_FAILURES).map(|(n, _)| n.as_str()).collect();
             let more = failures.len() - 1 - others.len();
@@ -93,7 +98,6 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
 fn point_scene(sweep: &Sweep, base_text: &str, point: &Point) -> Result<PointScene, (String, String)> {
     let name = sweep.dir_name(point);
     let dir = sweep.out.join(&name);
-    let file = dir.join(SCENE_COPY);
     let fail = |report: String| (format!("`{name}` ({})", sweep.describe(point)), report);
     let mut text = base_text.to_owned();
     let assignments = sweep.parameters.iter().map(|p| p.path.as_str()).zip(point.values.iter().cloned());
@@ -101,7 +105,8 @@ fn point_scene(sweep: &Sweep, base_text: &str, point: &Point) -> Result<PointSce
         let at = target(&text, path).map_err(|p| fail(format!("`{path}`: {}", p.message)))?;
         text = put(&text, &at, &value);
     }
-    let scene = Scene::from_str(&text, &file.display().to_string()).map_err(|e| fail(super::file::render(&e)))?;
+    // Named as the point, not as its scene.ron: that file is written only once every point has passed.
+    let scene = Scene::from_str(&text, &format!("point {name}")).map_err(|e| fail(super::file::render(&e)))?;
     scene.summary().map_err(|e| fail(super::file::render(&e)))?;
     let text = scene.to_ron_string().map_err(|e| fail(format!("cannot write the scene: {e}")))?;
     let analysis = sweep.file.analysis.kind.or(scene.mill.is_some().then_some(AnalysisKind::Mill));

@@ -157,6 +157,24 @@ pub(crate) fn plan(fluid: &Fluid, folder: &Path) -> Result<EngineFluid, SceneErr
     })
 }
 
+impl Scene {
+    /// Makes the scene's relative file names (a `Vtk` field's `file` and `snapshots`) absolute, from the folder they
+    /// start from now ([`Scene::build`] reads them from the scene file's folder, or the working directory): for a copy
+    /// of the scene written into another folder, such as a sweep's point scenes, whose relative names would start
+    /// from there. Fails only where the working directory cannot be found.
+    pub fn anchor_file_names(&mut self) -> std::io::Result<()> {
+        let folder = scene_folder(self);
+        let folder =
+            if folder.as_os_str().is_empty() { std::env::current_dir()? } else { std::path::absolute(folder)? };
+        if let Some(Fluid { field: Field::Vtk { file, snapshots, .. }, .. }) = &mut self.fluid {
+            for name in file.iter_mut().chain(snapshots.iter_mut().map(|snapshot| &mut snapshot.file)) {
+                *name = folder.join(&*name).to_string_lossy().into_owned();
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The folder a scene's relative file names start from: the scene file's folder, or the working directory.
 pub(crate) fn scene_folder(scene: &Scene) -> PathBuf {
     scene
