@@ -15,8 +15,11 @@ pub const SCENE_COPY: &str = "scene.ron";
 
 /// Writes `scene` as the run uses it (after `--seed`) to `path`, every field spelled out: what a run directory was
 /// made from stays with it, so an ensemble of runs can be checked to share one scene and a run can be repeated
-/// after the scene file has changed.
+/// after the scene file has changed. The files the scene reads (a fluid's VTK field) are named by absolute paths, so
+/// that the copy finds them from the run directory (`export` builds it to name the bodies).
 pub fn write_scene_copy(path: &Path, scene: &Scene) -> io::Result<()> {
+    let mut scene = scene.clone();
+    scene.anchor_file_names()?;
     let text = scene.to_ron_string().map_err(io::Error::other)?;
     let header = format!(
         "// The scene this run started from, as gc2d-rs {} read it (with --seed applied); every field is written.\n",

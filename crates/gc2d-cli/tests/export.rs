@@ -181,3 +181,25 @@ fn refusals_name_the_problem() {
     let unwritable = failure(&["export", run_dir.to_str().unwrap(), "--out", blocked.join("x").to_str().unwrap()]);
     assert!(unwritable.contains("cannot create"), "{unwritable}");
 }
+
+/// A run directory's scene.ron names the files its scene reads by absolute paths: `export` builds it to name the
+/// bodies, and a fluid's VTK field named relative to the scene's own folder was not found from the run directory (the
+/// `origin` column came out empty). Resuming with the original scene still finds it the same scene.
+#[test]
+fn the_scene_copy_of_a_run_with_a_vtk_field_finds_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = repo_root().join("crates/gc2d-fluid/tests/data/structured_points.vtk");
+    std::fs::create_dir_all(dir.path().join("scenes/fields")).unwrap();
+    std::fs::copy(&data, dir.path().join("scenes/fields/u.vtk")).unwrap();
+    let scene = "Scene(\n    run: (time_step_s: 1e-4, end_time_s: 0.002),\n    gravity: Constant(0.0),\n    \
+        particles: [(shape: Disk(radius_m: 0.01), position_m: (0.5, 0.5))],\n    \
+        fluid: (density_kg_m3: 1.2, field: Vtk(file: \"fields/u.vtk\", interpolation: Bilinear, outside: Nearest)),\n)\n";
+    std::fs::write(dir.path().join("scenes/air.ron"), scene).unwrap();
+    let gc2d = |args: &[&str]| Command::cargo_bin("gc2d-rs").unwrap().current_dir(dir.path()).args(args).assert();
+    gc2d(&["run", "scenes/air.ron", "--quiet", "--out", "run"]).success();
+    gc2d(&["export", "run", "--format", "csv"]).success();
+    let (header, rows) = csv(&dir.path().join("run/export/particles.csv"));
+    let origin = header.iter().position(|h| h == "origin").unwrap();
+    assert_eq!(rows[0][origin], "particles[0]");
+    gc2d(&["run", "scenes/air.ron", "--quiet", "--resume", "run", "--until", "0.003"]).success();
+}
