@@ -79,7 +79,18 @@ fn render(world: &World, options: &PngOptions) -> Result<Pixmap, RecordError> {
     let view = options.view.or_else(|| body_bounds(world)).ok_or_else(|| RecordError::Png("nothing to draw".into()))?;
     let size = view.max - view.min;
     if !(size.x > 0.0 && size.y > 0.0 && size.is_finite()) {
-        return Err(RecordError::Png(format!("the view {:?}–{:?} has no area", view.min, view.max)));
+        return Err(RecordError::Png(format!(
+            "the region to draw, from ({}, {}) to ({}, {}) m, has no area: {}",
+            view.min.x,
+            view.min.y,
+            view.max.x,
+            view.max.y,
+            if size.is_finite() {
+                "give a view with a width and a height"
+            } else {
+                "a position is not a finite number"
+            }
+        )));
     }
     let width = options.width.clamp(1, MAX_PIXELS);
     let height = ((width as f64 * size.y / size.x).round() as u32).clamp(1, MAX_PIXELS);

@@ -71,4 +71,12 @@ fn render_png_writes_a_png_file_and_reports_a_bad_path() {
     assert!(render_png(&world, &dir.join("missing/dir/x.png"), &PngOptions::default()).is_err());
     let empty = common::empty_world();
     assert!(encode_png(&empty, &PngOptions::default()).is_err(), "nothing to draw and no view");
+    // A view without area is told in numbers, not in Rust's debug form of the vectors.
+    let point = gc2d_geometry::DVec2::new(0.5, 0.25);
+    let flat = PngOptions { view: Some(gc2d_geometry::Aabb { min: point, max: point }), ..PngOptions::default() };
+    let message = encode_png(&world, &flat).unwrap_err().to_string();
+    assert_eq!(
+        message,
+        "PNG snapshot: the region to draw, from (0.5, 0.25) to (0.5, 0.25) m, has no area: give a view with a width and a height"
+    );
 }
