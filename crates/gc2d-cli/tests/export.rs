@@ -182,6 +182,27 @@ fn refusals_name_the_problem() {
     assert!(unwritable.contains("cannot create"), "{unwritable}");
 }
 
+/// A second export into the same folder replaces the first one's files: a Parquet table of one time stayed beside a
+/// CSV of another, and outlines of an earlier step beside a collection that no longer lists them. Other files stay.
+#[test]
+fn a_second_export_replaces_the_first() {
+    let (_dir, run_dir) = run();
+    let export = |args: &[&str]| {
+        Command::cargo_bin("gc2d-rs").unwrap().arg("export").arg(&run_dir).args(args).assert().success();
+    };
+    export(&["--at", "0.05"]);
+    let folder = run_dir.join("export");
+    std::fs::write(folder.join("notes.txt"), "mine").unwrap();
+    export(&["--format", "csv"]);
+    let mut names: Vec<String> =
+        std::fs::read_dir(&folder).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    names.sort();
+    assert_eq!(names, ["contacts.csv", "notes.txt", "particles.csv"]);
+    let (_, rows) = csv(&folder.join("particles.csv"));
+    let time: f64 = rows[0][0].parse().unwrap();
+    assert!((time - 0.15).abs() < 1e-9, "the latest checkpoint's time, not 0.05: {time}");
+}
+
 /// A run directory's scene.ron names the files its scene reads by absolute paths: `export` builds it to name the
 /// bodies, and a fluid's VTK field named relative to the scene's own folder was not found from the run directory (the
 /// `origin` column came out empty). Resuming with the original scene still finds it the same scene.

@@ -118,6 +118,7 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     let particles = particle_rows(&world, &materials, names.as_ref());
     let contacts = contact_rows(&world);
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    remove_earlier_export(out)?;
     let mut files = Vec::new();
     let write = |files: &mut Vec<PathBuf>, name: &str, text: String| -> Result<(), String> {
         let path = out.join(name);
@@ -149,6 +150,35 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
         }
     }
     Ok(Exported { checkpoint, time_s, particles: particles.len(), contacts: contacts.len(), files })
+}
+
+/// True for the names of the files an export writes: the tables in each format, the collection and the outlines of any
+/// step (`particles_<step>.vtu`).
+fn is_export_file(name: &str) -> bool {
+    let table = ["particles", "contacts"].iter().any(|t| {
+        name.strip_prefix(t)
+            .is_some_and(|rest| matches!(rest, ".csv" | ".parquet") || (*t == "particles" && rest == ".pvd"))
+    });
+    let outline = name
+        .strip_prefix("particles_")
+        .and_then(|rest| rest.strip_suffix(".vtu"))
+        .is_some_and(|step| !step.is_empty() && step.bytes().all(|b| b.is_ascii_digit()));
+    table || outline
+}
+
+/// Removes the files of an earlier export in `out` (those [`is_export_file`] names, nothing else): exporting in other
+/// formats or at another time would otherwise leave them beside the new ones, a Parquet table of one time next to
+/// a CSV of another, or outlines the new `particles.pvd` does not list.
+fn remove_earlier_export(out: &Path) -> Result<(), String> {
+    let entries = std::fs::read_dir(out).map_err(|e| format!("cannot list {}: {e}", out.display()))?;
+    for entry in entries.flatten() {
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if is_file && entry.file_name().to_str().is_some_and(is_export_file) {
+            std::fs::remove_file(entry.path())
+                .map_err(|e| format!("cannot remove {} of an earlier export: {e}", entry.path().display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// Column names of the particle table, in order.
