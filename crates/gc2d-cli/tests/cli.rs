@@ -13,6 +13,13 @@ fn gc2d() -> Command {
     Command::cargo_bin("gc2d-rs").unwrap()
 }
 
+/// `gc2d-rs run tests/scenes/tiny_pile.ron --quiet ARGS`: the run most tests start from.
+fn run_tiny_pile(args: &[&str]) -> Command {
+    let mut command = gc2d();
+    command.args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet"]).args(args);
+    command
+}
+
 /// Polls `done` until it holds, failing after a minute without `what` appearing (a run started in the background).
 fn wait_for(what: &str, done: impl Fn() -> bool) {
     let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
@@ -25,11 +32,7 @@ fn wait_for(what: &str, done: impl Fn() -> bool) {
 /// tiny_pile.ron run in one go, the reference for the resume tests.
 fn unsplit_tiny_pile() -> tempfile::TempDir {
     let whole = tempfile::tempdir().unwrap();
-    gc2d()
-        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--out"])
-        .arg(whole.path())
-        .assert()
-        .success();
+    run_tiny_pile(&["--out"]).arg(whole.path()).assert().success();
     whole
 }
 
@@ -48,12 +51,7 @@ fn check_prints_what_the_scene_contains() {
 #[test]
 fn run_writes_summary_series_and_final_checkpoint() {
     let out = tempfile::tempdir().unwrap();
-    gc2d()
-        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--out"])
-        .arg(out.path())
-        .assert()
-        .success()
-        .stderr(contains("Finished at t = 0.0"));
+    run_tiny_pile(&["--out"]).arg(out.path()).assert().success().stderr(contains("Finished at t = 0.0"));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["outcome"]["status"], "completed");
@@ -116,19 +114,8 @@ fn a_resumed_run_keeps_the_chatter_of_the_processes_before_it() {
 fn a_run_split_by_resume_ends_bitwise_identical() {
     let whole = unsplit_tiny_pile();
     let split = tempfile::tempdir().unwrap();
-    let path = scene("tiny_pile.ron");
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.025", "--out"])
-        .arg(split.path())
-        .assert()
-        .success();
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
-        .arg(split.path().join("final.ckpt"))
-        .arg("--out")
-        .arg(split.path())
-        .assert()
-        .success();
+    run_tiny_pile(&["--until", "0.025", "--out"]).arg(split.path()).assert().success();
+    run_tiny_pile(&["--resume"]).arg(split.path().join("final.ckpt")).arg("--out").arg(split.path()).assert().success();
     let a = std::fs::read(whole.path().join("final.ckpt")).unwrap();
     let b = std::fs::read(split.path().join("final.ckpt")).unwrap();
     assert!(a == b, "the resumed run's final state differs from the unsplit run's");
@@ -144,18 +131,8 @@ fn resuming_from_a_checkpoint_of_a_run_directory_continues_into_it() {
     let whole = unsplit_tiny_pile();
     let split = tempfile::tempdir().unwrap();
     let elsewhere = tempfile::tempdir().unwrap();
-    let path = scene("tiny_pile.ron");
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.025", "--out"])
-        .arg(split.path())
-        .assert()
-        .success();
-    gc2d()
-        .current_dir(elsewhere.path())
-        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
-        .arg(split.path().join("final.ckpt"))
-        .assert()
-        .success();
+    run_tiny_pile(&["--until", "0.025", "--out"]).arg(split.path()).assert().success();
+    run_tiny_pile(&["--resume"]).current_dir(elsewhere.path()).arg(split.path().join("final.ckpt")).assert().success();
     assert!(!elsewhere.path().join("out").exists(), "the resumed run wrote outside its run directory");
     let a = std::fs::read(whole.path().join("final.ckpt")).unwrap();
     let b = std::fs::read(split.path().join("final.ckpt")).unwrap();
@@ -171,12 +148,7 @@ fn resuming_from_an_earlier_checkpoint_rewrites_the_later_rows_of_the_series() {
     // byte-identical to an unsplit run's, with no time written twice.
     let whole = unsplit_tiny_pile();
     let split = tempfile::tempdir().unwrap();
-    let path = scene("tiny_pile.ron");
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.045", "--checkpoint-every", "0.02", "--out"])
-        .arg(split.path())
-        .assert()
-        .success();
+    run_tiny_pile(&["--until", "0.045", "--checkpoint-every", "0.02", "--out"]).arg(split.path()).assert().success();
     let series_path = split.path().join("timeseries.csv");
     let mut series = std::fs::read_to_string(&series_path).unwrap();
     series.push_str("0.05,31,2");
@@ -188,13 +160,7 @@ fn resuming_from_an_earlier_checkpoint_rewrites_the_later_rows_of_the_series() {
         .collect();
     checkpoints.sort();
     assert_eq!(checkpoints.len(), 2, "{checkpoints:?}");
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
-        .arg(&checkpoints[0])
-        .arg("--out")
-        .arg(split.path())
-        .assert()
-        .success();
+    run_tiny_pile(&["--resume"]).arg(&checkpoints[0]).arg("--out").arg(split.path()).assert().success();
     let expected = std::fs::read_to_string(whole.path().join("timeseries.csv")).unwrap();
     assert_eq!(std::fs::read_to_string(&series_path).unwrap(), expected);
 }
@@ -206,20 +172,16 @@ fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     // checkpoint (more steps than the stale final.ckpt), write into DIR and end as the unsplit run.
     let whole = unsplit_tiny_pile();
     let split = tempfile::tempdir().unwrap();
-    let path = scene("tiny_pile.ron");
     let part = |until: &str| {
-        let mut command = gc2d();
-        command
-            .args(["run", path.to_str().unwrap(), "--quiet", "--until", until, "--checkpoint-every", "0.02", "--out"])
-            .arg(split.path());
+        let mut command = run_tiny_pile(&["--until", until, "--checkpoint-every", "0.02", "--out"]);
+        command.arg(split.path());
         command
     };
     part("0.025").assert().success();
     let stale_final = std::fs::read(split.path().join("final.ckpt")).unwrap();
     part("0.045").arg("--resume").arg(split.path().join("final.ckpt")).assert().success();
     std::fs::write(split.path().join("final.ckpt"), stale_final).unwrap();
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
+    run_tiny_pile(&["--resume"])
         .arg(split.path())
         .assert()
         .success()
@@ -228,8 +190,7 @@ fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     let b = std::fs::read(split.path().join("final.ckpt")).unwrap();
     assert!(a == b, "the run resumed from its directory differs from the unsplit run");
     // Now final.ckpt (at the end time) is newer than every periodic checkpoint, so it is the one resumed from.
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.08", "--resume"])
+    run_tiny_pile(&["--until", "0.08", "--resume"])
         .arg(split.path())
         .arg("--out")
         .arg(tempfile::tempdir().unwrap().path())
@@ -291,23 +252,18 @@ fn a_run_directory_in_use_is_refused() {
         .unwrap();
     let checkpoints = out.path().join("checkpoints");
     wait_for("checkpoints", || std::fs::read_dir(&checkpoints).map_or(0, |d| d.count()) >= 1);
-    let second = gc2d().args(["run", path.to_str().unwrap(), "--quiet", "--resume"]).arg(out.path()).assert();
+    let second = run_tiny_pile(&["--resume"]).arg(out.path()).assert();
     child.kill().unwrap();
     child.wait().unwrap();
     second.code(2).stderr(contains("is in use by another gc2d-rs process (pid ").and(contains("choose another --out")));
     // Killed, the first process no longer holds the directory.
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
-        .arg(out.path())
-        .assert()
-        .success();
+    run_tiny_pile(&["--until", "0.01", "--out"]).arg(out.path()).assert().success();
 }
 
 #[test]
 fn resuming_a_directory_without_checkpoints_names_it() {
     let empty = tempfile::tempdir().unwrap();
-    gc2d()
-        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--resume"])
+    run_tiny_pile(&["--resume"])
         .arg(empty.path())
         .assert()
         .code(2)
@@ -317,10 +273,9 @@ fn resuming_a_directory_without_checkpoints_names_it() {
 #[test]
 fn a_seed_option_makes_another_member_of_the_ensemble() {
     let [scene_seed, same, other] = [(); 3].map(|_| tempfile::tempdir().unwrap());
-    let path = scene("tiny_pile.ron");
     for (dir, seed) in [(&scene_seed, None), (&same, Some("3")), (&other, Some("4"))] {
-        let mut command = gc2d();
-        command.args(["run", path.to_str().unwrap(), "--quiet", "--out"]).arg(dir.path());
+        let mut command = run_tiny_pile(&["--out"]);
+        command.arg(dir.path());
         if let Some(seed) = seed {
             command.args(["--seed", seed]);
         }
@@ -331,11 +286,10 @@ fn a_seed_option_makes_another_member_of_the_ensemble() {
     assert!(state(&scene_seed) != state(&other), "another seed draws other shapes");
     // Each run directory keeps the scene it was made from, with the seed it used, and it reads back to that scene.
     let copy = gc2d_scene::Scene::from_path(other.path().join("scene.ron")).unwrap();
-    let mut expected = gc2d_scene::Scene::from_path(&path).unwrap();
+    let mut expected = gc2d_scene::Scene::from_path(scene("tiny_pile.ron")).unwrap();
     expected.run.seed = 4;
     assert_eq!(gc2d_scene::Scene { source: None, ..copy }, gc2d_scene::Scene { source: None, ..expected });
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--seed", "4", "--resume"])
+    run_tiny_pile(&["--seed", "4", "--resume"])
         .arg(scene_seed.path().join("final.ckpt"))
         .assert()
         .code(2)
@@ -345,17 +299,11 @@ fn a_seed_option_makes_another_member_of_the_ensemble() {
 #[test]
 fn resuming_into_a_series_of_another_format_is_refused_without_touching_it() {
     let out = tempfile::tempdir().unwrap();
-    let path = scene("tiny_pile.ron");
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.02", "--out"])
-        .arg(out.path())
-        .assert()
-        .success();
+    run_tiny_pile(&["--until", "0.02", "--out"]).arg(out.path()).assert().success();
     let series_path = out.path().join("timeseries.csv");
     let foreign = "time_s,particles\n0,0\n";
     std::fs::write(&series_path, foreign).unwrap();
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--resume"])
+    run_tiny_pile(&["--resume"])
         .arg(out.path().join("final.ckpt"))
         .arg("--out")
         .arg(out.path())
@@ -369,13 +317,8 @@ fn resuming_into_a_series_of_another_format_is_refused_without_touching_it() {
 fn thread_count_does_not_change_the_result() {
     let one = tempfile::tempdir().unwrap();
     let two = tempfile::tempdir().unwrap();
-    let path = scene("tiny_pile.ron");
     for (dir, threads) in [(&one, "1"), (&two, "2")] {
-        gc2d()
-            .args(["run", path.to_str().unwrap(), "--quiet", "--threads", threads, "--out"])
-            .arg(dir.path())
-            .assert()
-            .success();
+        run_tiny_pile(&["--threads", threads, "--out"]).arg(dir.path()).assert().success();
     }
     assert!(
         std::fs::read(one.path().join("final.ckpt")).unwrap() == std::fs::read(two.path().join("final.ckpt")).unwrap()
@@ -440,9 +383,8 @@ fn a_scene_named_scene_ron_in_its_own_output_directory_is_not_overwritten() {
 #[test]
 fn a_run_into_the_current_folder_says_so() {
     let out = tempfile::tempdir().unwrap();
-    gc2d()
+    run_tiny_pile(&["--until", "0.01", "--out", "."])
         .current_dir(out.path())
-        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--until", "0.01", "--out", "."])
         .assert()
         .success()
         .stderr(contains("Results in the current folder.\n"));
@@ -456,11 +398,7 @@ fn a_missing_scene_file_is_an_input_error() {
 
 #[test]
 fn zero_threads_is_refused() {
-    gc2d()
-        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--threads", "0"])
-        .assert()
-        .code(2)
-        .stderr(contains("--threads must be at least 1"));
+    run_tiny_pile(&["--threads", "0"]).assert().code(2).stderr(contains("--threads must be at least 1"));
 }
 
 /// A fresh run into a directory that holds an earlier run removes that run's checkpoints and dumps: they used to stay
@@ -469,14 +407,9 @@ fn zero_threads_is_refused() {
 #[test]
 fn a_fresh_run_replaces_the_earlier_run_in_its_directory() {
     let out = tempfile::tempdir().unwrap();
-    let path = scene("tiny_pile.ron");
     let run = |until: &str, extra: &[&str]| {
-        let mut command = gc2d();
-        command
-            .args(["run", path.to_str().unwrap(), "--quiet", "--until", until])
-            .args(extra)
-            .arg("--out")
-            .arg(out.path());
+        let mut command = run_tiny_pile(&["--until", until]);
+        command.args(extra).arg("--out").arg(out.path());
         command.assert().success()
     };
     run("0.045", &["--checkpoint-every", "0.02", "--dump-every", "0.02"]);
@@ -485,8 +418,7 @@ fn a_fresh_run_replaces_the_earlier_run_in_its_directory() {
     run("0.01", &[]).stderr(contains("Replacing the earlier run in"));
     assert!(!out.path().join("checkpoints").exists() && !out.path().join("dumps").exists());
     assert!(out.path().join("notes.txt").exists(), "a file of the user's was removed");
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.02", "--resume"])
+    run_tiny_pile(&["--until", "0.02", "--resume"])
         .arg(out.path())
         .assert()
         .success()
@@ -498,12 +430,7 @@ fn a_fresh_run_replaces_the_earlier_run_in_its_directory() {
 #[test]
 fn a_resumed_run_numbers_its_pictures_on() {
     let out = tempfile::tempdir().unwrap();
-    let path = scene("tiny_pile.ron");
-    let part = |until: &str| {
-        let mut command = gc2d();
-        command.args(["run", path.to_str().unwrap(), "--quiet", "--png-every", "0.02", "--until", until]);
-        command
-    };
+    let part = |until: &str| run_tiny_pile(&["--png-every", "0.02", "--until", until]);
     part("0.025").arg("--out").arg(out.path()).assert().success();
     let first = std::fs::read(out.path().join("frames/frame-00000.png")).unwrap();
     part("0.045").arg("--resume").arg(out.path()).assert().success();
@@ -523,11 +450,7 @@ fn a_resumed_run_numbers_its_pictures_on() {
 fn resuming_with_another_scene_is_refused() {
     let out = tempfile::tempdir().unwrap();
     let path = scene("tiny_pile.ron");
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
-        .arg(out.path())
-        .assert()
-        .success();
+    run_tiny_pile(&["--until", "0.01", "--out"]).arg(out.path()).assert().success();
     let text = std::fs::read_to_string(&path).unwrap();
     let edited = |from: &str, to: &str| {
         let edited = out.path().join("edited.ron");
@@ -542,14 +465,15 @@ fn resuming_with_another_scene_is_refused() {
     edited("end_time_s: 0.08, frames_per_second: 100", "end_time_s: 0.5, frames_per_second: 50").success();
 }
 
-/// A source whose line lies inside a wall finds no free spot: the run used to end "completed" with no particle and
-/// no word, the skipped insertions only counted in summary.json.
+/// A source whose line lies closer to a wall than its particles' size finds no free spot: the run used to end
+/// "completed" with no particle and no word, the skipped insertions only counted in summary.json. (A line inside the
+/// wall is refused by `check`.)
 #[test]
 fn a_run_whose_sources_fed_nothing_warns() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("buried.ron");
     let text = "Scene(\n    run: (end_time_s: 0.2),\n    walls: [Wall(shape: Rectangle(width_m: 1, height_m: 0.2))],\n    \
-                sources: [(position_m: (0, 0), width_m: 0.1, shape: (semi_axes_m: (0.005, 0.005)))],\n)";
+                sources: [(position_m: (0, 0.102), width_m: 0.1, shape: (semi_axes_m: (0.005, 0.005)))],\n)";
     std::fs::write(&path, text).unwrap();
     gc2d()
         .args(["run", path.to_str().unwrap(), "--quiet", "--out"])
@@ -557,8 +481,7 @@ fn a_run_whose_sources_fed_nothing_warns() {
         .assert()
         .success()
         .stderr(contains("warning: no particle was inserted: the sources found no free spot"));
-    gc2d()
-        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
+    run_tiny_pile(&["--until", "0.01", "--out"])
         .arg(dir.path().join("fed"))
         .assert()
         .success()
@@ -570,14 +493,8 @@ fn a_run_whose_sources_fed_nothing_warns() {
 #[test]
 fn resuming_to_a_time_before_the_checkpoint_is_refused() {
     let split = tempfile::tempdir().unwrap();
-    let path = scene("tiny_pile.ron");
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.025", "--out"])
-        .arg(split.path())
-        .assert()
-        .success();
-    gc2d()
-        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.01", "--resume"])
+    run_tiny_pile(&["--until", "0.025", "--out"]).arg(split.path()).assert().success();
+    run_tiny_pile(&["--until", "0.01", "--resume"])
         .arg(split.path())
         .assert()
         .code(2)
@@ -598,8 +515,7 @@ fn thousands_of_threads_are_refused() {
 #[test]
 fn a_cadence_that_is_not_a_positive_time_is_refused() {
     for (flag, value) in [("--checkpoint-every", "0"), ("--png-every", "nan"), ("--checkpoint-every", "inf")] {
-        gc2d()
-            .args(["run", scene("tiny_pile.ron").to_str().unwrap(), flag, value])
+        run_tiny_pile(&[flag, value])
             .assert()
             .code(2)
             .stderr(contains(format!("{flag} must be a positive time in seconds")));
@@ -610,18 +526,13 @@ fn a_cadence_that_is_not_a_positive_time_is_refused() {
         ("--until", "--until must be a non-negative time in seconds, got -1"),
         ("--dump-every", "--dump-every must be a time in seconds (0: no dumps), got -1"),
     ] {
-        gc2d()
-            .args(["run", scene("tiny_pile.ron").to_str().unwrap(), flag, "-1"])
-            .assert()
-            .code(2)
-            .stderr(contains(message));
+        run_tiny_pile(&[flag, "-1"]).assert().code(2).stderr(contains(message));
     }
     gc2d().args(["export", ".", "--at", "nan"]).assert().code(2).stderr(contains("--at must be a finite time"));
     // Shorter than the time step: a file at every step (31,251 checkpoints for a 0.05 s run).
     let out = tempfile::tempdir().unwrap();
     for flag in ["--checkpoint-every", "--dump-every", "--png-every"] {
-        gc2d()
-            .args(["run", scene("tiny_pile.ron").to_str().unwrap(), flag, "1e-9", "--out"])
+        run_tiny_pile(&[flag, "1e-9", "--out"])
             .arg(out.path())
             .assert()
             .code(2)
@@ -633,13 +544,7 @@ fn a_cadence_that_is_not_a_positive_time_is_refused() {
 fn record_pictures_snapshot_and_analysis_of_a_run() {
     let out = tempfile::tempdir().unwrap();
     let recording = out.path().join("run.mcap");
-    gc2d()
-        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--png-every", "0.04", "--record"])
-        .arg(&recording)
-        .arg("--out")
-        .arg(out.path())
-        .assert()
-        .success();
+    run_tiny_pile(&["--png-every", "0.04", "--record"]).arg(&recording).arg("--out").arg(out.path()).assert().success();
     // An MCAP file starts and ends with its magic; a finished recording has both.
     let bytes = std::fs::read(&recording).unwrap();
     let magic = b"\x89MCAP0\r\n";
@@ -664,11 +569,7 @@ fn record_pictures_snapshot_and_analysis_of_a_run() {
 #[test]
 fn analysing_a_pile_that_has_not_formed_warns() {
     let out = tempfile::tempdir().unwrap();
-    gc2d()
-        .args(["run", scene("tiny_pile.ron").to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
-        .arg(out.path())
-        .assert()
-        .success();
+    run_tiny_pile(&["--until", "0.01", "--out"]).arg(out.path()).assert().success();
     gc2d()
         .arg("analyze")
         .arg(out.path())
