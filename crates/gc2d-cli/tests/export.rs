@@ -182,8 +182,9 @@ fn refusals_name_the_problem() {
     assert!(unwritable.contains("cannot create"), "{unwritable}");
 }
 
-/// A second export into the same folder replaces the first one's files: a Parquet table of one time stayed beside a
-/// CSV of another, and outlines of an earlier step beside a collection that no longer lists them. Other files stay.
+/// A second export into the same folder replaces the first one's files, as its manifest lists them: a Parquet table of
+/// one time stayed beside a CSV of another, and outlines of an earlier step beside a collection that no longer lists
+/// them. Other files stay, also outlines of the same pattern that the export did not write (a run's VTK dumps).
 #[test]
 fn a_second_export_replaces_the_first() {
     let (_dir, run_dir) = run();
@@ -193,11 +194,12 @@ fn a_second_export_replaces_the_first() {
     export(&["--at", "0.05"]);
     let folder = run_dir.join("export");
     std::fs::write(folder.join("notes.txt"), "mine").unwrap();
+    std::fs::write(folder.join("particles_000000.vtu"), "a dump").unwrap();
     export(&["--format", "csv"]);
     let mut names: Vec<String> =
         std::fs::read_dir(&folder).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
     names.sort();
-    assert_eq!(names, ["contacts.csv", "notes.txt", "particles.csv"]);
+    assert_eq!(names, [".gc2d-export", "contacts.csv", "notes.txt", "particles.csv", "particles_000000.vtu"]);
     let (_, rows) = csv(&folder.join("particles.csv"));
     let time: f64 = rows[0][0].parse().unwrap();
     assert!((time - 0.15).abs() < 1e-9, "the latest checkpoint's time, not 0.05: {time}");

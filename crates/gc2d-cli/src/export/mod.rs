@@ -120,11 +120,15 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     remove_earlier_export(out)?;
     let mut files = Vec::new();
+    // Each file written goes into the manifest at once, so that an export that fails half-way is still replaced.
+    let written = |files: &mut Vec<PathBuf>, path: PathBuf| -> Result<(), String> {
+        files.push(path);
+        write_manifest(out, files)
+    };
     let write = |files: &mut Vec<PathBuf>, name: &str, text: String| -> Result<(), String> {
         let path = out.join(name);
         std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        files.push(path);
-        Ok(())
+        written(files, path)
     };
     for format in formats {
         match format {
@@ -144,7 +148,7 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
                     let path = out.join(format!("{name}.parquet"));
                     write_parquet(name, &columns, &path)
                         .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-                    files.push(path);
+                    written(&mut files, path)?;
                 }
             }
         }
@@ -152,33 +156,40 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     Ok(Exported { checkpoint, time_s, particles: particles.len(), contacts: contacts.len(), files })
 }
 
-/// True for the names of the files an export writes: the tables in each format, the collection and the outlines of any
-/// step (`particles_<step>.vtu`).
-fn is_export_file(name: &str) -> bool {
-    let table = ["particles", "contacts"].iter().any(|t| {
-        name.strip_prefix(t)
-            .is_some_and(|rest| matches!(rest, ".csv" | ".parquet") || (*t == "particles" && rest == ".pvd"))
-    });
-    let outline = name
-        .strip_prefix("particles_")
-        .and_then(|rest| rest.strip_suffix(".vtu"))
-        .is_some_and(|step| !step.is_empty() && step.bytes().all(|b| b.is_ascii_digit()));
-    table || outline
-}
+/// The list of the files an export wrote, kept in its folder so that the next export there removes exactly those.
+pub const EXPORT_MANIFEST: &str = ".gc2d-export";
 
-/// Removes the files of an earlier export in `out` (those [`is_export_file`] names, nothing else): exporting in other
-/// formats or at another time would otherwise leave them beside the new ones, a Parquet table of one time next to
-/// a CSV of another, or outlines the new `particles.pvd` does not list.
+/// Removes the files an earlier export in `out` wrote, as its [`EXPORT_MANIFEST`] lists them (plain names in `out`,
+/// nothing else): exporting in other formats or at another time would otherwise leave them beside the new ones, a
+/// Parquet table of one time next to a CSV of another, or outlines the new `particles.pvd` does not list. A file the
+/// list names that is gone already is fine; a folder without the list (no export, or one before the list existed)
+/// loses nothing.
 fn remove_earlier_export(out: &Path) -> Result<(), String> {
-    let entries = std::fs::read_dir(out).map_err(|e| format!("cannot list {}: {e}", out.display()))?;
-    for entry in entries.flatten() {
-        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
-        if is_file && entry.file_name().to_str().is_some_and(is_export_file) {
-            std::fs::remove_file(entry.path())
-                .map_err(|e| format!("cannot remove {} of an earlier export: {e}", entry.path().display()))?;
+    let Ok(manifest) = std::fs::read_to_string(out.join(EXPORT_MANIFEST)) else { return Ok(()) };
+    for name in manifest.lines().filter(|name| is_plain_file_name(name)) {
+        let path = out.join(name);
+        match std::fs::remove_file(&path) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(format!("cannot remove {} of an earlier export: {e}", path.display()));
+            }
+            _ => {}
         }
     }
     Ok(())
+}
+
+/// True for a file name without a folder part (no separator, not `.` or `..`): what a manifest may name.
+fn is_plain_file_name(name: &str) -> bool {
+    let path = Path::new(name);
+    !name.is_empty() && path.file_name().is_some_and(|file| file == path.as_os_str())
+}
+
+/// Writes the [`EXPORT_MANIFEST`] of the export that wrote `files` into `out`.
+fn write_manifest(out: &Path, files: &[PathBuf]) -> Result<(), String> {
+    let names: Vec<String> =
+        files.iter().filter_map(|f| f.file_name()).map(|name| name.to_string_lossy().into_owned()).collect();
+    let path = out.join(EXPORT_MANIFEST);
+    std::fs::write(&path, names.join("\n") + "\n").map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 /// Column names of the particle table, in order.
@@ -328,4 +339,18 @@ fn contacts_csv(rows: &[ContactRow], time_s: f64) -> String {
         );
     }
     csv
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A manifest names files in its own folder only: an edited one cannot make an export remove anything elsewhere.
+    #[test]
+    fn manifests_name_plain_files_only() {
+        assert!(is_plain_file_name("particles.csv") && is_plain_file_name("particles_12.vtu"));
+        for name in ["", ".", "..", "../summary.json", "/etc/passwd", "sub/particles.csv", "./particles.csv"] {
+            assert!(!is_plain_file_name(name), "{name}");
+        }
+    }
 }
