@@ -19,7 +19,7 @@ pub const SCENE_COPY: &str = "scene.ron";
 /// that the copy finds them from the run directory (`export` builds it to name the bodies).
 pub fn write_scene_copy(path: &Path, scene: &Scene) -> io::Result<()> {
     let mut scene = scene.clone();
-    scene.anchor_file_names()?;
+    scene.anchor_file_names(&scene.folder())?;
     let text = scene.to_ron_string().map_err(io::Error::other)?;
     let header = format!(
         "// The scene this run started from, as gc2d-rs {} read it (with --seed applied); every field is written.\n",

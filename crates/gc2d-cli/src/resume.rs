@@ -75,7 +75,7 @@ pub fn another_scene(scene: &Scene, scene_path: &Path, run_dir: &Path) -> Option
         scene.run.checkpoint_interval_s = None;
         scene.run.seed = 0;
         // The copy names the files it reads by absolute paths ([`crate::outputs::write_scene_copy`]).
-        scene.anchor_file_names().ok()?;
+        scene.anchor_file_names(&scene.folder()).ok()?;
         scene.to_ron_string().ok()
     };
     let (given, started) = (comparable(scene)?, comparable(&copy)?);

@@ -225,4 +225,6 @@ fn the_scene_copy_of_a_run_with_a_vtk_field_finds_the_field() {
     let origin = header.iter().position(|h| h == "origin").unwrap();
     assert_eq!(rows[0][origin], "particles[0]");
     gc2d(&["run", "scenes/air.ron", "--quiet", "--resume", "run", "--until", "0.003"]).success();
+    // The same scene by another path to the same file is the same scene.
+    gc2d(&["run", "scenes/../scenes/air.ron", "--quiet", "--resume", "run", "--until", "0.004"]).success();
 }

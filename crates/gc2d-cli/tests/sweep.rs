@@ -320,6 +320,21 @@ fn a_sweep_of_a_scene_with_a_vtk_field_finds_the_field() {
     for point in ["density_kg_m3=1.2_seed=0", "density_kg_m3=2.4_seed=0"] {
         assert_eq!(summary(&dir.path().join("out").join(point))["outcome"]["status"], "completed", "{point}");
     }
+    // A file name a parameter gives is read from the base scene's folder, as the scene's own names are.
+    std::fs::copy(&data, dir.path().join("scenes/fields/v.vtk")).unwrap();
+    let files = "Sweep(\n    scene: \"scenes/air.ron\",\n    out: \"files\",\n    parameters: [(path: \
+        \"fluid.field.file\", name: \"field\", values: List([\"fields/u.vtk\", \"fields/v.vtk\"]))],\n)\n";
+    std::fs::write(dir.path().join("sweep.ron"), files).unwrap();
+    sweep(dir.path()).assert().success();
+    let runs: Vec<PathBuf> = std::fs::read_dir(dir.path().join("files"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .collect();
+    assert_eq!(runs.len(), 2);
+    for run in runs {
+        assert_eq!(summary(&run)["outcome"]["status"], "completed", "{}", run.display());
+    }
 }
 
 #[test]

@@ -9,7 +9,7 @@ use crate::failure::CommandFailure;
 use gc2d_scene::{ErrorKind, Scene};
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The path of the seed in a scene.
 const SEED_PATH: &str = "run.seed";
@@ -44,7 +44,8 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
     })?;
     // The points' scenes are written into their run directories: file names relative to the base scene's folder (a
     // fluid's VTK files) would start from there.
-    base.anchor_file_names()
+    let base_folder = base.folder();
+    base.anchor_file_names(&base_folder)
         .map_err(|e| CommandFailure::input(format!("cannot find the folder of {}: {e}", sweep.scene.display())))?;
     let base_text =
         base.to_ron_string().map_err(|e| CommandFailure::failed(format!("cannot write the base scene: {e}")))?;
@@ -65,7 +66,7 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
         }
     }
     let made: Vec<Result<PointScene, (String, String)>> =
-        points.par_iter().map(|point| point_scene(sweep, &base_text, point)).collect();
+        points.par_iter().map(|point| point_scene(sweep, &base_text, &base_folder, point)).collect();
     let mut scenes = Vec::with_capacity(made.len());
     let mut failures = Vec::new();
     for result in made {
@@ -94,8 +95,14 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
     Ok(scenes)
 }
 
-/// The point's scene, loaded and built; on failure the point's name and values and the scene's error.
-fn point_scene(sweep: &Sweep, base_text: &str, point: &Point) -> Result<PointScene, (String, String)> {
+/// The point's scene, loaded and built; on failure the point's name and values and the scene's error. File names a
+/// parameter gives (a fluid's field) are taken from `base_folder`, the base scene's folder, as the base scene's own.
+fn point_scene(
+    sweep: &Sweep,
+    base_text: &str,
+    base_folder: &Path,
+    point: &Point,
+) -> Result<PointScene, (String, String)> {
     let name = sweep.dir_name(point);
     let dir = sweep.out.join(&name);
     let fail = |report: String| (format!("`{name}` ({})", sweep.describe(point)), report);
@@ -106,7 +113,8 @@ fn point_scene(sweep: &Sweep, base_text: &str, point: &Point) -> Result<PointSce
         text = put(&text, &at, &value);
     }
     // Named as the point, not as its scene.ron: that file is written only once every point has passed.
-    let scene = Scene::from_str(&text, &format!("point {name}")).map_err(|e| fail(super::file::render(&e)))?;
+    let mut scene = Scene::from_str(&text, &format!("point {name}")).map_err(|e| fail(super::file::render(&e)))?;
+    scene.anchor_file_names(base_folder).map_err(|e| fail(format!("cannot find the working directory: {e}")))?;
     scene.summary().map_err(|e| fail(super::file::render(&e)))?;
     let text = scene.to_ron_string().map_err(|e| fail(format!("cannot write the scene: {e}")))?;
     let analysis = sweep.file.analysis.kind.or(scene.mill.is_some().then_some(AnalysisKind::Mill));

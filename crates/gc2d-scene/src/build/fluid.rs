@@ -158,17 +158,24 @@ pub(crate) fn plan(fluid: &Fluid, folder: &Path) -> Result<EngineFluid, SceneErr
 }
 
 impl Scene {
-    /// Makes the scene's relative file names (a `Vtk` field's `file` and `snapshots`) absolute, from the folder they
-    /// start from now ([`Scene::build`] reads them from the scene file's folder, or the working directory): for a copy
-    /// of the scene written into another folder, such as a sweep's point scenes, whose relative names would start
-    /// from there. Fails only where the working directory cannot be found.
-    pub fn anchor_file_names(&mut self) -> std::io::Result<()> {
-        let folder = scene_folder(self);
-        let folder =
-            if folder.as_os_str().is_empty() { std::env::current_dir()? } else { std::path::absolute(folder)? };
+    /// The folder the scene's relative file names start from (a fluid's VTK files): the scene file's folder, or an
+    /// empty path, the working directory, for a scene made in code.
+    pub fn folder(&self) -> PathBuf {
+        scene_folder(self)
+    }
+
+    /// Names the files the scene reads (a `Vtk` field's `file` and `snapshots`) by full paths: a relative name is
+    /// taken from `folder` (the working directory where it is empty), and `..` and links are resolved where the file
+    /// exists, so that one file always gets one name. For a copy of the scene written into another folder, such as a
+    /// run directory's `scene.ron` or a sweep's point scenes, whose relative names would start from there. Fails only
+    /// where the working directory cannot be found.
+    pub fn anchor_file_names(&mut self, folder: &Path) -> std::io::Result<()> {
+        let folder = if folder.as_os_str().is_empty() { std::env::current_dir()? } else { folder.to_path_buf() };
         if let Some(Fluid { field: Field::Vtk { file, snapshots, .. }, .. }) = &mut self.fluid {
             for name in file.iter_mut().chain(snapshots.iter_mut().map(|snapshot| &mut snapshot.file)) {
-                *name = folder.join(&*name).to_string_lossy().into_owned();
+                let joined = folder.join(&*name);
+                let full = std::fs::canonicalize(&joined).or_else(|_| std::path::absolute(&joined))?;
+                *name = full.to_string_lossy().into_owned();
             }
         }
         Ok(())
