@@ -58,22 +58,24 @@ impl ShapeView<'_> {
         }
     }
 
-    /// True where `point` lies strictly inside the solid: inside a polygon, disk or capsule, outside an
-    /// [`InnerCircle`](ShapeView::InnerCircle). Points on the outline are outside. For the load-time checks (a drop
+    /// How deep `point` lies inside the solid, m: its distance from the outline, positive inside (a polygon, disk or
+    /// capsule; outside an [`InnerCircle`](ShapeView::InnerCircle)), zero on the outline, negative outside (for a
+    /// polygon the distance from the nearest edge's line, which has the right sign). For the load-time checks (a drop
     /// line inside a wall), not for contacts.
-    pub fn contains(&self, point: DVec2) -> bool {
+    pub fn depth_of(&self, point: DVec2) -> f64 {
         match *self {
-            ShapeView::Polygon(points) => {
-                let edges = points.iter().zip(points.iter().cycle().skip(1));
-                edges.into_iter().all(|(&a, &b)| (b - a).perp_dot(point - a) > 0.0)
-            }
-            ShapeView::Disk { center, radius } => point.distance_squared(center) < radius * radius,
+            ShapeView::Polygon(points) => points
+                .iter()
+                .zip(points.iter().cycle().skip(1))
+                .map(|(&a, &b)| (b - a).perp_dot(point - a) / (b - a).length())
+                .fold(f64::INFINITY, f64::min),
+            ShapeView::Disk { center, radius } => radius - point.distance(center),
             ShapeView::Capsule { a, b, radius } => {
                 let along = b - a;
                 let t = if along == DVec2::ZERO { 0.0 } else { (point - a).dot(along) / along.length_squared() };
-                point.distance_squared(a + t.clamp(0.0, 1.0) * along) < radius * radius
+                radius - point.distance(a + t.clamp(0.0, 1.0) * along)
             }
-            ShapeView::InnerCircle { center, radius } => point.distance_squared(center) > radius * radius,
+            ShapeView::InnerCircle { center, radius } => point.distance(center) - radius,
         }
     }
 
@@ -282,24 +284,28 @@ mod tests {
     }
 
     #[test]
-    fn points_inside_the_solid_are_contained_and_points_on_the_outline_are_not() {
+    fn depths_are_distances_from_the_outline_positive_inside() {
         let square = ShapeView::Polygon(&SQUARE);
-        assert!(square.contains(v(0.5, 0.5)) && square.contains(v(0.999, 0.001)));
-        assert!(!square.contains(v(1.0, 0.5)) && !square.contains(v(0.0, 0.0)) && !square.contains(v(1.5, 0.5)));
-        assert!(disk(0.0, 0.0, 1.0).contains(v(0.7, 0.7)) && !disk(0.0, 0.0, 1.0).contains(v(0.0, 1.0)));
+        assert_relative_eq!(square.depth_of(v(0.5, 0.5)), 0.5);
+        assert_relative_eq!(square.depth_of(v(0.9, 0.2)), 0.1, epsilon = 1e-15);
+        assert_eq!(square.depth_of(v(1.0, 0.5)), 0.0);
+        assert!(square.depth_of(v(1.5, 0.5)) < 0.0);
+        assert_relative_eq!(disk(0.0, 0.0, 1.0).depth_of(v(0.6, 0.0)), 0.4, epsilon = 1e-15);
         let blade = ShapeView::Capsule { a: v(0.0, 0.0), b: v(1.0, 0.0), radius: 0.2 };
-        assert!(blade.contains(v(0.5, 0.19)) && blade.contains(v(1.1, 0.1)) && !blade.contains(v(1.15, 0.15)));
+        assert_relative_eq!(blade.depth_of(v(0.5, 0.15)), 0.05, epsilon = 1e-15);
+        assert_relative_eq!(blade.depth_of(v(1.1, 0.0)), 0.1, epsilon = 1e-15);
         let dot = ShapeView::Capsule { a: v(0.0, 0.0), b: v(0.0, 0.0), radius: 0.2 };
-        assert!(dot.contains(v(0.1, 0.1)) && !dot.contains(v(0.2, 0.0)));
+        assert_relative_eq!(dot.depth_of(v(0.1, 0.0)), 0.1, epsilon = 1e-15);
         let chamber = ShapeView::InnerCircle { center: v(0.0, 0.0), radius: 1.0 };
-        assert!(!chamber.contains(v(0.5, 0.5)) && chamber.contains(v(1.0, 0.1)));
-        // The same answers as parry2d-f64's for a convex polygon.
+        assert!(chamber.depth_of(v(0.5, 0.5)) < 0.0);
+        assert_relative_eq!(chamber.depth_of(v(1.25, 0.0)), 0.25);
+        // Inside exactly where parry2d-f64 says a convex polygon contains the point.
         let pentagon = [v(0.0, 0.0), v(2.0, 0.0), v(2.5, 1.0), v(1.0, 2.0), v(-0.5, 1.0)];
         let reference = parry2d_f64::shape::ConvexPolygon::from_convex_polyline_unmodified(pentagon.to_vec()).unwrap();
         for k in 0..400 {
             let p = v(-1.0 + 0.19 * (k % 20) as f64, -1.0 + 0.19 * (k / 20) as f64);
             let expected = parry2d_f64::query::PointQuery::contains_local_point(&reference, p);
-            assert_eq!(ShapeView::Polygon(&pentagon).contains(p), expected, "{p}");
+            assert_eq!(ShapeView::Polygon(&pentagon).depth_of(p) > 0.0, expected, "{p}");
         }
     }
 

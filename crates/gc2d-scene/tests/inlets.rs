@@ -140,6 +140,29 @@ fn feed_lines_inside_walls_are_refused_or_warned_about() {
     assert!(error.message().contains("segment lies entirely inside `walls[0]`"), "{}", error.message());
 }
 
+/// A line along a wall's surface (a source on a floor, an inlet along a side) is outside the wall wherever it lies:
+/// which side round-off put its points on decided between a refusal, a warning of 3.5 to 90 % and nothing.
+#[test]
+fn a_feed_line_on_a_wall_surface_is_outside_it() {
+    for (wall_y, source_y) in [(-0.005, 0.0), (0.095, 0.1), (0.005, 0.01), (1e3 - 0.005, 1e3)] {
+        for x in [0.0, 0.3, -7.1] {
+            let text = format!(
+                "Scene(\n    walls: [Wall(shape: Rectangle(width_m: 0.06, height_m: 0.01), position_m: ({x}, {wall_y}))],\n    \
+                 sources: [(position_m: ({x}, {source_y}), width_m: 0.06, shape: (semi_axes_m: (0.001, 0.001)))],\n)"
+            );
+            let scene = Scene::from_str(&text, "floor.ron").unwrap();
+            assert!(scene.build().is_ok(), "wall at ({x}, {wall_y})");
+            assert!(scene.warnings().is_empty(), "wall at ({x}, {wall_y}): {:?}", scene.warnings());
+        }
+    }
+    // A line wholly inside two walls names both, with their shares.
+    let text = "Scene(\n    walls: [Wall(shape: Rectangle(width_m: 0.1, height_m: 0.1), position_m: (-0.05, 0)), \
+                Wall(shape: Rectangle(width_m: 0.1, height_m: 0.1), position_m: (0.05, 0))],\n    sources: \
+                [(position_m: (0, 0), width_m: 0.08, shape: (semi_axes_m: (0.001, 0.001)))],\n)";
+    let error = error_of(text);
+    assert!(error.message().contains("inside `walls[0]` (50 %), `walls[1]` (50 %)"), "{}", error.message());
+}
+
 /// An inlet feeding at 1,000 m/s passed `check`, and the run stopped at the first insertion (travel limit). It is
 /// refused at its velocity, as a particle that starts too fast is; with `allow_unsafe_time_step` the run decides.
 #[test]

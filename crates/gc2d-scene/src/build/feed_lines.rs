@@ -14,6 +14,11 @@ use gc2d_geometry::DVec2;
 /// Points sampled along each line, at the middles of equal pieces.
 const SAMPLES: usize = 200;
 
+/// How deep a point must lie inside a wall to count as inside, as a fraction of the line's size (its length, or the
+/// distance of its points from the origin where that is more): far above round-off, so that a line along a wall's
+/// surface (a source on a floor) counts as outside wherever it lies, and far below any particle.
+const DEPTH_TOLERANCE: f64 = 1e-9;
+
 /// A source's or inlet's line of which a share lies inside walls.
 pub(crate) struct CoveredLine {
     /// The field that places the line: `sources[0].position_m` or `inlets[1].from_m`.
@@ -22,8 +27,8 @@ pub(crate) struct CoveredLine {
     pub what: &'static str,
     /// The share of the line inside walls, in (0, 1].
     pub share: f64,
-    /// The wall entry that holds the most of it.
-    pub wall: String,
+    /// The wall entries that hold it, with their shares, the largest first.
+    pub walls: Vec<(String, f64)>,
 }
 
 impl CoveredLine {
@@ -31,7 +36,7 @@ impl CoveredLine {
     pub fn error(&self) -> SceneError {
         SceneError::value(
             &self.field,
-            format!("its {} lies entirely inside `{}`: it could feed no particle", self.what, self.wall),
+            format!("its {} lies entirely inside {}: it could feed no particle", self.what, self.wall_list()),
         )
         .with_label("inside a wall")
         .with_help("move it into the open space the walls enclose")
@@ -40,12 +45,29 @@ impl CoveredLine {
     /// The warning for a line partly inside walls (without the location, which the caller adds).
     pub fn warning(&self) -> String {
         format!(
-            "{} % of its {} lies inside `{}`: particles are fed only on the rest",
-            number((self.share * 1000.0).round() / 10.0),
+            "{} % of its {} lies inside {}: particles are fed only on the rest",
+            percent(self.share),
             self.what,
-            self.wall
+            self.wall_list()
         )
     }
+
+    /// The walls in words: `` `walls[0]` ``, or with their shares where there are several.
+    fn wall_list(&self) -> String {
+        match self.walls.as_slice() {
+            [(wall, _)] => format!("`{wall}`"),
+            walls => {
+                let parts: Vec<String> =
+                    walls.iter().map(|(wall, share)| format!("`{wall}` ({} %)", percent(*share))).collect();
+                parts.join(", ")
+            }
+        }
+    }
+}
+
+/// A share as a percentage with one decimal.
+fn percent(share: f64) -> String {
+    number((share * 1000.0).round() / 10.0)
 }
 
 /// The sources' drop lines (those at an absolute height) and the inlets' segments of `scene` that lie partly or
@@ -56,17 +78,20 @@ pub(crate) fn covered_lines(scene: &Scene, walls: &[PlacedWall]) -> Vec<CoveredL
         .filter(|w| w.motion.is_static())
         .map(|w| (w.shape.body_points().iter().map(|v| w.pose.apply(*v)).collect(), w))
         .collect();
-    let inside = |point: DVec2| {
+    let inside = |point: DVec2, tolerance: f64| {
         solids
             .iter()
-            .find(|(points, w)| shape_view(w.shape.kind(), points, w.shape.radius() * w.pose.scale).contains(point))
+            .find(|(points, w)| {
+                shape_view(w.shape.kind(), points, w.shape.radius() * w.pose.scale).depth_of(point) > tolerance
+            })
             .map(|(_, w)| w.path.as_str())
     };
     let cover = |from: DVec2, to: DVec2, field: String, what: &'static str| {
+        let size = from.distance(to).max(from.abs().max_element()).max(to.abs().max_element());
         let mut walls: Vec<(&str, usize)> = Vec::new();
         for k in 0..SAMPLES {
             let point = from.lerp(to, (k as f64 + 0.5) / SAMPLES as f64);
-            if let Some(wall) = inside(point) {
+            if let Some(wall) = inside(point, DEPTH_TOLERANCE * size) {
                 match walls.iter_mut().find(|(path, _)| *path == wall) {
                     Some((_, count)) => *count += 1,
                     None => walls.push((wall, 1)),
@@ -74,8 +99,9 @@ pub(crate) fn covered_lines(scene: &Scene, walls: &[PlacedWall]) -> Vec<CoveredL
             }
         }
         let covered: usize = walls.iter().map(|(_, count)| count).sum();
-        let most = walls.iter().max_by_key(|(_, count)| *count)?;
-        Some(CoveredLine { field, what, share: covered as f64 / SAMPLES as f64, wall: most.0.to_owned() })
+        walls.sort_by_key(|(_, count)| std::cmp::Reverse(*count));
+        let walls = walls.into_iter().map(|(wall, count)| (wall.to_owned(), count as f64 / SAMPLES as f64)).collect();
+        (covered > 0).then(|| CoveredLine { field, what, share: covered as f64 / SAMPLES as f64, walls })
     };
     let sources =
         scene.sources.iter().enumerate().filter(|(_, s)| s.height == DropHeight::Absolute).filter_map(|(i, source)| {
