@@ -56,7 +56,7 @@ enum Command {
         /// The run directory (written by `gc2d-rs run`).
         run: PathBuf,
         /// The simulated time to export, s: the last checkpoint at or before it [default: the latest checkpoint].
-        #[arg(long, allow_negative_numbers = true)]
+        #[arg(long, allow_hyphen_values = true)]
         at: Option<f64>,
         /// The formats to write.
         #[arg(long, value_enum, value_delimiter = ',', default_values_t = [ExportFormat::Parquet, ExportFormat::Csv, ExportFormat::Vtk])]
@@ -171,13 +171,13 @@ struct RunArgs {
     #[arg(long)]
     threads: Option<usize>,
     /// Stop at this simulated time (s) instead of the scene's end time.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     until: Option<f64>,
     /// Hide the progress bar (it is also hidden when stderr is not a terminal).
     #[arg(long)]
     quiet: bool,
     /// Write a restartable checkpoint every this many simulated seconds (into <out>/checkpoints/).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     checkpoint_every: Option<f64>,
     /// Continue from a checkpoint written by an earlier run of the same scene, or from the newest checkpoint in a
     /// run directory (its final.ckpt or checkpoints/checkpoint-<step>.ckpt, whichever took more steps). A scene that
@@ -207,14 +207,14 @@ struct RunArgs {
     /// Write the state of every particle (position, angle, velocities, forces, contacts) every this many simulated
     /// seconds into <out>/dumps/particles_<k>.csv; 0 writes none [default: a mill scene and a scene with a fluid at
     /// its frames_per_second, other scenes none].
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     dump_every: Option<f64>,
     /// The formats of the dumps: csv (what `analyze` reads), parquet (the export's particle table) and vtk (.vtu per
     /// dump with dumps/particles.pvd for ParaView); docs/export.md.
     #[arg(long, value_enum, value_delimiter = ',', default_values_t = [ExportFormat::Csv])]
     dump_format: Vec<ExportFormat>,
     /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     png_every: Option<f64>,
     /// What the particle colours show in recordings and pictures.
     #[arg(long, value_enum, default_value_t = Colour::Speed)]

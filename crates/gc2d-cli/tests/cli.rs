@@ -521,12 +521,13 @@ fn a_cadence_that_is_not_a_positive_time_is_refused() {
             .stderr(contains(format!("{flag} must be a positive time in seconds")));
     }
     // A negative time is refused by the same check, not by clap's tip to write `-- -1`.
-    for (flag, message) in [
-        ("--checkpoint-every", "--checkpoint-every must be a positive time in seconds, got -1"),
-        ("--until", "--until must be a non-negative time in seconds, got -1"),
-        ("--dump-every", "--dump-every must be a time in seconds (0: no dumps), got -1"),
+    for (flag, value, message) in [
+        ("--checkpoint-every", "-1", "--checkpoint-every must be a positive time in seconds, got -1"),
+        ("--until", "-1", "--until must be a non-negative time in seconds, got -1"),
+        ("--until", "-1e-3", "--until must be a non-negative time in seconds, got -0.001"),
+        ("--dump-every", "-inf", "--dump-every must be a time in seconds (0: no dumps), got -inf"),
     ] {
-        run_tiny_pile(&[flag, "-1"]).assert().code(2).stderr(contains(message));
+        run_tiny_pile(&[flag, value]).assert().code(2).stderr(contains(message));
     }
     gc2d().args(["export", ".", "--at", "nan"]).assert().code(2).stderr(contains("--at must be a finite time"));
     // Shorter than the time step: a file at every step (31,251 checkpoints for a 0.05 s run).
