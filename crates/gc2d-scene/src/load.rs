@@ -115,7 +115,7 @@ fn from_ron_error(error: &SpannedError, source: &Arc<SourceText>) -> SceneError 
 
 /// The errors ron gives for a number it read in pieces, told as what was written (with the number's span): a negative
 /// whole number, whose sign ron leaves out of "out of bounds, found `1`"; a fraction where a whole number belongs,
-/// which ron reports as "expected comma" at its point; a number where a variant belongs (`gravity: 9.81`), which ron
+/// which ron reports as "expected comma" at its point or as an invalid digit at its exponent; a number where a variant belongs (`gravity: 9.81`), which ron
 /// takes for an identifier and suggests writing `r#9.81`. `None` for every other error.
 fn misread_number(code: &RonError, text: &str, span: Range<usize>, path: &str) -> Option<(SceneError, Range<usize>)> {
     match code {
@@ -129,10 +129,12 @@ fn misread_number(code: &RonError, text: &str, span: Range<usize>, path: &str) -
             };
             Some((SceneError::new(ErrorKind::Type, path, message).with_label("out of range"), number))
         }
-        RonError::ExpectedComma => {
-            let at = text.as_bytes().get(span.start)?;
-            let after_digit = span.start > 0 && text.as_bytes()[span.start - 1].is_ascii_digit();
-            if !(*at == b'.' && after_digit) {
+        RonError::InvalidIntegerDigit { digit: 'e' | 'E', base: 10 } | RonError::ExpectedComma => {
+            // ron stops an integer at its point ("expected comma" there) or at its exponent's `e`.
+            let stopped_at_point = text.as_bytes().get(span.start) == Some(&b'.')
+                && span.start > 0
+                && text.as_bytes()[span.start - 1].is_ascii_digit();
+            if matches!(code, RonError::ExpectedComma) && !stopped_at_point {
                 return None;
             }
             let number = number_around(text, span.start);

@@ -64,6 +64,7 @@ fn misread_numbers_are_reported_as_written() {
     let cases = [
         ("Scene(\n    run: (seed: -1),\n)", "run.seed", (2, 17), "found `-1`: this field takes a whole number ≥ 0"),
         ("Scene(\n    run: (seed: 1.5),\n)", "run.seed", (2, 17), "expected a whole number, found `1.5`"),
+        ("Scene(\n    run: (seed: 2e3),\n)", "run.seed", (2, 17), "expected a whole number, found `2e3`"),
         (
             "Scene(\n    gravity: 9.81,\n)",
             "gravity",
@@ -79,7 +80,7 @@ fn misread_numbers_are_reported_as_written() {
         assert_eq!((location.line, location.column), (line, column), "{}", error.render_plain());
         assert_eq!(error.message(), message, "{}", error.render_plain());
     }
-    assert!(error_of(cases[2].0).help_text().is_some_and(|help| help.contains("`gravity: Constant(9.81)`")));
+    assert!(error_of(cases[3].0).help_text().is_some_and(|help| help.contains("`gravity: Constant(9.81)`")));
 }
 
 /// A UTF-8 byte-order mark, which some editors write, is not part of the scene.
