@@ -156,20 +156,27 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
     Ok(0)
 }
 
-/// Refuses a `--csv` path that cannot take the table, before the measurements rather than after them: a folder, or a
-/// file in a folder that does not exist.
+/// Refuses a `--csv` path that cannot take the table, before the measurements rather than after them: a folder (or a
+/// name ending in a separator), a file in a folder that does not exist, or one that cannot be opened for writing
+/// (tried without changing an existing file; a new one is removed again).
 fn refuse_unwritable_csv(path: &std::path::Path) -> Result<(), CommandFailure> {
-    if path.is_dir() {
-        return Err(CommandFailure::input(format!("--csv {} is a folder; give a file name", path.display())));
+    let refuse = |why: String| Err(CommandFailure::input(format!("--csv {}: {why}", path.display())));
+    if path.is_dir() || path.as_os_str().to_string_lossy().ends_with(std::path::MAIN_SEPARATOR) {
+        return refuse("this is a folder; give a file name".to_owned());
     }
-    match path.parent().filter(|parent| !parent.as_os_str().is_empty()) {
-        Some(folder) if !folder.is_dir() => Err(CommandFailure::input(format!(
-            "--csv {}: the folder {} does not exist",
-            path.display(),
-            folder.display()
-        ))),
-        _ => Ok(()),
+    if let Some(folder) = path.parent().filter(|parent| !parent.as_os_str().is_empty())
+        && !folder.is_dir()
+    {
+        return refuse(format!("the folder {} does not exist", folder.display()));
     }
+    let existed = path.exists();
+    if let Err(e) = std::fs::OpenOptions::new().append(true).create(true).open(path) {
+        return refuse(format!("cannot write it: {e}"));
+    }
+    if !existed {
+        let _ = std::fs::remove_file(path);
+    }
+    Ok(())
 }
 
 /// The checksum of a pile's state after the timed steps on `threads` threads.

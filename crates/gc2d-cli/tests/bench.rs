@@ -163,9 +163,14 @@ fn bench_refuses_unknown_piles_and_zero_counts() {
     // A table that cannot be written is refused before the measurements, not after them.
     let dir = tempfile::tempdir().unwrap();
     let folder = dir.path().to_str().unwrap();
-    assert!(refusal(&["--csv", folder]).contains("is a folder; give a file name"));
+    assert!(refusal(&["--csv", folder]).contains("this is a folder; give a file name"));
+    assert!(refusal(&["--csv", &format!("{folder}/x.csv/")]).contains("this is a folder; give a file name"));
     let nowhere = dir.path().join("no/such/folder/bench.csv");
     assert!(refusal(&["--csv", nowhere.to_str().unwrap()]).contains("does not exist"));
+    // A folder where no file can be made (even by root).
+    if cfg!(target_os = "linux") {
+        assert!(refusal(&["--csv", "/proc/bench.csv"]).contains("cannot write it"));
+    }
 }
 
 /// `--steps` times every size for the same number of steps, whatever the particle-step budget, even below the
