@@ -25,7 +25,9 @@ fn clipping(a: f64, b: f64, c: f64) -> String {
         return if a > 1.0 { " (above 1 at every speed: clipped to 1)".to_owned() } else { String::new() };
     }
     let crossing = a.powf(1.0 / c) - b;
-    if c > 0.0 && crossing > 0.0 {
+    if c > 0.0 && crossing == f64::INFINITY {
+        " (above 1 at every speed: clipped to 1)".to_owned()
+    } else if c > 0.0 && crossing > 0.0 {
         format!(" (above 1 below {} m/s: clipped to 1 there)", significant(crossing))
     } else if c < 0.0 && a > 0.0 && crossing.is_finite() {
         format!(" (above 1 above {} m/s: clipped to 1 there)", significant(crossing.max(0.0)))
@@ -359,5 +361,6 @@ mod tests {
         assert_eq!(clipping(0.5, 0.5, -0.5), " (above 1 above 3.500 m/s: clipped to 1 there)");
         assert_eq!(clipping(2.0, 0.5, -0.5), " (above 1 above 0 m/s: clipped to 1 there)");
         assert_eq!(clipping(1.5, 0.5, 0.0), " (above 1 at every speed: clipped to 1)");
+        assert_eq!(clipping(1e300, 1.0, 1e-300), " (above 1 at every speed: clipped to 1)");
     }
 }

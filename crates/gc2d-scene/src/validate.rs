@@ -219,6 +219,19 @@ fn collect(errors: &mut Vec<SceneError>, result: Result<(), SceneError>) {
 }
 
 fn check_run(scene: &Scene, errors: &mut Vec<SceneError>) {
+    if let Some(c) = scene.name.chars().find(|&c| c.is_control() || is_direction_override(c)) {
+        errors.push(
+            SceneError::value(
+                "name",
+                format!(
+                    "the name holds the invisible character U+{:04X}: it would break the lines of `check` and the \
+                     recordings that print it",
+                    u32::from(c)
+                ),
+            )
+            .with_help("use visible characters only; `description` may hold several lines"),
+        );
+    }
     let run = &scene.run;
     if let Some(dt) = run.time_step_s
         && !(dt >= MIN_TIME_STEP_S && dt.is_finite())

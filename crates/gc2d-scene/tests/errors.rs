@@ -313,6 +313,9 @@ fn material_names_with_invisible_characters_are_refused() {
         let error = error_of(&text);
         assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "materials[0].name"), "{}", error.render_plain());
         assert!(error.message().contains("invisible character U+"), "{}", error.message());
+        // The scene's own name is printed by `check` and written into recordings as well.
+        let error = error_of(&format!("Scene(\n    name: \"{name}\",\n)"));
+        assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "name"), "{}", error.render_plain());
     }
 }
 

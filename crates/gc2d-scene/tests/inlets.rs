@@ -175,5 +175,7 @@ fn an_inlet_too_fast_for_the_time_step_is_refused_at_its_velocity() {
     let unsafe_text = scene_text(&fast).replace("seed: 3)", "seed: 3, allow_unsafe_time_step: true)");
     assert!(Scene::from_str(&unsafe_text, "unsafe.ron").unwrap().build().is_ok());
     let spinning = GOOD.replace("material:", "angular_velocity_rad_s: 5000, material:");
-    assert_eq!(error_of(&scene_text(&spinning)).path(), "inlets[0].velocity_m_s");
+    let error = error_of(&scene_text(&spinning));
+    assert_eq!(error.path(), "inlets[0].velocity_m_s");
+    assert!(error.message().contains("enter at 1 m/s spinning at 5000 rad/s"), "{}", error.message());
 }

@@ -287,10 +287,15 @@ pub(crate) fn inlets_too_fast(
                 SceneError::value(
                     format!("inlets[{i}].velocity_m_s"),
                     format!(
-                        "its particles enter at {} m/s and would move {travel:.3e} m in their first step of \
+                        "its particles enter at {} m/s{} and would move {travel:.3e} m in their first step of \
                          {time_step:.3e} s, more than the inscribed radius of the smallest ({limit:.3e} m): they could \
                          pass through a wall or a particle unseen, and the run would stop at the first insertion",
                         crate::checks::number(inlet.velocity.length()),
+                        if inlet.angular_velocity == 0.0 {
+                            String::new()
+                        } else {
+                            format!(" spinning at {} rad/s", crate::checks::number(inlet.angular_velocity))
+                        },
                     ),
                 )
                 .with_label("too fast")
