@@ -2,6 +2,8 @@
 //! CSV, from Parquet with the parquet crate's reader and with polars in the project's venv (the docs' example), the
 //! VTK files' structure, and located refusals.
 
+mod common;
+
 use assert_cmd::Command;
 use gc2d_engine::World;
 use parquet::file::reader::{FileReader, SerializedFileReader};
@@ -211,13 +213,7 @@ fn a_second_export_replaces_the_first() {
 #[test]
 fn the_scene_copy_of_a_run_with_a_vtk_field_finds_the_field() {
     let dir = tempfile::tempdir().unwrap();
-    let data = repo_root().join("crates/gc2d-fluid/tests/data/structured_points.vtk");
-    std::fs::create_dir_all(dir.path().join("scenes/fields")).unwrap();
-    std::fs::copy(&data, dir.path().join("scenes/fields/u.vtk")).unwrap();
-    let scene = "Scene(\n    run: (time_step_s: 1e-4, end_time_s: 0.002),\n    gravity: Constant(0.0),\n    \
-        particles: [(shape: Disk(radius_m: 0.01), position_m: (0.5, 0.5))],\n    \
-        fluid: (density_kg_m3: 1.2, field: Vtk(file: \"fields/u.vtk\", interpolation: Bilinear, outside: Nearest)),\n)\n";
-    std::fs::write(dir.path().join("scenes/air.ron"), scene).unwrap();
+    common::scene_with_a_vtk_field(dir.path());
     let gc2d = |args: &[&str]| Command::cargo_bin("gc2d-rs").unwrap().current_dir(dir.path()).args(args).assert();
     gc2d(&["run", "scenes/air.ron", "--quiet", "--out", "run"]).success();
     gc2d(&["export", "run", "--format", "csv"]).success();

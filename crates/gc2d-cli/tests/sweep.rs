@@ -2,6 +2,8 @@
 //! resuming interrupted ones bitwise, the collected table (CSV and Parquet), the Slurm script and task selection, and
 //! located errors for bad sweep files.
 
+mod common;
+
 use assert_cmd::Command;
 use predicates::str::contains;
 use std::path::{Path, PathBuf};
@@ -306,13 +308,7 @@ fn a_point_whose_scene_is_invalid_is_named_with_the_scene_error() {
 #[test]
 fn a_sweep_of_a_scene_with_a_vtk_field_finds_the_field() {
     let dir = tempfile::tempdir().unwrap();
-    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../gc2d-fluid/tests/data/structured_points.vtk");
-    std::fs::create_dir_all(dir.path().join("scenes/fields")).unwrap();
-    std::fs::copy(&data, dir.path().join("scenes/fields/u.vtk")).unwrap();
-    let scene = "Scene(\n    run: (time_step_s: 1e-4, end_time_s: 0.002),\n    gravity: Constant(0.0),\n    \
-        particles: [(shape: Disk(radius_m: 0.01), position_m: (0.5, 0.5))],\n    \
-        fluid: (density_kg_m3: 1.2, field: Vtk(file: \"fields/u.vtk\", interpolation: Bilinear, outside: Nearest)),\n)\n";
-    std::fs::write(dir.path().join("scenes/air.ron"), scene).unwrap();
+    common::scene_with_a_vtk_field(dir.path());
     let sweep_file = "Sweep(\n    scene: \"scenes/air.ron\",\n    out: \"out\",\n    parameters: [(path: \
         \"fluid.density_kg_m3\", values: List([1.2, 2.4]))],\n)\n";
     std::fs::write(dir.path().join("sweep.ron"), sweep_file).unwrap();
@@ -321,7 +317,7 @@ fn a_sweep_of_a_scene_with_a_vtk_field_finds_the_field() {
         assert_eq!(summary(&dir.path().join("out").join(point))["outcome"]["status"], "completed", "{point}");
     }
     // A file name a parameter gives is read from the base scene's folder, as the scene's own names are.
-    std::fs::copy(&data, dir.path().join("scenes/fields/v.vtk")).unwrap();
+    std::fs::copy(dir.path().join("scenes/fields/u.vtk"), dir.path().join("scenes/fields/v.vtk")).unwrap();
     let files = "Sweep(\n    scene: \"scenes/air.ron\",\n    out: \"files\",\n    parameters: [(path: \
         \"fluid.field.file\", name: \"field\", values: List([\"fields/u.vtk\", \"fields/v.vtk\"]))],\n)\n";
     std::fs::write(dir.path().join("sweep.ron"), files).unwrap();
