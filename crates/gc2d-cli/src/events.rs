@@ -117,6 +117,11 @@ impl FrameSink for EventsWriter {
         self.file.flush().map_err(|e| format!("events.csv: {e}"))
     }
 
+    /// Hands the last rows to the operating system.
+    fn finish(&mut self) -> Result<(), String> {
+        self.file.flush().map_err(|e| format!("events.csv: {e}"))
+    }
+
     /// Writes the episodes that ended on the World's last step.
     fn after_step(&mut self, world: &World) -> Result<(), String> {
         for event in world.contact_events().iter().filter(|e| e.kind == ContactEventKind::End) {

@@ -22,6 +22,11 @@ pub trait FrameSink: Send {
     /// Hears of the run's new largest force-alternation window (the chatter watch's, when a window of steps closes
     /// above all before it); nothing by default.
     fn largest_alternation(&mut self, _window: AlternationWindow) {}
+    /// Ends the run's part of the output: hands what is still buffered to the operating system, so that the files are
+    /// whole when the run reports (a mill run's summary reads `events.csv` right after); nothing by default.
+    fn finish(&mut self) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// The place on a cadence of `interval` (s) of the last tick the World has reached: ⌊(t + Δt/2)/interval⌋, so that a
@@ -150,6 +155,12 @@ pub fn run_to(
         _ if series.append(world).is_ok() => status,
         RunStatus::Interrupted => RunStatus::Failed("could not write the last row of the time series".into()),
         failed => failed,
+    };
+    // Every sink ends its files, whatever the others do; the first that cannot fails a run that had not failed.
+    let unfinished: Vec<String> = cadences.iter_mut().filter_map(|c| c.sink.finish().err()).collect();
+    let status = match (status, unfinished.into_iter().next()) {
+        (RunStatus::Completed | RunStatus::Interrupted, Some(message)) => RunStatus::Failed(message),
+        (status, _) => status,
     };
     progress.finish(&status);
     RunOutcome { status, chatter: chatter.summary(), failed_bodies }

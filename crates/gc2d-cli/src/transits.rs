@@ -72,6 +72,11 @@ impl FrameSink for TransitsWriter {
         self.file.flush().map_err(|e| format!("{TRANSITS_FILE}: {e}"))
     }
 
+    /// Hands the last rows to the operating system.
+    fn finish(&mut self) -> Result<(), String> {
+        self.file.flush().map_err(|e| format!("{TRANSITS_FILE}: {e}"))
+    }
+
     /// Writes the particles the outlets removed on the World's last step.
     fn after_step(&mut self, world: &World) -> Result<(), String> {
         for transit in world.transits() {
