@@ -181,8 +181,8 @@ struct RunArgs {
     checkpoint_every: Option<f64>,
     /// Continue from a checkpoint written by an earlier run of the same scene, or from the newest checkpoint in a
     /// run directory (its final.ckpt or checkpoints/checkpoint-<step>.ckpt, whichever took more steps). A scene that
-    /// differs from the run directory's scene.ron in more than its end time, output cadences, seed, name and view is
-    /// refused: the checkpoint's state would go on, ignoring the change.
+    /// differs from the run directory's scene.ron (or from that of a run already in --out) in more than its end time,
+    /// output cadences, seed, name and view is refused: the checkpoint's state would go on, ignoring the change.
     #[arg(long)]
     resume: Option<PathBuf>,
     /// Use this random seed instead of the scene's run.seed: one member of an ensemble of runs that differ only in
@@ -326,8 +326,11 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     let resumed_dir = args.resume.as_deref().and_then(gc2d_cli::resume::run_directory_of);
     let (mut world, resumed_from) = match &args.resume {
         Some(from) => {
+            // The checkpoint's run directory and the one written to (--out, where it holds a run already): a run
+            // continued into another run's directory mixed the two runs' rows in its time series.
+            let continued = resumed_dir.iter().chain(args.out.as_ref());
             if let Some(mismatch) =
-                resumed_dir.as_deref().and_then(|run_dir| gc2d_cli::resume::another_scene(&scene, &args.scene, run_dir))
+                continued.filter_map(|run_dir| gc2d_cli::resume::another_scene(&scene, &args.scene, run_dir)).next()
             {
                 return Err(CommandFailure::input(mismatch));
             }

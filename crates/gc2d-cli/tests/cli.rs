@@ -260,6 +260,28 @@ fn a_run_directory_in_use_is_refused() {
     run_tiny_pile(&["--until", "0.01", "--out"]).arg(out.path()).assert().success();
 }
 
+/// A checkpoint continued into another run's directory (`--out`) appended its rows to that run's time series, time
+/// going backwards; it is refused when the directory's scene is not the scene given.
+#[test]
+fn resuming_into_the_directory_of_another_run_is_refused() {
+    let (pile, plate) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    run_tiny_pile(&["--until", "0.01", "--out"]).arg(pile.path()).assert().success();
+    gc2d()
+        .args(["run", scene("chattering_plate.ron").to_str().unwrap(), "--quiet", "--until", "0.01", "--out"])
+        .arg(plate.path())
+        .assert()
+        .success();
+    let before = std::fs::read(plate.path().join("timeseries.csv")).unwrap();
+    run_tiny_pile(&["--resume"])
+        .arg(pile.path().join("final.ckpt"))
+        .arg("--out")
+        .arg(plate.path())
+        .assert()
+        .code(2)
+        .stderr(contains("is not the scene the run in"));
+    assert!(std::fs::read(plate.path().join("timeseries.csv")).unwrap() == before, "the other run was changed");
+}
+
 #[test]
 fn resuming_a_directory_without_checkpoints_names_it() {
     let empty = tempfile::tempdir().unwrap();
