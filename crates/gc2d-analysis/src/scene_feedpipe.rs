@@ -148,6 +148,10 @@ struct BinSums {
     fluid_velocity: f64,
 }
 
+/// Most bins a profile across the pipe may have: far more than the particles across any pipe, and few enough that
+/// a mistyped count does not ask for terabytes.
+pub const MAX_BINS: usize = 10_000;
+
 /// The profile across the section of `frame`, in `bins` bins, from the particle samples of `dumps` (each dump a list
 /// of particle states at one time) with the fluid velocity `fluid(x, t)`; `fluid_at_bin(s)` gives the fluid's velocity
 /// along the pipe at section coordinate s for the fluid-profile column.
@@ -259,8 +263,11 @@ pub fn feedpipe_report(
     run_dir: &Path,
     options: &FeedpipeOptions,
 ) -> Result<(FeedpipeReport, Vec<RateSeries>), AnalysisError> {
-    if options.bins == 0 {
-        return Err(AnalysisError::InvalidParameter("bins must be at least 1".into()));
+    if !(1..=MAX_BINS).contains(&options.bins) {
+        return Err(AnalysisError::InvalidParameter(format!(
+            "{} bins: the profiles take 1 to {MAX_BINS} bins across the pipe",
+            options.bins
+        )));
     }
     let checkpoint = run_dir.join("final.ckpt");
     let world = World::load_checkpoint_file(&checkpoint)
@@ -276,7 +283,12 @@ pub fn feedpipe_report(
     let end = times.last().copied().unwrap_or(world.time());
     let first_removal = passages.iter().map(|p| p.left_s).fold(f64::INFINITY, f64::min);
     let start = options.warm_up_s.unwrap_or(if first_removal.is_finite() { first_removal } else { 0.0 });
-    if start.is_nan() || start >= end {
+    if options.warm_up_s.is_some() && !(start.is_finite() && start >= 0.0 && start < end) {
+        return Err(AnalysisError::InvalidParameter(format!(
+            "the warm-up {start} s must lie between 0 and the run's end, {end} s"
+        )));
+    }
+    if start >= end {
         return Err(AnalysisError::NotEnoughData(format!(
             "the window starts at {start} s, after the run's end {end} s"
         )));

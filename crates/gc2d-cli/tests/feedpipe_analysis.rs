@@ -83,6 +83,17 @@ fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
     for file in ["feedpipe.json", "feedpipe_profile.csv", "feedpipe_throughput.svg", "feedpipe_transit_times.svg"] {
         assert!(out.join("analysis").join(file).is_file(), "{file} written");
     }
+    // A warm-up before the start widened the window and lowered the rate; 1e11 bins aborted on 2.4 TB.
+    for (option, value, message) in [
+        ("--warm-up=-1", "", "the warm-up -1 s must lie between 0 and the run's end"),
+        ("--bins", "100000000000", "100000000000 bins: the profiles take 1 to 10000 bins"),
+    ] {
+        let mut args = vec!["analyze", out.to_str().unwrap(), "--kind", "feedpipe", option];
+        args.extend((!value.is_empty()).then_some(value));
+        let refused = Command::cargo_bin("gc2d-rs").unwrap().args(&args).assert().failure();
+        let stderr = String::from_utf8_lossy(&refused.get_output().stderr).to_string();
+        assert!(stderr.contains(message), "{option} {value}: {stderr}");
+    }
 }
 
 #[test]
