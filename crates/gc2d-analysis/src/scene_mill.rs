@@ -405,12 +405,20 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let point_columns = events.column("begin_x_m", what).ok().zip(events.column("begin_y_m", what).ok());
     let mut by_class: BTreeMap<String, (Vec<f64>, f64)> = BTreeMap::new();
     let (mut all_speeds, mut all_energy, mut ore_energies, mut points) = (Vec::new(), 0.0, Vec::new(), Vec::new());
-    for row in &events.rows {
-        let (Ok(ia), Ok(ib)) = (row[a].parse::<usize>(), row[b].parse::<usize>()) else { continue };
-        if number(&row[begin]) < start || ia.max(ib) >= bodies.len() {
+    for (k, row) in events.rows.iter().enumerate() {
+        let (ia, ib) = (events.number(k, a)? as usize, events.number(k, b)? as usize);
+        let began = events.number(k, begin)?;
+        if began > end + slack {
+            return Err(AnalysisError::NotEnoughData(format!(
+                "{}: an event begins at {began} s, after the run's end at {end} s (the file is damaged, or of \
+                 another run)",
+                events_path.display()
+            )));
+        }
+        if began < start || ia.max(ib) >= bodies.len() {
             continue;
         }
-        let v = number(&row[speed]).max(0.0);
+        let v = events.number(k, speed)?.max(0.0);
         let first = if bodies.kind[ia] == BodyKind::Particle { ia } else { ib };
         let second = ia + ib - first;
         let (class, first) = match class_of(&world, ia, ib) {

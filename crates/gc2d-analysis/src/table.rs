@@ -10,6 +10,10 @@ pub(crate) struct Table {
     pub header: Vec<String>,
     /// Rows, each with as many fields as the header (quoted fields unquoted).
     pub rows: Vec<Vec<String>>,
+    /// The line of each row in the file (from 1), for errors.
+    lines: Vec<usize>,
+    /// The file, for errors.
+    path: std::path::PathBuf,
 }
 
 impl Table {
@@ -19,23 +23,43 @@ impl Table {
     pub fn read(path: &Path) -> Result<Self, AnalysisError> {
         let text =
             std::fs::read_to_string(path).map_err(|source| AnalysisError::Io { path: path.to_path_buf(), source })?;
+        let damaged = |line: usize, what: String| {
+            AnalysisError::NotEnoughData(format!(
+                "{}:{line}: {what} (the file is damaged: cut short or edited)",
+                path.display()
+            ))
+        };
+        // Every row a run writes ends with a line break: a last line without one was cut inside.
+        if !text.is_empty() && !text.ends_with('\n') {
+            return Err(damaged(text.lines().count(), "the last line ends without a line break".to_owned()));
+        }
         let mut lines = text.lines();
         let header = split_fields(lines.next().unwrap_or_default());
-        let mut rows = Vec::new();
+        let (mut rows, mut numbers) = (Vec::new(), Vec::new());
         for (k, line) in lines.enumerate().filter(|(_, line)| !line.is_empty()) {
             let row = split_fields(line);
             if row.len() != header.len() {
-                return Err(AnalysisError::NotEnoughData(format!(
-                    "{}:{}: {} fields, expected {} (the file is damaged: cut short or edited)",
-                    path.display(),
-                    k + 2,
-                    row.len(),
-                    header.len()
-                )));
+                return Err(damaged(k + 2, format!("{} fields, expected {}", row.len(), header.len())));
             }
             rows.push(row);
+            numbers.push(k + 2);
         }
-        Ok(Self { rows, header })
+        Ok(Self { rows, header, lines: numbers, path: path.to_path_buf() })
+    }
+
+    /// Row `row`'s field in column `column` as a number, where the file must hold one: an error naming the file, the
+    /// line and the column otherwise (a field that is not a number is damage, and read as NaN it would pass every
+    /// comparison unseen).
+    pub fn number(&self, row: usize, column: usize) -> Result<f64, AnalysisError> {
+        let field = &self.rows[row][column];
+        field.parse().map_err(|_| {
+            AnalysisError::NotEnoughData(format!(
+                "{}:{}: `{field}` in column `{}` is not a number (the file is damaged: cut short or edited)",
+                self.path.display(),
+                self.lines[row],
+                self.header[column]
+            ))
+        })
     }
 
     /// The index of column `name`, or an error naming the file's kind.

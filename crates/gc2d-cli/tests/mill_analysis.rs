@@ -63,6 +63,26 @@ fn a_mill_run_is_analysed_into_collision_classes_and_a_power_balance() {
     assert_eq!(damaged.status.code(), Some(2));
     let message = String::from_utf8_lossy(&damaged.stderr);
     assert!(message.contains("events.csv:4: 3 fields, expected") && message.contains("damaged"), "{message}");
+    // A field that is not a number passed every comparison as NaN (an event with begin time `abc` was counted inside
+    // the window), and a file cut inside its last field passed as whole.
+    let analyze_with = |events: String| {
+        std::fs::write(&events_path, events).unwrap();
+        let output = gc2d().arg("analyze").arg(out.path()).args(["--kind", "mill", "--warm-up", "0.005"]).output();
+        let output = output.unwrap();
+        assert_eq!(output.status.code(), Some(2));
+        String::from_utf8_lossy(&output.stderr).to_string()
+    };
+    let mut fields: Vec<String> = lines[5].split(',').map(str::to_owned).collect();
+    fields[0] = "abc".to_owned();
+    let mut edited = lines.clone();
+    let row = fields.join(",");
+    edited[3] = lines[4];
+    edited[5] = &row;
+    let message = analyze_with(edited.join("\n") + "\n");
+    assert!(message.contains("events.csv:6: `abc` in column `begin_time_s` is not a number"), "{message}");
+    let whole = events.trim_end();
+    let message = analyze_with(whole[..whole.len() - 1].to_owned());
+    assert!(message.contains("the last line ends without a line break"), "{message}");
     // Without an events file the analysis says how to get one.
     std::fs::remove_file(&events_path).unwrap();
     let missing =
