@@ -224,6 +224,19 @@ fn seeds_multiply_the_points_and_slurm_tasks_take_chunks() {
     assert!(script.contains("--task \"$SLURM_ARRAY_TASK_ID\" --points-per-task 4"), "{script}");
     assert!(script.contains("--checkpoint-every 0.01"), "{script}");
     assert!(script.contains("scontrol requeue"), "{script}");
+    // A signal no earlier than the task's start (--time 1:00 is one minute in Slurm) requeued the task endlessly, and
+    // a task without a limit is never told to checkpoint.
+    for (time, signal, message) in [
+        ("1:00", "7200", "--signal-before 7200 s with --time 1:00 (60 s)"),
+        ("0:10:00", "0", "--signal-before 0 s"),
+        ("0", "120", "--time 0: give each task a time limit"),
+    ] {
+        sweep(dir.path())
+            .args(["--slurm", "--time", time, "--signal-before", signal])
+            .assert()
+            .code(2)
+            .stderr(contains(message));
+    }
 
     // Task 1 holds the last two points: gamma = 1.0 with seeds 7 and 9.
     sweep(dir.path())

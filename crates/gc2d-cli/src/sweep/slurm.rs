@@ -57,10 +57,24 @@ pub struct ScriptPaths {
 
 /// Writes `<out>/slurm/sweep.sbatch` for `points` points and returns its path.
 pub fn write_script(paths: &ScriptPaths, points: usize, options: &SlurmOptions) -> Result<PathBuf, CommandFailure> {
-    if !valid_time(&options.time) {
+    let Some(limit_s) = time_limit_s(&options.time) else {
         return Err(CommandFailure::input(format!(
             "--time {}: give Slurm's format, minutes (30), HH:MM:SS (2:00:00) or D-HH:MM:SS (1-12:00:00)",
             options.time
+        )));
+    };
+    if limit_s == 0 {
+        return Err(CommandFailure::input(
+            "--time 0: give each task a time limit (Slurm reads 0 as none, and the tasks would never be told to \
+             checkpoint)",
+        ));
+    }
+    if options.signal_s == 0 || u64::from(options.signal_s) >= limit_s {
+        return Err(CommandFailure::input(format!(
+            "--signal-before {} s with --time {} ({limit_s} s): the signal must come after the task starts and \
+             leave time to write the checkpoints, so between 1 s and the time limit (the default, 120 s, suits limits \
+             of ten minutes and more)",
+            options.signal_s, options.time
         )));
     }
     let folder = paths.out.join("slurm");
@@ -124,15 +138,32 @@ fn quote(path: &Path) -> String {
     format!("'{}'", path.display().to_string().replace('\'', r"'\''"))
 }
 
-/// True for Slurm's time formats: `M`, `M:S`, `H:M:S`, `D-H`, `D-H:M`, `D-H:M:S` (numbers only).
-fn valid_time(time: &str) -> bool {
-    let (days, rest) = match time.split_once('-') {
-        Some((d, rest)) => (Some(d), rest),
-        None => (None, time),
+/// Seconds of a time limit in Slurm's formats: `minutes`, `minutes:seconds`, `hours:minutes:seconds`, `days-hours`,
+/// `days-hours:minutes` and `days-hours:minutes:seconds`; `None` for anything else.
+fn time_limit_s(time: &str) -> Option<u64> {
+    // Each number at most 10⁹, so that no sum below overflows.
+    let number = |s: &str| {
+        let digits = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+        digits.then(|| s.parse::<u64>().ok().filter(|&n| n <= 1_000_000_000))?
     };
-    let numbers = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    let parts: Vec<&str> = rest.split(':').collect();
-    days.is_none_or(numbers) && parts.iter().all(|p| numbers(p)) && parts.len() <= 3
+    let parts = |s: &str| s.split(':').map(number).collect::<Option<Vec<u64>>>();
+    match time.split_once('-') {
+        Some((days, rest)) => {
+            let days = number(days)?;
+            match parts(rest)?.as_slice() {
+                [h] => Some(((days * 24 + h) * 60) * 60),
+                [h, m] => Some(((days * 24 + h) * 60 + m) * 60),
+                [h, m, s] => Some(((days * 24 + h) * 60 + m) * 60 + s),
+                _ => None,
+            }
+        }
+        None => match parts(time)?.as_slice() {
+            [m] => Some(m * 60),
+            [m, s] => Some(m * 60 + s),
+            [h, m, s] => Some((h * 60 + m) * 60 + s),
+            _ => None,
+        },
+    }
 }
 
 #[cfg(test)]
@@ -149,11 +180,19 @@ mod tests {
 
     #[test]
     fn slurm_time_formats() {
-        for ok in ["30", "2:00:00", "1-12:00:00", "1-12", "90:00"] {
-            assert!(valid_time(ok), "{ok}");
+        for (time, seconds) in [
+            ("30", 1800),
+            ("2:00:00", 7200),
+            ("1-12:00:00", 129_600),
+            ("1-12", 129_600),
+            ("1-0:30", 88_200),
+            ("90:00", 5400),
+            ("1:00", 60),
+        ] {
+            assert_eq!(time_limit_s(time), Some(seconds), "{time}");
         }
-        for bad in ["", "2h", "1:2:3:4", "-1", "1-"] {
-            assert!(!valid_time(bad), "{bad}");
+        for bad in ["", "2h", "1:2:3:4", "-1", "1-", "1-2:3:4:5", "99999999999999999999", "9999999999999999-0"] {
+            assert_eq!(time_limit_s(bad), None, "{bad}");
         }
     }
 }
