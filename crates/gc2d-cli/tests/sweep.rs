@@ -384,6 +384,16 @@ fn bad_sweep_files_are_located() {
     assert!(error.contains("`analysis.warm_up_s`: must be a time ≥ 0 in s, got -0.1"), "{error}");
 }
 
+/// The analysis's warnings reach the sweep's user: a point whose grains were still falling gave a "pile" of one grain
+/// in the table, and its warning was dropped.
+#[test]
+fn a_points_analysis_warnings_are_shown() {
+    let dir = sweep_folder(
+        "    parameters: [(path: \"run.end_time_s\", values: List([0.01]))],\n    analysis: (kind: Pile),\n",
+    );
+    sweep(dir.path()).assert().success().stderr(contains("warning: end_time_s=0.01_seed=3: only 1 of the"));
+}
+
 #[test]
 fn a_pile_ensemble_is_analysed_as_a_pile_before_it_is_collected() {
     let dir = sweep_folder("    seeds: Count(2),\n    analysis: (kind: Pile),\n");

@@ -81,8 +81,9 @@ pub fn collect(sweep: &Sweep, points: &[PointScene]) -> (Table, Vec<String>) {
         {
             let settings =
                 AnalysisSettings { warm_up_s: sweep.file.analysis.warm_up_s, ..AnalysisSettings::automatic() };
-            if let Err(e) = analyze(dir, kind, &settings) {
-                warnings.push(format!("{}: the {} analysis failed: {e}", point.name, kind.name()));
+            match analyze(dir, kind, &settings) {
+                Ok(output) => warnings.extend(output.warnings.iter().map(|w| format!("{}: {w}", point.name))),
+                Err(e) => warnings.push(format!("{}: the {} analysis failed: {e}", point.name, kind.name())),
             }
         }
         for (kind, path) in analyses(dir) {
