@@ -137,15 +137,28 @@ pub fn analyze_silo(
     let fit_points: Vec<&(f64, f64, f64, f64, f64)> = wall_rows.iter().filter(|r| r.0 >= 0.0).collect();
     let depth: Vec<f64> = fit_points.iter().map(|r| r.0).collect();
     let sigma: Vec<f64> = fit_points.iter().map(|r| r.4).collect();
-    let (janssen, janssen_error) = match fit_janssen(&depth, &sigma, parameters) {
+    // Without a side wall carrying force there is no wall pressure to fit (a pile analysed as a silo gave a "fit" of
+    // zeros with μ_J at its bound).
+    let no_walls = all.is_empty().then(|| {
+        "no side wall carries a force: the particles lean on no walls, so there is no wall pressure to fit (is it a \
+         silo?)"
+            .to_owned()
+    });
+    let (janssen, janssen_error) = match no_walls
+        .clone()
+        .map_or_else(|| fit_janssen(&depth, &sigma, parameters).map_err(|e| e.to_string()), Err)
+    {
         Ok(fit) => (Some(fit), None),
-        Err(error) => (None, Some(error.to_string())),
+        Err(error) => (None, Some(error)),
     };
-    let (janssen_free_k, janssen_free_k_error) =
-        match fit_janssen_free_k(&depth, &sigma, bulk_density, snapshot.gravity, half_width) {
-            Ok(fit) => (Some(fit), None),
-            Err(error) => (None, Some(error.to_string())),
-        };
+    let free_k = no_walls.map_or_else(
+        || fit_janssen_free_k(&depth, &sigma, bulk_density, snapshot.gravity, half_width).map_err(|e| e.to_string()),
+        Err,
+    );
+    let (janssen_free_k, janssen_free_k_error) = match free_k {
+        Ok(fit) => (Some(fit), None),
+        Err(error) => (None, Some(error)),
+    };
     let fitted = |z: f64| janssen.map_or(f64::NAN, |f| parameters.sigma_xx(z, f.mu_j));
     let fitted_free_k = |z: f64| janssen_free_k.map_or(f64::NAN, |f| parameters.with_k(f.k).sigma_xx(z, f.mu_j));
     let table: Vec<Vec<f64>> =

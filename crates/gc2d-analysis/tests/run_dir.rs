@@ -89,6 +89,11 @@ fn a_settled_pile_is_analysed_and_its_floor_carries_its_weight() {
     assert_eq!(json["scene"], "Pile");
     let svg = std::fs::read_to_string(dir.join("analysis/floor_pressure.svg")).unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("polyline"), "floor_pressure.svg is not a line chart");
+    // Analysed as a silo, a pile has no wall pressure to fit: said so, instead of a "fit" with μ_J at its bound.
+    let as_silo = analyze_run(&dir, &AnalyzeOptions { scene: SceneKind::Silo, ..Default::default() }).unwrap();
+    let silo = as_silo.silo.as_ref().expect("silo report");
+    assert!(silo.janssen.is_none() && silo.janssen_free_k.is_none(), "{silo:?}");
+    assert!(silo.janssen_error.as_deref().is_some_and(|e| e.contains("no side wall carries a force")), "{silo:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
