@@ -374,6 +374,18 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         .map_err(|e| CommandFailure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
     let _lock = gc2d_cli::run_lock::lock_run_directory(&out).map_err(CommandFailure::input)?;
     gc2d_cli::resume::remove_temporary_files(&out);
+    let frame_interval = 1.0 / scene.run.frames_per_second;
+    // The outputs that can fail to start (an address in use, a recording into a missing folder) start before the run
+    // directory is touched, so that a failure leaves it as it was.
+    let live_options = RecordOptions { colour_by: args.colour_by.into(), ..RecordOptions::default() };
+    let mut live = match &args.live {
+        Some(address) => Some(LiveSink::start(address, live_options, frame_interval).map_err(CommandFailure::input)?),
+        None => None,
+    };
+    let mut recording = match &args.record {
+        Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
+        None => None,
+    };
     if args.resume.is_none() {
         let removed = gc2d_cli::earlier_run::remove_earlier_run(&out).map_err(CommandFailure::input)?;
         if removed > 0 {
@@ -391,7 +403,6 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         write_scene_copy(&copy, &scene)
             .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", copy.display())))?;
     }
-    let frame_interval = 1.0 / scene.run.frames_per_second;
     let series_path = out.join("timeseries.csv");
     let mut series = if args.resume.is_some() && series_path.exists() {
         TimeSeriesWriter::continue_at(&series_path, world.time(), 0.5 * world.time_step(), frame_interval)
@@ -418,15 +429,6 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     )
     .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", segments_path.display())))?;
     let earlier_chatter = segments.earlier_chatter();
-    let live_options = RecordOptions { colour_by: args.colour_by.into(), ..RecordOptions::default() };
-    let mut live = match &args.live {
-        Some(address) => Some(LiveSink::start(address, live_options, frame_interval).map_err(CommandFailure::input)?),
-        None => None,
-    };
-    let mut recording = match &args.record {
-        Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
-        None => None,
-    };
     let mut pictures = args.png_every.map(|interval| PngFrames {
         dir: out.join("frames"),
         interval,

@@ -413,6 +413,22 @@ fn a_run_into_the_current_folder_says_so() {
     assert!(out.path().join("final.ckpt").exists());
 }
 
+/// A recording that cannot start left a run directory with a scene copy, a header-only time series and a segment
+/// "running" for ever; the run directory is now left as it was.
+#[test]
+fn a_recording_that_cannot_start_leaves_the_run_directory_alone() {
+    let out = tempfile::tempdir().unwrap();
+    let recording = out.path().join("missing/run.mcap");
+    run_tiny_pile(&["--until", "0.01", "--record", recording.to_str().unwrap(), "--out"])
+        .arg(out.path())
+        .assert()
+        .code(2)
+        .stderr(contains("cannot record to"));
+    for file in ["scene.ron", "timeseries.csv", "segments.csv"] {
+        assert!(!out.path().join(file).exists(), "{file} was written");
+    }
+}
+
 #[test]
 fn a_missing_scene_file_is_an_input_error() {
     gc2d().args(["check", "no/such/scene.ron"]).assert().code(2).stderr(contains("no/such/scene.ron"));
