@@ -709,6 +709,12 @@ fn snapshot(
     colour_by: Colour,
     forces: bool,
 ) -> Result<u8, CommandFailure> {
+    if !(1..=gc2d_record::MAX_PIXELS).contains(&width) {
+        return Err(CommandFailure::input(format!(
+            "--width {width}: a picture is 1 to {} pixels wide",
+            gc2d_record::MAX_PIXELS
+        )));
+    }
     let checkpoint = if run.is_dir() { run.join("final.ckpt") } else { run.to_path_buf() };
     let world = World::load_checkpoint_file(&checkpoint)
         .map_err(|e| CommandFailure::input(format!("cannot read {}: {e}", checkpoint.display())))?;

@@ -629,6 +629,14 @@ fn analysing_a_pile_that_has_not_formed_warns() {
 #[test]
 fn snapshot_of_a_missing_run_is_an_input_error() {
     gc2d().args(["snapshot", "no/such/run"]).assert().code(2).stderr(contains("no/such/run"));
+    // A width the picture cannot have was changed without a word (0 gave 1 pixel, 100000 gave 16384).
+    for width in ["0", "100000"] {
+        gc2d()
+            .args(["snapshot", "no/such/run", "--width", width])
+            .assert()
+            .code(2)
+            .stderr(contains(format!("--width {width}: a picture is 1 to 16384 pixels wide")));
+    }
 }
 
 #[test]

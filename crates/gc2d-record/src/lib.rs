@@ -30,7 +30,7 @@ pub use error::RecordError;
 pub use frame::{Frame, FrameBuilder};
 #[cfg(feature = "live")]
 pub use live::LiveView;
-pub use png::{PngOptions, render_png};
+pub use png::{MAX_PIXELS, PngOptions, render_png};
 pub use quantities::{ColourBy, ColourRange};
 pub use recorder::{Observer, RecordOptions, Recorder, RecordingSummary, RunInfo, SceneFile};
 pub use scene::{FLUID_ENTITY, FRAME_ID, PARTICLE_BLOCK_SLOTS, particle_entity_id};

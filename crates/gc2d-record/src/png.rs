@@ -13,8 +13,8 @@ use gc2d_geometry::{Aabb, DVec2, TracedOutline};
 use std::path::Path;
 use tiny_skia::{Color, FillRule, LineCap, Paint, PathBuilder, Pixmap, Stroke, Transform};
 
-/// Largest picture side, pixels.
-const MAX_PIXELS: u32 = 16384;
+/// Largest picture side, pixels: taller pictures are cut to it, and `gc2d-rs snapshot` refuses wider ones.
+pub const MAX_PIXELS: u32 = 16384;
 
 /// What a snapshot shows and how large it is.
 #[derive(Debug, Clone, Copy, PartialEq)]
