@@ -741,8 +741,19 @@ fn analyze(
     bins: usize,
 ) -> Result<u8, CommandFailure> {
     let settings = AnalysisSettings { window_half_width_m: window, grid_cell_m: grid, warm_up_s: warm_up, bins };
+    // A run killed without warning has periodic checkpoints and no final.ckpt, which the analyses read.
+    let killed = !run.join("final.ckpt").exists() && run.join("checkpoints").is_dir();
+    let hint = if killed {
+        format!(
+            " (the run has no final.ckpt, only periodic checkpoints: it was stopped without warning; continue it with \
+             `gc2d-rs run SCENE --resume {}` to write one)",
+            run.display()
+        )
+    } else {
+        String::new()
+    };
     let analysis = gc2d_cli::analysis::analyze(run, kind, &settings)
-        .map_err(|e| CommandFailure::input(format!("cannot analyse {}: {e}", run.display())))?;
+        .map_err(|e| CommandFailure::input(format!("cannot analyse {}: {e}{hint}", run.display())))?;
     console::out(&analysis.json).map_err(|e| CommandFailure::stdout(&e))?;
     for warning in &analysis.warnings {
         console::err(&format!("warning: {warning}"));

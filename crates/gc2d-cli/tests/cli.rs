@@ -236,6 +236,13 @@ fn a_killed_run_leaves_its_segment_row_with_the_time_so_far() {
     let row: Vec<&str> = segments.lines().nth(1).expect("a row").splitn(8, ',').collect();
     assert_eq!(row[6], "running", "{segments}");
     assert!(row[3].parse::<f64>().unwrap() >= 0.01, "the row was updated on the checkpoints' cadence: {segments}");
+    // Its analysis says why there is no final state and how to get one.
+    gc2d()
+        .arg("analyze")
+        .arg(out.path())
+        .assert()
+        .code(2)
+        .stderr(contains("only periodic checkpoints").and(contains("--resume")));
 }
 
 /// A second process into the directory of a run that still goes on is refused: the two used to interleave their
