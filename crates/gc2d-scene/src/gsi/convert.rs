@@ -2,7 +2,6 @@
 //! everything the scene format cannot say reported as a warning at its line (see `docs/model.md`, "Legacy gsi
 //! import (§9)", subsection "Conversion").
 
-use crate::AUTOMATIC_TIME_STEP_FRACTION;
 use gc2d_engine::motion::Waveform as EngineWaveform;
 use gc2d_engine::schedules::GravityProfile as EngineGravityProfile;
 use gc2d_engine::{DropHeight as EngineDropHeight, MassModel, TimeWindow};
@@ -150,10 +149,14 @@ impl Converter {
         let Ok(summary) = automatic.summary_ignoring_start_overlaps() else { return };
         let Some(bound) = summary.refusal_time_step_s else { return };
         if time_step.value > bound {
+            // `check` prints the stable bound, which the flat-contact and damping limits can put below this one.
+            let stable = summary.stable_time_step_s.map_or(String::new(), |stable| {
+                format!(" (the stable bound, with the limits of flat and damped contacts, is {stable:.3e} s)")
+            });
             let consequence = format!(
-                "DELTA_T = {:e} s is above the stable bound {bound:.3e} s = (pi/10)*sqrt(m/E) of the lightest \
-                 particle, so the scene leaves the time step automatic: {:e} s, {} of the bound",
-                time_step.value, summary.time_step_s, AUTOMATIC_TIME_STEP_FRACTION
+                "DELTA_T = {:e} s is above {bound:.3e} s = (pi/10)*sqrt(m/E) of the lightest particle, where the \
+                 scene is refused{stable}, so the scene leaves the time step automatic: {:e} s",
+                time_step.value, summary.time_step_s
             );
             let kind = GsiWarningKind::NotConverted { keyword: "DELTA_T", consequence };
             self.warnings.push(GsiWarning { line: time_step.line(), kind });

@@ -114,6 +114,11 @@ fn the_piston_delta_t_above_the_stable_bound_leaves_the_time_step_automatic_with
     let bound = summary.refusal_time_step_s.unwrap();
     assert!(bound < 1.5e-5 && bound > 1.2e-5, "{bound}");
     assert!(summary.time_step_is_automatic && summary.time_step_s <= crate::AUTOMATIC_TIME_STEP_FRACTION * bound);
+    // The warning names the stable bound `check` prints as well, lest the two numbers read as a contradiction.
+    let stable = format!("the stable bound, with the limits of flat and damped contacts, is {:.3e} s", {
+        summary.stable_time_step_s.unwrap()
+    });
+    assert!(conversion.warnings.iter().any(|w| w.to_string().contains(&stable)), "{:?}", conversion.warnings);
     // A Δt below the bound is kept as written.
     let kept = convert(&PISTON.replace("0.000015", "0.00001"));
     assert_eq!(kept.scene.run.time_step_s, Some(1e-5));
