@@ -520,7 +520,8 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         console::err(&warning);
     }
     let code = report_outcome(&status, &world, &out, wall_time, &unwritten)?;
-    if mill && status == RunStatus::Completed {
+    // A run that took no step (`--until 0`, to look at the start) has nothing to average.
+    if mill && status == RunStatus::Completed && world.steps() > 0 {
         print_mill_summary(&out, world.time());
     }
     Ok(code)

@@ -24,6 +24,14 @@ fn a_mill_run_is_analysed_into_collision_classes_and_a_power_balance() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success() && stderr.contains("Tables, maps and figures"), "{stderr}");
+    // A run of no step (to look at the start) has nothing to summarise, and no warm-up to complain of.
+    let start = gc2d()
+        .args(["run", scene.to_str().unwrap(), "--quiet", "--until", "0", "--out"])
+        .arg(short.path().join("start"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&start.stderr);
+    assert!(start.status.success() && !stderr.contains("mill summary"), "{stderr}");
     let output = gc2d().arg("analyze").arg(out.path()).args(["--kind", "mill", "--warm-up", "0.005"]).output().unwrap();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
