@@ -328,7 +328,8 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         Some(from) => {
             // The checkpoint's run directory and the one written to (--out, where it holds a run already): a run
             // continued into another run's directory mixed the two runs' rows in its time series.
-            let continued = resumed_dir.iter().chain(args.out.as_ref());
+            let other_out = args.out.as_ref().filter(|out| Some(*out) != resumed_dir.as_ref());
+            let continued = resumed_dir.iter().chain(other_out);
             if let Some(mismatch) =
                 continued.filter_map(|run_dir| gc2d_cli::resume::another_scene(&scene, &args.scene, run_dir)).next()
             {

@@ -1203,14 +1203,8 @@ impl World {
     fn remove_escaped_particles(&mut self) {
         let Some(domain) = self.config.domain else { return };
         let g = self.config.gravity.magnitude(self.time);
-        let escaped: Vec<BodyId> = self
-            .bodies
-            .particles()
-            .filter(|id| {
-                let p = self.bodies.pose[id.index()].position;
-                !(domain.min.cmple(p).all() && p.cmple(domain.max).all())
-            })
-            .collect();
+        let escaped: Vec<BodyId> =
+            self.bodies.particles().filter(|id| !domain.contains(self.bodies.pose[id.index()].position)).collect();
         for id in escaped {
             self.remove_particle(id, g);
             self.transits.forget(id);

@@ -80,6 +80,12 @@ impl Aabb {
         Self { min: self.min - DVec2::splat(margin), max: self.max + DVec2::splat(margin) }
     }
 
+    /// True when `point` lies in the box or on its edge; a point with a NaN coordinate is outside.
+    #[inline]
+    pub fn contains(&self, point: DVec2) -> bool {
+        self.min.cmple(point).all() && point.cmple(self.max).all()
+    }
+
     /// True when the boxes overlap or touch.
     #[inline]
     pub fn overlaps(&self, other: &Aabb) -> bool {
@@ -92,6 +98,14 @@ mod tests {
     use super::*;
     use approx::assert_relative_eq;
     use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn a_box_contains_its_inside_and_edges_and_no_nan() {
+        let square = Aabb { min: DVec2::ZERO, max: DVec2::ONE };
+        assert!(square.contains(DVec2::splat(0.5)) && square.contains(DVec2::new(1.0, 0.0)));
+        assert!(!square.contains(DVec2::new(1.5, 0.5)) && !square.contains(DVec2::new(0.5, -1e-300)));
+        assert!(!square.contains(DVec2::new(f64::NAN, 0.5)));
+    }
 
     #[test]
     fn quarter_turn_is_counter_clockwise() {

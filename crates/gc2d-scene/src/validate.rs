@@ -219,18 +219,8 @@ fn collect(errors: &mut Vec<SceneError>, result: Result<(), SceneError>) {
 }
 
 fn check_run(scene: &Scene, errors: &mut Vec<SceneError>) {
-    if let Some(c) = scene.name.chars().find(|&c| c.is_control() || is_direction_override(c)) {
-        errors.push(
-            SceneError::value(
-                "name",
-                format!(
-                    "the name holds the invisible character U+{:04X}: it would break the lines of `check` and the \
-                     recordings that print it",
-                    u32::from(c)
-                ),
-            )
-            .with_help("use visible characters only; `description` may hold several lines"),
-        );
+    if let Some(error) = invisible_character("name", &scene.name, "`check` and the recordings") {
+        errors.push(error.with_help("use visible characters only; `description` may hold several lines"));
     }
     let run = &scene.run;
     if let Some(dt) = run.time_step_s
@@ -357,6 +347,17 @@ fn is_direction_override(c: char) -> bool {
     matches!(c, '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}')
 }
 
+/// The refusal, at `path`, of a name holding a control character (a line break, a NUL) or one that reverses the text
+/// after it: printed in `printed_in`, it would break or reverse their lines. `None` for a name of visible characters.
+fn invisible_character(path: &str, name: &str, printed_in: &str) -> Option<SceneError> {
+    let c = name.chars().find(|&c| c.is_control() || is_direction_override(c))?;
+    let message = format!(
+        "the name holds the invisible character U+{:04X}: it would break the lines of {printed_in} that print it",
+        u32::from(c)
+    );
+    Some(SceneError::value(path, message).with_help("use visible characters only"))
+}
+
 /// Ranges of each material and unique names.
 fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
     if scene.materials.is_empty() && scene.mass_model == MassModel::SphereEquivalent {
@@ -371,18 +372,10 @@ fn check_materials(scene: &Scene, errors: &mut Vec<SceneError>) {
         let at = |field: &str| format!("materials[{i}].{field}");
         if material.name.is_empty() {
             errors.push(SceneError::value(at("name"), "a material needs a name"));
-        } else if let Some(c) = material.name.chars().find(|&c| c.is_control() || is_direction_override(c)) {
-            errors.push(
-                SceneError::value(
-                    at("name"),
-                    format!(
-                        "the name holds the invisible character U+{:04X}: it would break the lines of `check`, the \
-                         events and the dumps that print it",
-                        u32::from(c)
-                    ),
-                )
-                .with_help("use visible characters only"),
-            );
+        } else if let Some(error) =
+            invisible_character(&at("name"), &material.name, "`check`, the events and the dumps")
+        {
+            errors.push(error);
         } else if scene.materials[..i].iter().any(|m| m.name == material.name) {
             errors.push(SceneError::value(at("name"), format!("material `{}` is defined twice", material.name)));
         }

@@ -311,8 +311,7 @@ pub(crate) fn inlets_too_fast(
 pub(crate) fn outside_domain(particles: &[super::PlannedParticle], domain: Aabb) -> Vec<SceneError> {
     first_per_entry(particles, |p| {
         let at = p.pose.position;
-        let inside = domain.min.cmple(at).all() && at.cmple(domain.max).all();
-        (!inside).then(|| {
+        (!domain.contains(at)).then(|| {
             SceneError::value(
                 &p.path,
                 format!(
