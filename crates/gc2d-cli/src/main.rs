@@ -335,7 +335,9 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
             {
                 return Err(CommandFailure::input(mismatch));
             }
-            let ResumePoint { path, world } = load_resume_point(from).map_err(CommandFailure::input)?;
+            let point = load_resume_point(from).map_err(CommandFailure::input)?;
+            gc2d_cli::resume::another_checkpoint(&scene, &args.scene, &point).map_err(CommandFailure::input)?;
+            let ResumePoint { path, world } = point;
             if end_time < world.time() - 0.5 * world.time_step() {
                 let end = match args.until {
                     Some(_) => format!("--until {end_time} s"),

@@ -99,6 +99,32 @@ pub fn another_scene(scene: &Scene, scene_path: &Path, run_dir: &Path) -> Option
     ))
 }
 
+/// How many differences [`another_checkpoint`] lists; the rest are counted.
+const LISTED_DIFFERENCES: usize = 3;
+
+/// Why `scene` (read from `scene_path`) cannot continue `point`: the World it builds differs from the checkpoint's in
+/// what a resumed run may not change ([`Scene::differences_from_checkpoint`]). This catches what [`another_scene`]
+/// cannot: a checkpoint resumed outside its run directory, and a run directory's `scene.ron` edited by hand. A scene
+/// that does not build is refused with its own errors.
+pub fn another_checkpoint(scene: &Scene, scene_path: &Path, point: &ResumePoint) -> Result<(), String> {
+    let differences =
+        scene.differences_from_checkpoint(&point.world).map_err(|e| format!("{:?}", miette::Report::new(e)))?;
+    if differences.is_empty() {
+        return Ok(());
+    }
+    let mut listed = differences.iter().take(LISTED_DIFFERENCES).cloned().collect::<Vec<_>>().join("; ");
+    if differences.len() > LISTED_DIFFERENCES {
+        listed.push_str(&format!("; and {} more", differences.len() - LISTED_DIFFERENCES));
+    }
+    Err(format!(
+        "{} does not continue {}: {listed}. A resumed run goes on with the checkpoint's state, so changes to the scene \
+         would be ignored (only its end time, output cadences, seed, name, description and view may change); resume \
+         with the scene the run started from, or start a new run of the changed scene",
+        scene_path.display(),
+        point.path.display()
+    ))
+}
+
 fn load(path: &Path) -> Result<ResumePoint, String> {
     World::load_checkpoint_file(path)
         .map(|world| ResumePoint { path: path.to_path_buf(), world })

@@ -510,6 +510,32 @@ fn resuming_with_another_scene_is_refused() {
     edited("end_time_s: 0.08, frames_per_second: 100", "end_time_s: 0.5, frames_per_second: 50").success();
 }
 
+/// The run directory's own `scene.ron` edited by hand, or a checkpoint kept outside its run directory and resumed with
+/// an edited scene, has no original to compare the scene with: the checkpoint itself is compared with the World the
+/// scene builds.
+#[test]
+fn resuming_a_checkpoint_with_an_edited_scene_is_refused_without_its_run_directory() {
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.01", "--out"]).arg(out.path()).assert().success();
+    let copy = out.path().join("scene.ron");
+    let text = std::fs::read_to_string(&copy).unwrap();
+    std::fs::write(&copy, text.replace("mu: 0.6", "mu: 0.1")).unwrap();
+    let kept = tempfile::tempdir().unwrap();
+    let resume = |scene: &Path, from: &Path| {
+        let mut command = gc2d();
+        command.args(["run", scene.to_str().unwrap(), "--quiet", "--until", "0.02", "--resume"]).arg(from);
+        command.arg("--out").arg(kept.path().join("continued")).assert()
+    };
+    resume(&copy, out.path()).code(2).stderr(
+        contains("does not continue").and(contains("materials or interactions: `sand–sand: ")).and(contains("μ = 0.1")),
+    );
+    let checkpoint = kept.path().join("pile.ckpt");
+    std::fs::copy(out.path().join("final.ckpt"), &checkpoint).unwrap();
+    resume(&copy, &checkpoint).code(2).stderr(contains("does not continue"));
+    std::fs::write(&copy, text).unwrap();
+    resume(&copy, &checkpoint).success();
+}
+
 /// A source whose line lies closer to a wall than its particles' size finds no free spot: the run used to end
 /// "completed" with no particle and no word, the skipped insertions only counted in summary.json. (A line inside the
 /// wall is refused by `check`.)

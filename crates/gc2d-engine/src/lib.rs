@@ -55,4 +55,6 @@ pub use sources::{DropHeight, DropSource};
 pub use stage_clock::{Stage, StageTimes};
 pub use time_window::TimeWindow;
 pub use transits::{InletEntry, Transit};
-pub use world::{ForceAlternation, RotorPower, RotorWork, StepStats, WallLoad, World, WorldConfig, WorldError};
+pub use world::{
+    ForceAlternation, MovingWall, RotorPower, RotorWork, StepStats, WallLoad, World, WorldConfig, WorldError,
+};

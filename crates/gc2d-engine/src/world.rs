@@ -98,10 +98,13 @@ impl WorldError {
 
 /// A wall that moves, with the pose it moves from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-struct MovingWall {
-    body: BodyId,
-    rest: Pose,
-    motion: WallMotion,
+pub struct MovingWall {
+    /// The wall's body.
+    pub body: BodyId,
+    /// Its pose at rest, which its motion law moves it from.
+    pub rest: Pose,
+    /// How it moves.
+    pub motion: WallMotion,
 }
 
 /// Counters of the last step and of the run, for progress displays and statistics.
@@ -578,6 +581,21 @@ impl World {
     /// The outlets in the order they were added, with their counters.
     pub fn outlets(&self) -> &[OutletState] {
         &self.outlets
+    }
+
+    /// The drop sources in the order they were added (for comparing a checkpoint with the scene it continues).
+    pub fn sources(&self) -> impl Iterator<Item = &DropSource> {
+        self.sources.iter().map(|state| &state.source)
+    }
+
+    /// The walls that move, in the order they were added, with the poses they move from.
+    pub fn moving_walls(&self) -> &[MovingWall] {
+        &self.moving_walls
+    }
+
+    /// Gravity, drag springs and any other body force, in the order they are applied.
+    pub fn body_forces(&self) -> &[BodyForce] {
+        &self.body_forces
     }
 
     fn insert_into_broadphase(&mut self, id: BodyId, kind: broadphase::BodyKind) {

@@ -12,6 +12,7 @@ pub(crate) mod fluid;
 pub(crate) mod inlets;
 pub(crate) mod interactions;
 pub(crate) mod mill;
+mod resume;
 pub(crate) mod safety;
 pub(crate) mod shapes;
 pub(crate) mod walls;
