@@ -61,6 +61,14 @@ fn mill_errors_name_the_field() {
     let error = |text: String| Scene::from_str(&text, "bad.ron").and_then(|s| s.build().map(drop)).unwrap_err();
     let e = error(scene("rpm: 1000, tip_radius_m: 0.08", "count: 10"));
     assert_eq!((e.kind(), e.path()), (ErrorKind::Value, "mill.rotor.tip_radius_m"), "{}", e.render_plain());
+    // A blade as wide as twice its tip radius leaves its capsule no straight part: it panicked the engine, and at
+    // exactly twice the two arms became one disk, reported as an arm given twice.
+    for (tip, width, twice) in [("0.012", "0.03", "0.024"), ("0.058", "0.116", "0.116")] {
+        let rotor = format!("rpm: 1000, hub_radius_m: 0.008, tip_radius_m: {tip}, blade_width_m: {width}");
+        let e = error(scene(&rotor, "count: 0"));
+        assert_eq!((e.kind(), e.path()), (ErrorKind::Value, "mill.rotor.blade_width_m"), "{}", e.render_plain());
+        assert!(e.message().contains(&format!("narrower than twice the tip radius ({twice} m)")), "{}", e.message());
+    }
     // More than the densest packing could hold (773 of the default 5 mm balls in the 146 mm chamber): refused at
     // once. Below that but more than random placement finds room for (about 410): refused after the thousand
     // attempts of the first ball without room, not after a thousand per ball asked for (a count of 999,999 took

@@ -75,6 +75,19 @@ pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
             format!("{tip}: the blade tips must reach beyond the hub and stay inside the chamber"),
         ));
     }
+    // An arm is a capsule from the hub's centre whose round end reaches the tip: it needs a straight part.
+    let width = mill.rotor.blade_width_m;
+    if width >= 2.0 * tip {
+        return Err(SceneError::value(
+            rotor("blade_width_m"),
+            format!(
+                "{}: a blade must be narrower than twice the tip radius ({} m), so that its round end reaches the tip \
+                 from the rotor's centre",
+                number(width),
+                number(2.0 * tip)
+            ),
+        ));
+    }
     for (k, &arm) in mill.rotor.arms_rad.iter().enumerate() {
         finite(&format!("{}[{k}]", rotor("arms_rad")), arm)?;
     }
