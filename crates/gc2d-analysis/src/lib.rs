@@ -39,8 +39,8 @@ pub use repose::{FlankFit, FlankOptions, PileShape, Repose, angle_of_repose, sur
 pub use run::{AnalyzeOptions, Report, SceneKind, analyze_run, analyze_snapshot, detect_scene};
 pub use scene_feedpipe::{FeedpipeOptions, FeedpipeReport, analyze_feedpipe, feedpipe_report};
 pub use scene_mill::{
-    BallSpeeds, CollisionClass, MillOptions, MillPower, MillReport, StressEnergySpectrum, WarmUp, analyze_mill,
-    mill_report,
+    BallIds, BallSpeeds, CollisionClass, MillOptions, MillPower, MillReport, StressEnergySpectrum, WarmUp,
+    analyze_mill, mill_report,
 };
 pub use scene_pile::{FloorPressureReport, PileReport};
 pub use scene_silo::SiloReport;

@@ -1,7 +1,8 @@
 //! Collision statistics, ball speeds, where the balls are and the power balance of a ball-mill run (reference
 //! ballmill.md §7.6), from the run's `events.csv`, `dumps/` (per-particle state), `timeseries.csv` and `final.ckpt`.
 //!
-//! A disk particle is a ball, a polygon particle an ore grain. Per collision class (ball–ball, ball–ore, ore–ore, and
+//! The balls are the particles the scene's `mill.balls` made ([`BallIds`]), every other particle is an ore grain;
+//! without the scene, a disk particle is a ball and a polygon particle an ore grain. Per collision class (ball–ball, ball–ore, ore–ore, and
 //! each particle kind against the chamber, a blade, the hub or another wall) and over all classes: the number of
 //! episodes that began in the averaging window, per second and per particle and second; the impact normal speeds'
 //! mode, quartiles and the fractions above 0.5, 1 and 3 m/s; their histogram with √N bins, area-normalised; and
@@ -22,7 +23,7 @@ use crate::output::OutputDir;
 use crate::particle_state::csv::{DUMPS_DIR, dump_files, read_csv};
 use crate::particle_state::{ParticleShape, ParticleState};
 use crate::table::{Table, number};
-use gc2d_engine::{BodyKind, ShapeKind, World};
+use gc2d_engine::{Bodies, BodyKind, ShapeKind, World};
 use gc2d_geometry::DVec2;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -32,11 +33,45 @@ use std::path::Path;
 pub const SPEED_THRESHOLDS: [f64; 3] = [0.5, 1.0, 3.0];
 
 /// Options of [`analyze_mill`].
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct MillOptions {
     /// Start of the averaging window, s: episodes that begin earlier and rows and dumps before it are left out.
     /// `None`: the automatic cut of the median-speed series ([`warm_up_cut`]), or 0 when the series is too short.
     pub warm_up_s: Option<f64>,
+    /// Which particles are balls.
+    pub balls: BallIds,
+}
+
+/// Which particles of a mill run are balls; every other particle is an ore grain.
+#[derive(Debug, Clone, PartialEq, Eq, Default, Serialize)]
+pub enum BallIds {
+    /// The disk particles (every particle, for speeds and places, where none is a disk): for a run whose scene is not
+    /// at hand. Ore grains that are disks are then taken for balls.
+    #[default]
+    Disks,
+    /// The particles with these body ids: the balls of the scene's `mill.balls`.
+    Range(std::ops::Range<usize>),
+}
+
+impl BallIds {
+    /// True when particle `id` of `bodies` is a ball.
+    fn is_ball(&self, bodies: &Bodies, id: usize) -> bool {
+        match self {
+            BallIds::Disks => bodies.shape[id] == ShapeKind::Disk,
+            BallIds::Range(range) => range.contains(&id),
+        }
+    }
+
+    /// The balls among the particles of a dump (every particle where [`BallIds::Disks`] finds no disk).
+    fn of_rows<'a>(&self, rows: &'a [ParticleState]) -> Vec<&'a ParticleState> {
+        match self {
+            BallIds::Disks => {
+                let disks = rows.iter().any(|r| r.shape == ParticleShape::Disk);
+                rows.iter().filter(|r| !disks || r.shape == ParticleShape::Disk).collect()
+            }
+            BallIds::Range(range) => rows.iter().filter(|r| range.contains(&(r.id as usize))).collect(),
+        }
+    }
 }
 
 /// The statistics of one collision class.
@@ -214,20 +249,19 @@ impl MillReport {
     }
 }
 
-/// `ball` for a disk particle, `ore` for a polygon particle.
-fn particle_kind(world: &World, i: usize) -> &'static str {
-    if world.bodies().shape[i] == ShapeKind::Disk { "ball" } else { "ore" }
+/// `ball` or `ore` for particle `i`.
+fn particle_kind(bodies: &Bodies, balls: &BallIds, i: usize) -> &'static str {
+    if balls.is_ball(bodies, i) { "ball" } else { "ore" }
 }
 
 /// The collision class of an episode between bodies `a` and `b` of the final World.
-fn class_of(world: &World, a: usize, b: usize) -> String {
-    let bodies = world.bodies();
+fn class_of(bodies: &Bodies, balls: &BallIds, a: usize, b: usize) -> String {
     let wall = [a, b].into_iter().find(|&i| bodies.kind[i] == BodyKind::Wall);
     let particle = if bodies.kind[a] == BodyKind::Particle { a } else { b };
-    let first = particle_kind(world, particle);
+    let first = particle_kind(bodies, balls, particle);
     let second = match wall.map(|w| bodies.shape[w]) {
         None => {
-            let other = particle_kind(world, a + b - particle);
+            let other = particle_kind(bodies, balls, a + b - particle);
             return if first == other { format!("{first}–{first}") } else { "ball–ore".into() };
         }
         Some(ShapeKind::InnerCircle) => "chamber",
@@ -291,17 +325,20 @@ pub fn stress_energy_spectrum(mut energies: Vec<f64>, span: f64) -> StressEnergy
 
 /// The chamber of the final World: its inner-circle wall, with the balls' median diameter (the particles' largest
 /// extent when there are no balls).
-fn chamber_of(world: &World) -> Option<Chamber> {
+fn chamber_of(world: &World, balls: &BallIds) -> Option<Chamber> {
     let bodies = world.bodies();
     let wall =
         (0..bodies.len()).find(|&i| bodies.kind[i] == BodyKind::Wall && bodies.shape[i] == ShapeKind::InnerCircle)?;
-    let disks = bodies.particles().any(|id| bodies.shape[id.index()] == ShapeKind::Disk);
-    let mut radii: Vec<f64> = bodies
-        .particles()
-        .map(|id| id.index())
-        .filter(|&i| !disks || bodies.shape[i] == ShapeKind::Disk)
-        .map(|i| if disks { bodies.radius[i] } else { bodies.reach[i] } * bodies.pose[i].scale)
-        .collect();
+    let ball_ids: Vec<usize> = bodies.particles().map(|id| id.index()).filter(|&i| balls.is_ball(bodies, i)).collect();
+    let extent = |i: usize| {
+        let radius = if bodies.shape[i] == ShapeKind::Polygon { bodies.reach[i] } else { bodies.radius[i] };
+        radius * bodies.pose[i].scale
+    };
+    let mut radii: Vec<f64> = if ball_ids.is_empty() {
+        bodies.particles().map(|id| extent(id.index())).collect()
+    } else {
+        ball_ids.iter().map(|&i| extent(i)).collect()
+    };
     radii.sort_by(f64::total_cmp);
     let pose = bodies.pose[wall];
     Some(Chamber {
@@ -318,15 +355,10 @@ struct BallDump {
 }
 
 impl BallDump {
-    /// The balls of `rows` (every particle when there are no disks).
-    fn of(rows: &[ParticleState]) -> Option<Self> {
+    /// The balls of `rows`.
+    fn of(rows: &[ParticleState], ball_ids: &BallIds) -> Option<Self> {
         let time = rows.first()?.time_s;
-        let disks = rows.iter().any(|r| r.shape == ParticleShape::Disk);
-        let balls = rows
-            .iter()
-            .filter(|r| !disks || r.shape == ParticleShape::Disk)
-            .map(|r| (DVec2::new(r.x_m, r.y_m), r.speed()))
-            .collect();
+        let balls = ball_ids.of_rows(rows).into_iter().map(|r| (DVec2::new(r.x_m, r.y_m), r.speed())).collect();
         Some(Self { time, balls })
     }
 
@@ -338,10 +370,10 @@ impl BallDump {
 }
 
 /// The run's dumps up to `end` (dumps a longer earlier run left behind are not read).
-fn read_dumps(run_dir: &Path, end: f64, slack: f64) -> Result<Vec<BallDump>, AnalysisError> {
+fn read_dumps(run_dir: &Path, end: f64, slack: f64, balls: &BallIds) -> Result<Vec<BallDump>, AnalysisError> {
     let mut dumps = Vec::new();
     for (_, path) in dump_files(&run_dir.join(DUMPS_DIR))? {
-        if let Some(dump) = BallDump::of(&read_csv(&path)?)
+        if let Some(dump) = BallDump::of(&read_csv(&path)?, balls)
             && dump.time <= end + slack
         {
             dumps.push(dump);
@@ -359,7 +391,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let end = world.time();
     let bodies = world.bodies();
     let slack = 0.5 * world.time_step();
-    let balls = bodies.particles().filter(|id| bodies.shape[id.index()] == ShapeKind::Disk).count();
+    let balls = bodies.particles().filter(|id| options.balls.is_ball(bodies, id.index())).count();
     let ore_grains = bodies.particles().count() - balls;
 
     let events_path = run_dir.join("events.csv");
@@ -372,7 +404,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let series = Table::read(&run_dir.join("timeseries.csv"))?;
     let what = "timeseries.csv";
     let time = series.column("time_s", what)?;
-    let dumps = read_dumps(run_dir, end, slack)?;
+    let dumps = read_dumps(run_dir, end, slack, &options.balls)?;
 
     // The median-speed series: the balls' per dump, else the time series' column.
     let (median_series, source): (Vec<(f64, f64)>, _) = if dumps.len() >= 8 {
@@ -421,9 +453,9 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
         let v = events.number(k, speed)?.max(0.0);
         let first = if bodies.kind[ia] == BodyKind::Particle { ia } else { ib };
         let second = ia + ib - first;
-        let (class, first) = match class_of(&world, ia, ib) {
+        let (class, first) = match class_of(bodies, &options.balls, ia, ib) {
             // The class names the ball first.
-            c if c == "ball–ore" && particle_kind(&world, first) == "ore" => (c, second),
+            c if c == "ball–ore" && particle_kind(bodies, &options.balls, first) == "ore" => (c, second),
             c => (c, first),
         };
         let energy = 0.5 * bodies.mass[first] * v * v;
@@ -432,7 +464,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
         entry.1 += energy;
         all_speeds.push(v);
         all_energy += energy;
-        if [ia, ib].iter().any(|&i| bodies.kind[i] == BodyKind::Particle && particle_kind(&world, i) == "ore") {
+        if [ia, ib].iter().any(|&i| bodies.kind[i] == BodyKind::Particle && !options.balls.is_ball(bodies, i)) {
             let (ma, mb) = (bodies.mass[ia], bodies.mass[ib]);
             let reduced = if ma.is_finite() && mb.is_finite() { ma * mb / (ma + mb) } else { ma.min(mb) };
             ore_energies.push(0.5 * reduced * v * v);
@@ -503,7 +535,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
 
     // Ball speeds and places from the window's dumps.
     let window_dumps: Vec<&BallDump> = dumps.iter().filter(|d| d.time >= start).collect();
-    let chamber = chamber_of(&world);
+    let chamber = chamber_of(&world, &options.balls);
     let samples: Vec<(DVec2, f64)> = window_dumps.iter().flat_map(|d| d.balls.iter().copied()).collect();
     let ball_speeds = (!window_dumps.is_empty()).then(|| {
         let outer = |upper: bool| {

@@ -206,7 +206,7 @@ fn a_hand_made_mill_run_gives_the_known_statistics() {
     assert_eq!(report.sectors.iter().map(|c| c.collisions).sum::<usize>(), 6);
 
     // A given start replaces the cut and keeps the blade hit at 0.1 s.
-    let given = analyze_mill(&dir, &MillOptions { warm_up_s: Some(0.0) }).unwrap();
+    let given = analyze_mill(&dir, &MillOptions { warm_up_s: Some(0.0), ..MillOptions::default() }).unwrap();
     assert!(given.warm_up.given && given.window_s[0] == 0.0);
     assert_eq!(given.classes.iter().find(|c| c.class == "ball–blade").unwrap().collisions, 2);
     for file in [

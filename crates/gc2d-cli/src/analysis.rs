@@ -1,11 +1,13 @@
 //! The scene-type analyses of a finished run, as `gc2d-rs analyze --kind …` and a sweep's collection run them: one
 //! name per kind, the file each writes, and one call that runs it.
 
+use crate::outputs::SCENE_COPY;
 use clap::ValueEnum;
 use gc2d_analysis::{
-    AnalysisError, AnalyzeOptions, FeedpipeOptions, MillOptions, Report, SceneKind, analyze_feedpipe, analyze_mill,
-    analyze_run,
+    AnalysisError, AnalyzeOptions, BallIds, FeedpipeOptions, MillOptions, Report, SceneKind, analyze_feedpipe,
+    analyze_mill, analyze_run,
 };
+use gc2d_scene::Scene;
 use serde::Deserialize;
 use std::path::Path;
 
@@ -80,7 +82,8 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
     let failed = |e: AnalysisError| e.to_string();
     let json = match kind {
         AnalysisKind::Mill => {
-            let report = analyze_mill(run_dir, &MillOptions { warm_up_s: settings.warm_up_s }).map_err(failed)?;
+            let options = MillOptions { warm_up_s: settings.warm_up_s, balls: mill_balls(run_dir) };
+            let report = analyze_mill(run_dir, &options).map_err(failed)?;
             serde_json::to_string_pretty(&report)
         }
         AnalysisKind::Feedpipe => {
@@ -108,6 +111,20 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
 
 /// A warning where the run in `run_dir` did not complete (its `summary.json` says `interrupted` or `failed`):
 /// its final state is where it stopped.
+/// The balls of the mill run in `run_dir`: the bodies its `scene.ron` builds from `mill.balls`, so that ore grains
+/// drawn as disks are not taken for balls; the disk particles where the scene is missing or does not build.
+pub fn mill_balls(run_dir: &Path) -> BallIds {
+    let Ok(origins) = Scene::from_path(run_dir.join(SCENE_COPY)).and_then(|scene| scene.body_origins()) else {
+        return BallIds::Disks;
+    };
+    // A single ball is named `mill.balls`, several `mill.balls #k` ([`Scene::body_origins`]).
+    let is_ball = |origin: &String| origin == "mill.balls" || origin.starts_with("mill.balls #");
+    match (origins.iter().position(is_ball), origins.iter().rposition(is_ball)) {
+        (Some(first), Some(last)) => BallIds::Range(first..last + 1),
+        _ => BallIds::Range(0..0),
+    }
+}
+
 fn unfinished_run(run_dir: &Path) -> Option<String> {
     let status = crate::sweep::outcome(run_dir)?;
     (status != "completed").then(|| {

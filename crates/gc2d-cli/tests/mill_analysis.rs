@@ -98,3 +98,28 @@ fn a_mill_run_is_analysed_into_collision_classes_and_a_power_balance() {
     assert!(!missing.status.success());
     assert!(String::from_utf8_lossy(&missing.stderr).contains("--events"));
 }
+
+/// Ore grains drawn as disks (`disk: true`, which the scene format allows) were counted as balls: the analysis told
+/// the two apart by shape, and lost the ore's classes and stress-energy spectrum without a word. The balls are now the
+/// bodies the run's scene builds from `mill.balls`.
+#[test]
+fn ore_grains_drawn_as_disks_are_not_taken_for_balls() {
+    let dir = tempfile::tempdir().unwrap();
+    let text =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/mill_ore.ron")).unwrap();
+    let polygons = "size_spread: Equal(0.25), corners: 7, corner_positions: Rand1, orientation: Equal";
+    assert!(text.contains(polygons));
+    let scene = dir.path().join("disk_ore.ron");
+    std::fs::write(&scene, text.replace(polygons, "size_spread: Equal(0.25), disk: true")).unwrap();
+    let out = dir.path().join("run");
+    let gc2d = || Command::cargo_bin("gc2d-rs").unwrap();
+    gc2d().arg("run").arg(&scene).args(["--quiet", "--until", "0.01", "--out"]).arg(&out).assert().success();
+    let output = gc2d().arg("analyze").arg(&out).args(["--kind", "mill", "--warm-up", "0.002"]).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!((report["balls"].as_u64(), report["ore_grains"].as_u64()), (Some(100), Some(40)));
+    let classes: Vec<&str> =
+        report["classes"].as_array().unwrap().iter().map(|c| c["class"].as_str().unwrap()).collect();
+    assert!(classes.iter().any(|c| c.starts_with("ore–") || *c == "ball–ore"), "{classes:?}");
+    assert!(report["stress_energy"].is_object(), "{}", report["stress_energy"]);
+}
