@@ -160,7 +160,36 @@ fn a_feed_line_on_a_wall_surface_is_outside_it() {
                 Wall(shape: Rectangle(width_m: 0.1, height_m: 0.1), position_m: (0.05, 0))],\n    sources: \
                 [(position_m: (0, 0), width_m: 0.08, shape: (semi_axes_m: (0.001, 0.001)))],\n)";
     let error = error_of(text);
-    assert!(error.message().contains("inside `walls[0]` (50 %), `walls[1]` (50 %)"), "{}", error.message());
+    assert!(error.message().contains("inside `walls[0]` (50 %), inside `walls[1]` (50 %)"), "{}", error.message());
+}
+
+/// An inlet outside `run.domain` fed particles the domain removed at their first step: 40 injected, 40 removed, and no
+/// word from `check` or `run`. A line wholly outside is refused, one partly outside warned about, like a line inside
+/// walls; an outlet wholly outside the domain, which can count nothing, is warned about.
+#[test]
+fn feed_lines_and_outlets_outside_the_domain_are_refused_or_warned_about() {
+    let scene_with = |domain: &str| {
+        scene_text(GOOD).replace("seed: 3)", &format!("seed: 3, domain: (x_range_m: {domain}, y_range_m: (0.01, 1)))"))
+    };
+    let outside = scene_with("(-1, 1)");
+    let error = error_of(&outside);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "inlets[0].from_m"), "{}", error.render_plain());
+    assert!(error.message().contains("segment lies entirely outside `run.domain`"), "{}", error.message());
+    let half = Scene::from_str(&scene_with("(0.0, 1)").replace("(0.01, 1)", "(-1, 1)"), "half.ron").unwrap();
+    assert!(half.build().is_ok());
+    let warnings = half.warnings();
+    assert!(
+        warnings.iter().any(|w| w.contains("inlets[0].from_m: 50 % of its segment lies outside `run.domain`")),
+        "{warnings:?}"
+    );
+    let along_a_side = Scene::from_str(&scene_with("(-1, 1)").replace("(0.01, 1)", "(0.0, 1)"), "side.ron").unwrap();
+    assert!(along_a_side.build().is_ok() && along_a_side.warnings().is_empty(), "{:?}", along_a_side.warnings());
+    let short = Scene::from_str(&scene_with("(-1, 1)").replace("(0.01, 1)", "(-1, 0.2)"), "short.ron").unwrap();
+    let warnings = short.warnings();
+    assert!(
+        warnings.iter().any(|w| w.contains("outlets[0].from_m: its segment lies entirely outside `run.domain`")),
+        "{warnings:?}"
+    );
 }
 
 /// An inlet feeding at 1,000 m/s passed `check`, and the run stopped at the first insertion (travel limit). It is

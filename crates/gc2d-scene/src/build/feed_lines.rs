@@ -1,7 +1,8 @@
-//! Feed lines inside walls: the drop line of a source (at an absolute height) and the segment of an inlet, where
-//! they lie inside the solid of a wall that does not move. A particle is placed there only to overlap the wall, so
-//! the source or inlet feeds only on the rest of its line, and nothing where all of it is inside: a line wholly inside
-//! walls is refused, one partly inside is warned about.
+//! Feed lines where no particle can stay: the drop line of a source (at an absolute height) and the segment of an
+//! inlet, where they lie inside the solid of a wall that does not move, or outside the run's domain. A particle placed
+//! inside a wall would only overlap it, one outside the domain is removed at its first step, so the source or inlet
+//! feeds only on the rest of its line, and nothing where all of it is there: a line wholly inside walls or outside
+//! the domain is refused, one partly so is warned about.
 
 use super::walls::PlacedWall;
 use crate::checks::number;
@@ -19,16 +20,17 @@ const SAMPLES: usize = 200;
 /// surface (a source on a floor) counts as outside wherever it lies, and far below any particle.
 const DEPTH_TOLERANCE: f64 = 1e-9;
 
-/// A source's or inlet's line of which a share lies inside walls.
+/// A source's or inlet's line of which a share lies inside walls or outside the domain.
 pub(crate) struct CoveredLine {
     /// The field that places the line: `sources[0].position_m` or `inlets[1].from_m`.
     pub field: String,
     /// What the line is, in words: "drop line" or "segment".
     pub what: &'static str,
-    /// The share of the line inside walls, in (0, 1].
+    /// The share of the line inside walls or outside the domain, in (0, 1].
     pub share: f64,
-    /// The wall entries that hold it, with their shares, the largest first.
-    pub walls: Vec<(String, f64)>,
+    /// Where those parts lie, in words (``inside `walls[0]` ``, ``outside `run.domain` ``), with their shares, the
+    /// largest first.
+    pub places: Vec<(String, f64)>,
 }
 
 impl CoveredLine {
@@ -36,29 +38,29 @@ impl CoveredLine {
     pub fn error(&self) -> SceneError {
         SceneError::value(
             &self.field,
-            format!("its {} lies entirely inside {}: it could feed no particle", self.what, self.wall_list()),
+            format!("its {} lies entirely {}: it could feed no particle", self.what, self.place_list()),
         )
-        .with_label("inside a wall")
-        .with_help("move it into the open space the walls enclose")
+        .with_label("no particle can stay there")
+        .with_help("move it into the open space the walls enclose, inside `run.domain` where the scene has one")
     }
 
     /// The warning for a line partly inside walls (without the location, which the caller adds).
     pub fn warning(&self) -> String {
         format!(
-            "{} % of its {} lies inside {}: particles are fed only on the rest",
+            "{} % of its {} lies {}: only the rest feeds particles into the run",
             percent(self.share),
             self.what,
-            self.wall_list()
+            self.place_list()
         )
     }
 
-    /// The walls in words: `` `walls[0]` ``, or with their shares where there are several.
-    fn wall_list(&self) -> String {
-        match self.walls.as_slice() {
-            [(wall, _)] => format!("`{wall}`"),
-            walls => {
+    /// The places in words: ``inside `walls[0]` ``, or with their shares where there are several.
+    fn place_list(&self) -> String {
+        match self.places.as_slice() {
+            [(place, _)] => place.clone(),
+            places => {
                 let parts: Vec<String> =
-                    walls.iter().map(|(wall, share)| format!("`{wall}` ({} %)", percent(*share))).collect();
+                    places.iter().map(|(place, share)| format!("{place} ({} %)", percent(*share))).collect();
                 parts.join(", ")
             }
         }
@@ -71,37 +73,48 @@ fn percent(share: f64) -> String {
 }
 
 /// The sources' drop lines (those at an absolute height) and the inlets' segments of `scene` that lie partly or
-/// wholly inside the static walls among `walls`, in scene order.
+/// wholly inside the static walls among `walls` or outside `run.domain`, in scene order.
 pub(crate) fn covered_lines(scene: &Scene, walls: &[PlacedWall]) -> Vec<CoveredLine> {
     let solids: Vec<(Vec<DVec2>, &PlacedWall)> = walls
         .iter()
         .filter(|w| w.motion.is_static())
         .map(|w| (w.shape.body_points().iter().map(|v| w.pose.apply(*v)).collect(), w))
         .collect();
-    let inside = |point: DVec2, tolerance: f64| {
-        solids
-            .iter()
-            .find(|(points, w)| {
-                shape_view(w.shape.kind(), points, w.shape.radius() * w.pose.scale).depth_of(point) > tolerance
-            })
-            .map(|(_, w)| w.path.as_str())
+    let domain = scene
+        .run
+        .domain
+        .map(|d| (DVec2::new(d.x_range_m[0], d.y_range_m[0]), DVec2::new(d.x_range_m[1], d.y_range_m[1])));
+    // Where a point lies that no particle can stay at: inside a wall, or beyond the domain's sides by more than the
+    // tolerance (a line along a side counts as inside, as a centre on it does for the engine).
+    let place = |point: DVec2, tolerance: f64| {
+        let wall = solids.iter().find(|(points, w)| {
+            shape_view(w.shape.kind(), points, w.shape.radius() * w.pose.scale).depth_of(point) > tolerance
+        });
+        match (wall, domain) {
+            (Some((_, w)), _) => Some(format!("inside `{}`", w.path)),
+            (None, Some((min, max))) => {
+                let beyond = (min - point).max(point - max).max_element();
+                (beyond > tolerance).then(|| "outside `run.domain`".to_string())
+            }
+            (None, None) => None,
+        }
     };
     let cover = |from: DVec2, to: DVec2, field: String, what: &'static str| {
         let size = from.distance(to).max(from.abs().max_element()).max(to.abs().max_element());
-        let mut walls: Vec<(&str, usize)> = Vec::new();
+        let mut places: Vec<(String, usize)> = Vec::new();
         for k in 0..SAMPLES {
             let point = from.lerp(to, (k as f64 + 0.5) / SAMPLES as f64);
-            if let Some(wall) = inside(point, DEPTH_TOLERANCE * size) {
-                match walls.iter_mut().find(|(path, _)| *path == wall) {
+            if let Some(place) = place(point, DEPTH_TOLERANCE * size) {
+                match places.iter_mut().find(|(known, _)| *known == place) {
                     Some((_, count)) => *count += 1,
-                    None => walls.push((wall, 1)),
+                    None => places.push((place, 1)),
                 }
             }
         }
-        let covered: usize = walls.iter().map(|(_, count)| count).sum();
-        walls.sort_by_key(|(_, count)| std::cmp::Reverse(*count));
-        let walls = walls.into_iter().map(|(wall, count)| (wall.to_owned(), count as f64 / SAMPLES as f64)).collect();
-        (covered > 0).then(|| CoveredLine { field, what, share: covered as f64 / SAMPLES as f64, walls })
+        let covered: usize = places.iter().map(|(_, count)| count).sum();
+        places.sort_by_key(|(_, count)| std::cmp::Reverse(*count));
+        let places = places.into_iter().map(|(place, count)| (place, count as f64 / SAMPLES as f64)).collect();
+        (covered > 0).then(|| CoveredLine { field, what, share: covered as f64 / SAMPLES as f64, places })
     };
     let sources =
         scene.sources.iter().enumerate().filter(|(_, s)| s.height == DropHeight::Absolute).filter_map(|(i, source)| {
@@ -114,4 +127,28 @@ pub(crate) fn covered_lines(scene: &Scene, walls: &[PlacedWall]) -> Vec<CoveredL
         cover(from, to, field_path(&format!("inlets[{i}]"), "from_m"), "segment")
     });
     sources.chain(inlets).collect()
+}
+
+/// The outlets of `scene` whose segment lies wholly outside `run.domain` (each sampled as the feed lines are): the
+/// domain removes every particle before it could cross such an outlet, which then counts nothing. Their fields
+/// (`outlets[0].from_m`), in scene order.
+pub(crate) fn outlets_outside_domain(scene: &Scene) -> Vec<String> {
+    let Some(domain) = scene.run.domain else { return Vec::new() };
+    let (min, max) =
+        (DVec2::new(domain.x_range_m[0], domain.y_range_m[0]), DVec2::new(domain.x_range_m[1], domain.y_range_m[1]));
+    scene
+        .outlets
+        .iter()
+        .enumerate()
+        .filter(|(_, outlet)| {
+            let (from, to) = (DVec2::from_array(outlet.from_m), DVec2::from_array(outlet.to_m));
+            let tolerance =
+                DEPTH_TOLERANCE * from.distance(to).max(from.abs().max_element()).max(to.abs().max_element());
+            (0..SAMPLES).all(|k| {
+                let point = from.lerp(to, (k as f64 + 0.5) / SAMPLES as f64);
+                (min - point).max(point - max).max_element() > tolerance
+            })
+        })
+        .map(|(i, _)| field_path(&format!("outlets[{i}]"), "from_m"))
+        .collect()
 }

@@ -130,8 +130,9 @@ impl Scene {
     /// Warnings about the scene that do not stop it, each naming the file, line and column of the field where the
     /// scene was read from a text (`feed.ron:12:22: inlets[0].velocity_m_s: …`), else the field alone:
     /// - an inlet whose start speed across its segment is below 2R·rate: particles may pile up at it;
-    /// - a source's drop line or an inlet's segment that lies partly inside a wall that does not move: it feeds only
-    ///   on the rest (one wholly inside is refused by [`Scene::build`]).
+    /// - a source's drop line or an inlet's segment that lies partly inside a wall that does not move or outside
+    ///   `run.domain`: it feeds only on the rest (one wholly there is refused by [`Scene::build`]);
+    /// - an outlet wholly outside `run.domain`: the domain removes the particles first, so it counts none.
     ///
     /// Empty for a scene without such entries, or one that does not build (its errors say why).
     pub fn warnings(&self) -> Vec<String> {
@@ -145,6 +146,13 @@ impl Scene {
         }
         for line in feed_lines::covered_lines(self, &walls).into_iter().filter(|line| line.share < 1.0) {
             warnings.push(format!("{}: {}", self.located_field(&line.field), line.warning()));
+        }
+        for field in feed_lines::outlets_outside_domain(self) {
+            warnings.push(format!(
+                "{}: its segment lies entirely outside `run.domain`: the domain removes the particles before they \
+                 reach it, and it counts none",
+                self.located_field(&field)
+            ));
         }
         warnings
     }
