@@ -11,6 +11,7 @@
 
 use crate::export::rows::{ParticleRow, particle_rows};
 use crate::export::{ExportFormat, particle_columns, vtk};
+use crate::numbered_files::NumberedFolder;
 use crate::parquet_table::write_parquet;
 use crate::runner::FrameSink;
 use gc2d_analysis::particle_state::csv::{DUMPS_DIR, dump_file_name, write_csv};
@@ -18,6 +19,9 @@ use gc2d_analysis::particle_states;
 use gc2d_engine::World;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+
+/// The VTK collection of the dumps' `.vtu` files.
+const COLLECTION: &str = "particles.pvd";
 
 /// Writes a dump of the particles' state on its cadence.
 pub struct StateDumps {
@@ -60,6 +64,26 @@ impl StateDumps {
         }
     }
 
+    /// The dumps' folder as a [`NumberedFolder`].
+    pub fn folder(&self) -> NumberedFolder<'_> {
+        NumberedFolder { dir: &self.dir, prefix: "particles_", flag: "--dump-every" }
+    }
+
+    /// Makes `dumps/` ready for a part of the run that starts at `world`'s time (after
+    /// [`NumberedFolder::refuse_other_interval`] for a resumed one): a resumed part removes the earlier part's dumps
+    /// from its own first one on, in every format, and writes `particles.pvd` again without them; every part records
+    /// its interval.
+    pub fn prepare(&self, world: &World, resumed: bool) -> Result<(), String> {
+        let folder = self.folder();
+        if resumed {
+            let first = crate::runner::first_tick(self.interval, world.time(), 0.5 * world.time_step());
+            if folder.remove_from(first)? && self.dir.join(COLLECTION).is_file() {
+                self.write_collection(first.saturating_sub(1))?;
+            }
+        }
+        folder.record_interval(self.interval)
+    }
+
     /// Rewrites `particles.pvd` with every dump's `.vtu` up to `last` that exists, at its nominal time k·T.
     fn write_collection(&self, last: u64) -> Result<(), String> {
         let names: Vec<(f64, PathBuf)> = (0..=last)
@@ -67,7 +91,7 @@ impl StateDumps {
             .filter(|(_, name)| self.dir.join(name).is_file())
             .collect();
         let entries: Vec<(f64, &Path)> = names.iter().map(|(t, name)| (*t, name.as_path())).collect();
-        let path = self.dir.join("particles.pvd");
+        let path = self.dir.join(COLLECTION);
         std::fs::write(&path, vtk::collection(&entries)).map_err(|e| format!("cannot write {}: {e}", path.display()))
     }
 }

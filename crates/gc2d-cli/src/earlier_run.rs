@@ -2,6 +2,7 @@
 //! before it starts: a directory never holds two runs mixed, the new run's time series beside the old run's
 //! checkpoints and dumps, which `export` and `--resume DIR` would then take for the newest state.
 
+use crate::numbered_files::CADENCE_FILE;
 use crate::transits::TRANSITS_FILE;
 use gc2d_analysis::particle_state::csv::DUMPS_DIR;
 use std::io;
@@ -34,7 +35,8 @@ pub fn remove_earlier_run(out: &Path) -> Result<usize, String> {
         let folder = out.join(folder);
         let Ok(entries) = std::fs::read_dir(&folder) else { continue };
         for entry in entries.flatten() {
-            let is_run_file = entry.file_name().to_str().is_some_and(|name| name.starts_with(prefix));
+            let is_run_file =
+                entry.file_name().to_str().is_some_and(|name| name.starts_with(prefix) || name == CADENCE_FILE);
             if is_run_file && entry.file_type().is_ok_and(|kind| kind.is_file()) {
                 remove(&entry.path())?;
             }

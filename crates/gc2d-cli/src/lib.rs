@@ -12,6 +12,7 @@ pub mod export;
 pub mod failure;
 pub mod import;
 pub mod live;
+pub mod numbered_files;
 pub mod object_names;
 pub mod outputs;
 pub mod parquet_table;

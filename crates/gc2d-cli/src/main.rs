@@ -389,6 +389,25 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
         None => None,
     };
+    // The outputs numbered on a cadence: a resumed part on another interval than the earlier part's is refused here,
+    // before the run directory is touched.
+    let mut pictures = args.png_every.map(|interval| PngFrames {
+        dir: out.join("frames"),
+        interval,
+        options: PngOptions { colour_by: args.colour_by.into(), ..PngOptions::default() },
+    });
+    let mill = scene.mill.is_some();
+    let dumps_by_default = mill || scene.fluid.is_some();
+    let dump_interval = args.dump_every.unwrap_or(if dumps_by_default { frame_interval } else { 0.0 });
+    let mut dumps = (dump_interval > 0.0)
+        .then(|| StateDumps::new(&out, dump_interval, scene.material_names(), args.dump_format.clone()));
+    if args.resume.is_some() {
+        let folders =
+            pictures.iter().map(|p| (p.folder(), p.interval)).chain(dumps.iter().map(|d| (d.folder(), dump_interval)));
+        for (folder, interval) in folders {
+            folder.refuse_other_interval(interval).map_err(CommandFailure::input)?;
+        }
+    }
     if args.resume.is_none() {
         let removed = gc2d_cli::earlier_run::remove_earlier_run(&out).map_err(CommandFailure::input)?;
         if removed > 0 {
@@ -405,6 +424,13 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     if args.resume.is_none() && !same_file(&copy, &args.scene) {
         write_scene_copy(&copy, &scene)
             .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", copy.display())))?;
+    }
+    let resumed = args.resume.is_some();
+    if let Some(p) = &pictures {
+        p.prepare(&world, resumed).map_err(CommandFailure::input)?;
+    }
+    if let Some(d) = &dumps {
+        d.prepare(&world, resumed).map_err(CommandFailure::input)?;
     }
     let series_path = out.join("timeseries.csv");
     let mut series = if args.resume.is_some() && series_path.exists() {
@@ -432,16 +458,6 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     )
     .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", segments_path.display())))?;
     let earlier_chatter = segments.earlier_chatter();
-    let mut pictures = args.png_every.map(|interval| PngFrames {
-        dir: out.join("frames"),
-        interval,
-        options: PngOptions { colour_by: args.colour_by.into(), ..PngOptions::default() },
-    });
-    let mill = scene.mill.is_some();
-    let dumps_by_default = mill || scene.fluid.is_some();
-    let dump_interval = args.dump_every.unwrap_or(if dumps_by_default { frame_interval } else { 0.0 });
-    let mut dumps = (dump_interval > 0.0)
-        .then(|| StateDumps::new(&out, dump_interval, scene.material_names(), args.dump_format.clone()));
     let mut events = if args.events || (mill && !args.no_events) {
         Some(start_events(&out, &scene, &mut world, args.resume.is_some(), frame_interval)?)
     } else {

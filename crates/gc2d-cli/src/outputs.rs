@@ -282,7 +282,9 @@ pub struct OutletSummary {
     pub removed: u64,
 }
 
-/// The ledger's columns in `summary.json`.
+/// The ledger's columns in `summary.json`: every term of the balance, so that it can be checked from the file alone,
+/// (kinetic + potential + contact_stored + drag_stored) − initial_total − (work_in − dissipated − opening_residual) =
+/// balance_error.
 #[derive(Debug, Clone, Serialize)]
 pub struct EnergySummary {
     /// Kinetic energy (translational + rotational).
@@ -291,11 +293,17 @@ pub struct EnergySummary {
     pub potential_j: f64,
     /// Energy stored in contacts.
     pub contact_stored_j: f64,
+    /// Energy stored in drag springs.
+    pub drag_stored_j: f64,
+    /// The total (kinetic, potential, contacts, drag springs) at t = 0.
+    pub initial_total_j: f64,
     /// Energy dissipated by damping and sliding since the start.
     pub dissipated_j: f64,
-    /// Work done from outside (walls, drag springs, g changes, insertions − removals).
+    /// Stored contact energy left when contacts opened since the start (docs/model.md, "Energy terms").
+    pub opening_residual_j: f64,
+    /// Work done from outside (walls, drag springs, the fluid, g changes, insertions − removals).
     pub work_in_j: f64,
-    /// (E_now − E_0) − (W_in − D): the bookkeeping error.
+    /// (E_now − E_0) − (W_in − D − residual): the bookkeeping error.
     pub balance_error_j: f64,
 }
 
@@ -341,7 +349,10 @@ impl Summary {
                 kinetic_j: l.kinetic(),
                 potential_j: l.potential,
                 contact_stored_j: l.contact_stored,
+                drag_stored_j: l.drag_stored,
+                initial_total_j: l.initial_total,
                 dissipated_j: l.dissipated(),
+                opening_residual_j: l.opening_residual,
                 work_in_j: l.work_in(),
                 balance_error_j: l.balance_error(),
             },

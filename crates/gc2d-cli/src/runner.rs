@@ -35,6 +35,12 @@ pub fn cadence_index(world: &World, interval: f64) -> u64 {
     ((world.time() + 0.5 * world.time_step()) / interval).floor().max(0.0) as u64
 }
 
+/// The place on a cadence of `interval` (s) of the first tick a run part starting at `time` takes: the first multiple
+/// of the interval at or after `time`, a tick within `slack` (half a step) before it included.
+pub fn first_tick(interval: f64, time: f64, slack: f64) -> u64 {
+    ((time - slack) / interval).ceil().max(0.0) as u64
+}
+
 /// Ticks at whole multiples of an interval of simulated time (not counted from the start), so that a resumed run
 /// writes its rows, frames and checkpoints at the times the uninterrupted run would have.
 struct Ticks {
@@ -45,7 +51,7 @@ struct Ticks {
 impl Ticks {
     /// The ticks from `time` on; a tick within half a step (`slack`) before `time` is still due.
     fn from(interval: f64, time: f64, slack: f64) -> Self {
-        Self { interval, next: ((time - slack) / interval).ceil().max(0.0) as u64 }
+        Self { interval, next: first_tick(interval, time, slack) }
     }
 
     /// True when the next tick has been reached at `time`, with half a step of slack so that a tick at exactly
@@ -118,11 +124,13 @@ pub fn run_to(
         })
         .collect();
     let mut failed_bodies = Vec::new();
+    let mut last_row_time = None;
     let status = loop {
         if rows.due(world.time(), slack) {
             if let Err(e) = series.append(world) {
                 break RunStatus::Failed(format!("could not write the time series: {e}"));
             }
+            last_row_time = Some(world.time());
             rows.advance(world.time(), slack);
         }
         if let Some(message) = cadences.iter_mut().find_map(|c| c.poll(world).err()) {
@@ -149,11 +157,15 @@ pub fn run_to(
         }
         progress.update(world);
     };
-    // The last row of a stopped run; a failure before it (a full disk) stays the reported cause.
+    // The last row: the final state of a run that ended between two rows (an end time off the rows' cadence) or was
+    // stopped, so that the series ends where summary.json and final.ckpt do (a resumed run drops such a row again,
+    // `TimeSeriesWriter::continue_at`); a failure before it (a full disk) stays the reported cause.
     let status = match status {
-        RunStatus::Completed => status,
+        RunStatus::Completed if last_row_time == Some(world.time()) => status,
         _ if series.append(world).is_ok() => status,
-        RunStatus::Interrupted => RunStatus::Failed("could not write the last row of the time series".into()),
+        RunStatus::Completed | RunStatus::Interrupted => {
+            RunStatus::Failed("could not write the last row of the time series".into())
+        }
         failed => failed,
     };
     // Every sink ends its files, whatever the others do; the first that cannot fails a run that had not failed.

@@ -1,6 +1,7 @@
 //! The run loop's frame sinks: an MCAP recording for Foxglove, PNG pictures and restartable checkpoints.
 
-use crate::runner::FrameSink;
+use crate::numbered_files::NumberedFolder;
+use crate::runner::{FrameSink, first_tick};
 use gc2d_engine::{CheckpointError, World};
 use gc2d_record::{PngOptions, Recorder, render_png};
 use std::path::{Path, PathBuf};
@@ -35,6 +36,23 @@ pub struct PngFrames {
     pub interval: f64,
     /// How the pictures look.
     pub options: PngOptions,
+}
+
+impl PngFrames {
+    /// The pictures' folder as a [`NumberedFolder`].
+    pub fn folder(&self) -> NumberedFolder<'_> {
+        NumberedFolder { dir: &self.dir, prefix: "frame-", flag: "--png-every" }
+    }
+
+    /// Makes `frames/` ready for a part of the run that starts at `world`'s time, as [`crate::dumps::StateDumps::prepare`]
+    /// does `dumps/`.
+    pub fn prepare(&self, world: &World, resumed: bool) -> Result<(), String> {
+        let folder = self.folder();
+        if resumed {
+            folder.remove_from(first_tick(self.interval, world.time(), 0.5 * world.time_step()))?;
+        }
+        folder.record_interval(self.interval)
+    }
 }
 
 impl FrameSink for PngFrames {

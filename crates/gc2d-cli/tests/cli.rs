@@ -479,13 +479,28 @@ fn a_resumed_run_numbers_its_pictures_on() {
     part("0.025").arg("--out").arg(out.path()).assert().success();
     let first = std::fs::read(out.path().join("frames/frame-00000.png")).unwrap();
     part("0.045").arg("--resume").arg(out.path()).assert().success();
-    let mut frames: Vec<String> = std::fs::read_dir(out.path().join("frames"))
-        .unwrap()
-        .map(|entry| entry.unwrap().file_name().into_string().unwrap())
-        .collect();
-    frames.sort();
-    assert_eq!(frames, ["frame-00000.png", "frame-00001.png", "frame-00002.png"]);
+    let frames = || {
+        let mut frames: Vec<String> = std::fs::read_dir(out.path().join("frames"))
+            .unwrap()
+            .map(|entry| entry.unwrap().file_name().into_string().unwrap())
+            .filter(|name| name.starts_with("frame-"))
+            .collect();
+        frames.sort();
+        frames
+    };
+    assert_eq!(frames(), ["frame-00000.png", "frame-00001.png", "frame-00002.png"]);
     assert!(std::fs::read(out.path().join("frames/frame-00000.png")).unwrap() == first, "the first picture changed");
+    // Another interval would number the resumed part's pictures on another clock: frame 2 at t = 0.02 after frame 2
+    // at t = 0.04. It is refused before anything is touched; the same interval from an earlier checkpoint replaces the
+    // pictures after it.
+    let other = run_tiny_pile(&["--png-every", "0.01", "--until", "0.06", "--resume"]).arg(out.path()).assert();
+    other.code(2).stderr(contains("interval of 0.02 s").and(contains("`--png-every 0.02`")));
+    assert_eq!(frames(), ["frame-00000.png", "frame-00001.png", "frame-00002.png"]);
+    let earlier = out.path().join("earlier.ckpt");
+    run_tiny_pile(&["--until", "0.015", "--out"]).arg(out.path().join("early")).assert().success();
+    std::fs::copy(out.path().join("early/final.ckpt"), &earlier).unwrap();
+    part("0.015").arg("--resume").arg(&earlier).arg("--out").arg(out.path()).assert().success();
+    assert_eq!(frames(), ["frame-00000.png"]);
 }
 
 /// A resumed run goes on with its checkpoint's state, so a scene edited since (or another scene) would be silently
@@ -508,6 +523,35 @@ fn resuming_with_another_scene_is_refused() {
         .code(2)
         .stderr(contains("is not the scene the run in").and(contains("reads `mu: 0.1,` against `mu: 0.6,` there")));
     edited("end_time_s: 0.08, frames_per_second: 100", "end_time_s: 0.5, frames_per_second: 50").success();
+}
+
+/// A run ending between two rows of its time series (an end time off the frame cadence) wrote no row for its final
+/// state: the series stopped at 0.01 s while summary.json and final.ckpt were at 0.013 s. And summary.json's energy
+/// block now holds every term of the balance, so that it checks from the file alone.
+#[test]
+fn the_time_series_ends_at_the_final_state_and_the_summary_balances() {
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.013", "--out"]).arg(out.path()).assert().success();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap();
+    let series = std::fs::read_to_string(out.path().join("timeseries.csv")).unwrap();
+    let times: Vec<f64> = series.lines().skip(1).map(|line| line.split(',').next().unwrap().parse().unwrap()).collect();
+    assert_eq!(times.len(), 3, "rows at 0, 0.01 and the end: {times:?}");
+    assert_eq!(times[2], summary["time_s"].as_f64().unwrap());
+    let e = |field: &str| summary["energy"][field].as_f64().unwrap();
+    let stored = e("kinetic_j") + e("potential_j") + e("contact_stored_j") + e("drag_stored_j");
+    let balance = stored - e("initial_total_j") - (e("work_in_j") - e("dissipated_j") - e("opening_residual_j"));
+    assert!(
+        (balance - e("balance_error_j")).abs() <= 1e-12 * e("work_in_j").abs(),
+        "{balance} against {}",
+        summary["energy"]
+    );
+    // Resumed from there to 0.03, the series is the unsplit run's: the off-cadence row is dropped again.
+    run_tiny_pile(&["--until", "0.03", "--resume"]).arg(out.path()).assert().success();
+    let whole = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.03", "--out"]).arg(whole.path()).assert().success();
+    let read = |dir: &Path| std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
+    assert!(read(out.path()) == read(whole.path()), "the split series differs from the unsplit one");
 }
 
 /// The run directory's own `scene.ron` edited by hand, or a checkpoint kept outside its run directory and resumed with
@@ -622,7 +666,8 @@ fn record_pictures_snapshot_and_analysis_of_a_run() {
     let magic = b"\x89MCAP0\r\n";
     assert!(bytes.starts_with(magic) && bytes.ends_with(magic), "the recording is a finished MCAP file");
     // Pictures at t = 0, 0.04 and 0.08.
-    let frames = std::fs::read_dir(out.path().join("frames")).unwrap().count();
+    let frames = std::fs::read_dir(out.path().join("frames")).unwrap();
+    let frames = frames.filter(|e| e.as_ref().unwrap().file_name().to_str().unwrap().starts_with("frame-")).count();
     assert_eq!(frames, 3);
     gc2d().arg("snapshot").arg(out.path()).arg("--forces").assert().success().stderr(contains("snapshot.png"));
     let png = std::fs::read(out.path().join("snapshot.png")).unwrap();

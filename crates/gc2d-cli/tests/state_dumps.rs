@@ -52,6 +52,8 @@ fn a_mill_run_dumps_its_balls_at_the_frame_rate_and_the_last_dump_is_the_final_s
     let files = dumps(&out);
     let names: Vec<&str> = files.iter().map(|f| f.0.as_str()).collect();
     assert_eq!(names, (0..=5).map(|k| format!("particles_{k:06}.csv")).collect::<Vec<_>>());
+    // The interval the dumps are numbered on, which a resumed part must keep.
+    assert_eq!(std::fs::read_to_string(out.join("dumps/.gc2d-cadence")).unwrap(), "0.002\n");
     assert!(out.join("events.csv").exists());
     let first = read_csv(&out.join("dumps/particles_000000.csv")).unwrap();
     assert_eq!(files[0].1.lines().next().unwrap(), PARTICLE_STATE_COLUMNS.join(","));
@@ -133,11 +135,12 @@ fn dumps_and_events_can_be_switched_off_for_a_mill_and_on_for_any_scene() {
     assert_eq!(rows.len(), world.bodies().particles().count());
 }
 
-/// Every file of a run's dumps folder, name and bytes, in order.
+/// Every file of a run's dumps folder but its record of the interval, name and bytes, in order.
 fn dump_bytes(out: &Path) -> Vec<(String, Vec<u8>)> {
     let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(out.join("dumps"))
         .unwrap()
         .map(|e| e.unwrap())
+        .filter(|e| e.file_name() != ".gc2d-cadence")
         .map(|e| (e.file_name().into_string().unwrap(), std::fs::read(e.path()).unwrap()))
         .collect();
     files.sort();
@@ -176,4 +179,36 @@ fn parquet_and_vtk_dumps_with_their_collection_are_the_same_for_any_thread_count
         .unwrap();
     assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
     assert!(dump_bytes(&split) == files, "dumps differ across a resume");
+    // Resumed at t = 0.004 with CSV dumps only: the later Parquet and VTK dumps of the whole run went with it (a stale
+    // `.vtu` lay beside the new part's `.csv` of the same number), and `particles.pvd` lists what is left.
+    let checkpoint = dir.path().join("at_0.004.ckpt");
+    run(&scene, &dir.path().join("short"), "0.004", &[]);
+    std::fs::copy(dir.path().join("short/final.ckpt"), &checkpoint).unwrap();
+    let resume_from_checkpoint = |extra: &[&str]| {
+        gc2d()
+            .arg("run")
+            .arg(&scene)
+            .args(["--quiet", "--until", "0.01", "--resume"])
+            .arg(&checkpoint)
+            .arg("--out")
+            .arg(&two)
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let csv_only = resume_from_checkpoint(&["--dump-format", "csv"]);
+    assert!(csv_only.status.success(), "{}", String::from_utf8_lossy(&csv_only.stderr));
+    let names: Vec<String> = dump_bytes(&two).into_iter().map(|f| f.0).collect();
+    for k in 0..=5 {
+        let has = |extension: &str| names.contains(&format!("particles_{k:06}.{extension}"));
+        // Dumps 0 and 1 are before the checkpoint's time and stay; from dump 2 on only the new part's CSV is there.
+        assert!(has("csv") && has("vtu") == (k < 2) && has("parquet") == (k < 2), "dump {k}: {names:?}");
+    }
+    let pvd = std::fs::read_to_string(two.join("dumps/particles.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet ").count(), 2, "{pvd}");
+    // Another interval is refused, naming the one the files are numbered on.
+    let other = resume_from_checkpoint(&["--dump-every", "0.001"]);
+    assert_eq!(other.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&other.stderr);
+    assert!(message.contains("interval of 0.002 s") && message.contains("`--dump-every 0.002`"), "{message}");
 }
