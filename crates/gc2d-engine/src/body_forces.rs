@@ -4,6 +4,7 @@
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::integrator::TimeStep;
 use crate::ledger::EnergyLedger;
+use crate::outlets::OutletState;
 use crate::parallel::steps_in_parallel;
 use crate::schedules::DragSpring;
 use crate::shape::{MassModel, ShapeKind};
@@ -55,6 +56,15 @@ pub struct Fluid {
 }
 
 impl Fluid {
+    /// True when `self` and `other` are the same fluid but for the names of the files a loaded field came from
+    /// ([`FluidField::same_flow`]).
+    pub fn same_fluid(&self, other: &Fluid) -> bool {
+        self.field.same_flow(&other.field)
+            && self.properties == other.properties
+            && self.drag == other.drag
+            && self.buoyancy == other.buoyancy
+    }
+
     /// Checks the numbers: ρ_f ≥ 0 and finite, a constant c_w ≥ 0 and finite, η > 0 and finite for
     /// Schiller–Naumann. The message names the field.
     pub fn validate(&self) -> Result<(), String> {
@@ -129,9 +139,28 @@ fn immersed_body(bodies: &Bodies, i: usize, mass_model: MassModel) -> ImmersedBo
     }
 }
 
+/// The outlets of a World and where its particles were at the start of the step, to tell a particle that is leaving
+/// through an outlet in this step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct OutletCrossings<'a> {
+    /// The outlets.
+    pub outlets: &'a [OutletState],
+    /// Each body's centre at the start of the step (empty in a World without outlets).
+    pub before: &'a [DVec2],
+}
+
+impl OutletCrossings<'_> {
+    /// True when particle `i`, now at `position`, has crossed an outlet outward since the step began.
+    fn leaving(&self, i: usize, position: DVec2) -> bool {
+        self.before
+            .get(i)
+            .is_some_and(|&before| self.outlets.iter().any(|o| o.outlet().crossed_outward(before, position)))
+    }
+}
+
 /// What the body forces of a step read besides the bodies.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct BodyForceStep {
+pub(crate) struct BodyForceStep<'a> {
     /// g at the end of the step, m/s² (a vector along −y).
     pub gravity: DVec2,
     /// Time at the end of the step, s.
@@ -142,6 +171,8 @@ pub(crate) struct BodyForceStep {
     pub mass_model: MassModel,
     /// Δt with its scale factors, to read the predicted accelerations.
     pub time_step: TimeStep,
+    /// The particles leaving through outlets in this step.
+    pub crossings: OutletCrossings<'a>,
 }
 
 impl BodyForce {
@@ -189,7 +220,14 @@ impl BodyForce {
                     if bodies.kind[i] != BodyKind::Particle || !bodies.alive[i] {
                         continue;
                     }
-                    let force = fluid.force_on(bodies, i, step.gravity, step.time, step.mass_model)?;
+                    let force = match fluid.force_on(bodies, i, step.gravity, step.time, step.mass_model) {
+                        Ok(force) => force,
+                        // A particle crossing an outlet in this step is sampled just beyond it, where a loaded mesh
+                        // may end (an outlet on its edge): it feels no fluid on its way out, and the outlet removes it
+                        // at the step's end (docs/model.md, "Fluid").
+                        Err(_) if step.crossings.leaving(i, bodies.pose[i].position) => DVec2::ZERO,
+                        Err(outside) => return Err(outside),
+                    };
                     bodies.force[i] += force;
                     let midpoint = bodies.velocity[i] - 0.5 * step.dt * bodies.gear[i].acceleration(&step.time_step);
                     power += force.dot(midpoint);

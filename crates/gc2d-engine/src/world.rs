@@ -11,7 +11,9 @@
 //! corrector's pass where no particle is removed or added after it.
 
 use crate::bodies::{Bodies, BodyId, BodyKind, ForceColumns, IntegrationColumns, KinematicsColumns, travel_bound};
-use crate::body_forces::{AttachedSpring, BodyForce, BodyForceStep, Fluid, WeighedBodies, add_weights};
+use crate::body_forces::{
+    AttachedSpring, BodyForce, BodyForceStep, Fluid, OutletCrossings, WeighedBodies, add_weights,
+};
 use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingColumns, ClosingPass};
 use crate::broadphase::{self, PairEntry, SortAndSweep};
 use crate::clearance::Clearance;
@@ -1160,6 +1162,7 @@ impl World {
             dt: self.config.time_step,
             mass_model: self.config.mass_model,
             time_step: *self.integrator.time_step(),
+            crossings: OutletCrossings { outlets: &self.outlets, before: &self.positions_before_step },
         };
         for force in &self.body_forces {
             force.apply(&mut self.bodies, &step, &mut self.ledger)?;

@@ -61,4 +61,59 @@ impl FluidField {
             FluidField::Series(series) => series.velocity(x, t),
         }
     }
+
+    /// True when `self` and `other` are the same field but for the names of the files a loaded one came from: the same
+    /// file reached by two paths (`fields/air.vtk`, `scenes/../fields/air.vtk`) gives the same flow.
+    pub fn same_flow(&self, other: &FluidField) -> bool {
+        self.without_file_names() == other.without_file_names()
+    }
+
+    /// A copy whose loaded snapshots have no file names.
+    fn without_file_names(&self) -> FluidField {
+        let mut copy = self.clone();
+        copy.forget_file_names();
+        copy
+    }
+
+    fn forget_file_names(&mut self) {
+        match self {
+            FluidField::Uniform(_) | FluidField::Poiseuille(_) => {}
+            FluidField::Ramped { field, .. } => field.forget_file_names(),
+            FluidField::Sampled(field) => field.forget_source(),
+            FluidField::Series(series) => series.forget_sources(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ramp::RampShape;
+    use crate::sampled::{FieldSamples, Interpolation};
+    use crate::vtk::Cells;
+
+    /// A field of four samples at the corners of the unit square, named `source`, u = (x + `shift`, y).
+    fn square(source: &str, shift: f64) -> FluidField {
+        let positions = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let samples = FieldSamples {
+            source: source.into(),
+            velocities: positions.iter().map(|p| DVec2::new(p[0] + shift, p[1])).collect(),
+            mesh_points: positions.clone(),
+            positions,
+            cells: Cells { offsets: vec![0, 4], indices: vec![0, 1, 2, 3] },
+        };
+        FluidField::Sampled(Box::new(SampledField::new(&samples, Interpolation::Bilinear, Outside::Zero).unwrap()))
+    }
+
+    #[test]
+    fn the_same_samples_under_two_file_names_are_the_same_flow() {
+        let ramp = |field| {
+            let ramp = TimeRamp { start_s: 0.0, end_s: 1.0, shape: RampShape::default() };
+            FluidField::Ramped { field: Box::new(field), ramp }
+        };
+        assert!(square("fields/air.vtk", 0.0) != square("scenes/../fields/air.vtk", 0.0));
+        assert!(square("fields/air.vtk", 0.0).same_flow(&square("scenes/../fields/air.vtk", 0.0)));
+        assert!(ramp(square("a.vtk", 0.0)).same_flow(&ramp(square("b.vtk", 0.0))));
+        assert!(!square("fields/air.vtk", 0.0).same_flow(&square("fields/air.vtk", 0.5)));
+    }
 }

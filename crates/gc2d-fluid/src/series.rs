@@ -51,6 +51,11 @@ pub struct SnapshotSeries {
 }
 
 impl SnapshotSeries {
+    /// Clears the snapshots' file names ([`FluidField::same_flow`]).
+    pub(crate) fn forget_sources(&mut self) {
+        self.snapshots.iter_mut().for_each(|snapshot| snapshot.field.forget_source());
+    }
+
     /// A series of `snapshots` (times finite and strictly increasing).
     pub fn new(snapshots: Vec<Snapshot>, interpolation: TimeInterpolation) -> Result<Self, SeriesError> {
         let Some(first) = snapshots.first() else { return Err(SeriesError::Empty) };

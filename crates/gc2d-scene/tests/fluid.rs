@@ -111,6 +111,31 @@ fn a_vtk_field_is_read_relative_to_the_scene_file() {
     assert!(error.help_text().unwrap().contains("fields"), "{:?}", error.help_text());
 }
 
+/// A particle leaving through an outlet on the edge of a loaded field's mesh (`outside: Error`) stopped the run: its
+/// drag was sampled at its predicted place, just beyond the outlet, before the outlet removed it. It now feels no
+/// fluid on its way out; a particle leaving the mesh elsewhere still stops the run.
+#[test]
+fn a_particle_leaving_through_an_outlet_on_the_mesh_edge_does_not_stop_the_run() {
+    let dir = tempfile_dir("outlet_on_mesh_edge");
+    let data = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../gc2d-fluid/tests/data/structured_points.vtk");
+    std::fs::copy(&data, dir.join("u.vtk")).unwrap();
+    let text = "Scene(\n    run: (time_step_s: 1e-4, end_time_s: 0.2),\n    gravity: Constant(0.0),\n    \
+        materials: [(name: \"lead\", density_kg_m2: 1e5)],\n    \
+        particles: [(shape: Disk(radius_m: 0.01), position_m: (0.5, 0.95), velocity_m_s: (0.0, 1.0))],\n    \
+        outlets: [(name: \"top\", from_m: (1.0, 1.0), to_m: (0.0, 1.0))],\n    \
+        fluid: (density_kg_m3: 1.2, field: Vtk(file: \"u.vtk\", interpolation: Bilinear, outside: Error)),\n)\n";
+    let path = dir.join("scene.ron");
+    std::fs::write(&path, text).unwrap();
+    let mut world = Scene::from_path(&path).unwrap().build().unwrap();
+    world.run_until(0.2).unwrap();
+    assert_eq!((world.stats().removed_at_outlets, world.bodies().particles().count()), (1, 0));
+    std::fs::write(&path, text.replace("outlets: [(name: \"top\", from_m: (1.0, 1.0), to_m: (0.0, 1.0))],", ""))
+        .unwrap();
+    let mut world = Scene::from_path(&path).unwrap().build().unwrap();
+    let error = world.run_until(0.2).unwrap_err();
+    assert!(error.to_string().contains("outside its mesh"), "{error}");
+}
+
 /// A fresh folder under the target directory for this test.
 fn tempfile_dir(name: &str) -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);

@@ -180,7 +180,12 @@ impl SampledField {
         Ok(SampledField { source: file, outside, nodes: node_count, interpolator })
     }
 
-    /// Where the samples came from.
+    /// Clears the file name ([`crate::FluidField::same_flow`]).
+    pub(crate) fn forget_source(&mut self) {
+        self.source.clear();
+    }
+
+    /// Where the samples came from (a file name), for messages.
     pub fn source(&self) -> &str {
         &self.source
     }

@@ -220,7 +220,11 @@ fn feed_differences(scene: &World, checkpoint: &World) -> Vec<String> {
     if drag_springs(scene) != drag_springs(checkpoint) {
         differences.push("particles' drag_spring: the drag springs differ".to_string());
     }
-    if scene.fluid() != checkpoint.fluid() {
+    let same_fluid = match (scene.fluid(), checkpoint.fluid()) {
+        (Some(ours), Some(theirs)) => ours.same_fluid(theirs),
+        (ours, theirs) => ours.is_none() && theirs.is_none(),
+    };
+    if !same_fluid {
         differences.push("fluid: the fluid differs".to_string());
     }
     differences
