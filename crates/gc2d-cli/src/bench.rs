@@ -43,7 +43,7 @@ pub struct BenchArgs {
     #[arg(long)]
     pub steps: Option<u64>,
     /// Simulated time each pile settles before it is measured, s [default: the pile's own, e.g. 0.06 s for dense7].
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub settle_time: Option<f64>,
     /// Folder of the settled piles [default: $XDG_CACHE_HOME/gc2d-rs/bench, else ~/.cache/gc2d-rs/bench].
     #[arg(long)]

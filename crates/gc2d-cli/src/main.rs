@@ -210,9 +210,9 @@ struct RunArgs {
     #[arg(long, allow_hyphen_values = true)]
     dump_every: Option<f64>,
     /// The formats of the dumps: csv (what `analyze` reads), parquet (the export's particle table) and vtk (.vtu per
-    /// dump with dumps/particles.pvd for ParaView); docs/export.md.
-    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [ExportFormat::Csv])]
-    dump_format: Vec<ExportFormat>,
+    /// dump with dumps/particles.pvd for ParaView); docs/export.md [default: csv].
+    #[arg(long, value_enum, value_delimiter = ',')]
+    dump_format: Option<Vec<ExportFormat>>,
     /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/).
     #[arg(long, allow_hyphen_values = true)]
     png_every: Option<f64>,
@@ -394,13 +394,35 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     let mut pictures = args.png_every.map(|interval| PngFrames {
         dir: out.join("frames"),
         interval,
-        options: PngOptions { colour_by: args.colour_by.into(), ..PngOptions::default() },
+        options: PngOptions {
+            colour_by: args.colour_by.into(),
+            view: gc2d_cli::sinks::picture_region(&scene),
+            ..PngOptions::default()
+        },
     });
+    if pictures.as_ref().is_some_and(|p| p.options.view.is_none()) {
+        console::err(
+            "warning: the scene has neither a `view` nor a `run.domain`: every picture shows the region the first one \
+             fits (the bodies at its time), so later bodies outside it are cut off; give the scene a `view` to choose \
+             the region",
+        );
+    }
     let mill = scene.mill.is_some();
     let dumps_by_default = mill || scene.fluid.is_some();
     let dump_interval = args.dump_every.unwrap_or(if dumps_by_default { frame_interval } else { 0.0 });
-    let mut dumps = (dump_interval > 0.0)
-        .then(|| StateDumps::new(&out, dump_interval, scene.material_names(), args.dump_format.clone()));
+    if dump_interval == 0.0 && args.dump_format.is_some() {
+        return Err(CommandFailure::input(format!(
+            "--dump-format is given, but this run writes no dumps ({}): add --dump-every T",
+            if args.dump_every.is_some() {
+                "--dump-every 0"
+            } else {
+                "only mills and scenes with a fluid dump by default"
+            }
+        )));
+    }
+    let dump_formats = args.dump_format.clone().unwrap_or_else(|| vec![ExportFormat::Csv]);
+    let mut dumps =
+        (dump_interval > 0.0).then(|| StateDumps::new(&out, dump_interval, scene.material_names(), dump_formats));
     if args.resume.is_some() {
         let folders =
             pictures.iter().map(|p| (p.folder(), p.interval)).chain(dumps.iter().map(|d| (d.folder(), dump_interval)));
@@ -735,13 +757,21 @@ fn snapshot(
             gc2d_record::MAX_PIXELS
         )));
     }
-    let checkpoint = if run.is_dir() { run.join("final.ckpt") } else { run.to_path_buf() };
-    let world = World::load_checkpoint_file(&checkpoint)
-        .map_err(|e| CommandFailure::input(format!("cannot read {}: {e}", checkpoint.display())))?;
-    let output = output.unwrap_or_else(|| checkpoint.with_file_name("snapshot.png"));
+    if let Some(output) = output.as_ref().filter(|o| !o.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"))) {
+        return Err(CommandFailure::input(format!(
+            "-o {}: a snapshot is a PNG picture, and its file name must end in .png",
+            output.display()
+        )));
+    }
+    // A run directory's newest state: final.ckpt, or the newest periodic checkpoint of a run killed without one.
+    let ResumePoint { path: checkpoint, world } =
+        gc2d_cli::resume::load_newest_state(run, "draw").map_err(CommandFailure::input)?;
+    let output = output.unwrap_or_else(|| {
+        if run.is_dir() { run.join("snapshot.png") } else { checkpoint.with_file_name("snapshot.png") }
+    });
     let options = PngOptions { width, colour_by: colour_by.into(), force_network: forces, ..PngOptions::default() };
     render_png(&world, &output, &options)
-        .map_err(|e| CommandFailure { code: 1, report: format!("cannot draw {}: {e}", output.display()) })?;
+        .map_err(|e| CommandFailure::input(format!("cannot draw {}: {e}", output.display())))?;
     console::err(&format!(
         "Wrote {} (t = {:.6} s, {} particles).",
         output.display(),
@@ -789,6 +819,9 @@ fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: Option<Pat
     }
     let out = out.unwrap_or_else(|| run.join("export"));
     let done = gc2d_cli::export::export(run, at, formats, &out).map_err(CommandFailure::input)?;
+    for warning in &done.warnings {
+        console::err(&format!("warning: {warning}"));
+    }
     console::err(&format!(
         "Exported t = {} s from {}: {} particles, {} contacts into {}.",
         done.time_s,

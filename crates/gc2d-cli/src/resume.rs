@@ -22,6 +22,13 @@ pub struct ResumePoint {
 /// is missing after a kill, and older than the numbered ones when a later resumed run was killed. Errors name the
 /// file and say why it cannot be used; an unreadable newest checkpoint is reported, not silently skipped.
 pub fn load_resume_point(from: &Path) -> Result<ResumePoint, String> {
+    load_newest_state(from, "resume from")
+}
+
+/// [`load_resume_point`] for another use: `purpose` says what the caller cannot do in its errors ("cannot
+/// `purpose` `path`: …"), e.g. "draw" for `snapshot`, which draws a killed run's newest state too.
+pub fn load_newest_state(from: &Path, purpose: &str) -> Result<ResumePoint, String> {
+    let load = |path: &Path| load(path, purpose);
     if !from.is_dir() {
         return load(from);
     }
@@ -36,7 +43,7 @@ pub fn load_resume_point(from: &Path) -> Result<ResumePoint, String> {
     };
     newest.ok_or_else(|| {
         format!(
-            "cannot resume from {}: the directory holds neither final.ckpt nor checkpoints/checkpoint-<step>.ckpt \
+            "cannot {purpose} {}: the directory holds neither final.ckpt nor checkpoints/checkpoint-<step>.ckpt \
              (give a run's output directory or a checkpoint file; runs write periodic checkpoints with \
              --checkpoint-every)",
             from.display()
@@ -125,10 +132,10 @@ pub fn another_checkpoint(scene: &Scene, scene_path: &Path, point: &ResumePoint)
     ))
 }
 
-fn load(path: &Path) -> Result<ResumePoint, String> {
+fn load(path: &Path, purpose: &str) -> Result<ResumePoint, String> {
     World::load_checkpoint_file(path)
         .map(|world| ResumePoint { path: path.to_path_buf(), world })
-        .map_err(|e| format!("cannot resume from {}: {e}", path.display()))
+        .map_err(|e| format!("cannot {purpose} {}: {e}", path.display()))
 }
 
 /// The step and path of the `checkpoint-<step>.ckpt` in `folder` with the largest step, if the folder exists and

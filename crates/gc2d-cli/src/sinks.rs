@@ -3,7 +3,9 @@
 use crate::numbered_files::NumberedFolder;
 use crate::runner::{FrameSink, first_tick};
 use gc2d_engine::{CheckpointError, World};
-use gc2d_record::{PngOptions, Recorder, render_png};
+use gc2d_geometry::{Aabb, DVec2};
+use gc2d_record::{PngOptions, Recorder, body_bounds, render_png};
+use gc2d_scene::Scene;
 use std::path::{Path, PathBuf};
 
 /// Feeds an MCAP [`Recorder`] one frame per tick.
@@ -28,7 +30,9 @@ impl FrameSink for Recording {
 }
 
 /// Writes `<dir>/frame-<k>.png` on its cadence, k the picture's place on it (taken at k·interval), so that a
-/// resumed run numbers its pictures on from where the earlier part stopped instead of overwriting them from 0.
+/// resumed run numbers its pictures on from where the earlier part stopped instead of overwriting them from 0. Every
+/// picture shows one region, so that the frames have one size and scale (a movie needs both): the options' view, or
+/// where they have none the region the first picture of this process would fit.
 pub struct PngFrames {
     /// Output directory.
     pub dir: PathBuf,
@@ -64,8 +68,19 @@ impl FrameSink for PngFrames {
         std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
         let index = crate::runner::cadence_index(world, self.interval);
         let path = self.dir.join(format!("frame-{index:05}.png"));
+        if self.options.view.is_none() {
+            self.options.view = body_bounds(world);
+        }
         render_png(world, &path, &self.options).map_err(|e| format!("picture {}: {e}", path.display()))
     }
+}
+
+/// The region every picture of a run of `scene` shows: its `view`, else its `run.domain`; `None` where it has neither
+/// (the first picture then fits the bodies, [`PngFrames`]).
+pub fn picture_region(scene: &Scene) -> Option<Aabb> {
+    let ranges =
+        scene.view.map(|v| (v.x_range_m, v.y_range_m)).or(scene.run.domain.map(|d| (d.x_range_m, d.y_range_m)));
+    ranges.map(|(x, y)| Aabb { min: DVec2::new(x[0], y[0]), max: DVec2::new(x[1], y[1]) })
 }
 
 /// Writes `<dir>/checkpoint-<step>.ckpt` on its cadence.

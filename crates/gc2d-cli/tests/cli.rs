@@ -660,15 +660,27 @@ fn a_cadence_that_is_not_a_positive_time_is_refused() {
 fn record_pictures_snapshot_and_analysis_of_a_run() {
     let out = tempfile::tempdir().unwrap();
     let recording = out.path().join("run.mcap");
-    run_tiny_pile(&["--png-every", "0.04", "--record"]).arg(&recording).arg("--out").arg(out.path()).assert().success();
+    run_tiny_pile(&["--png-every", "0.04", "--record"])
+        .arg(&recording)
+        .arg("--out")
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("the scene has neither a `view` nor a `run.domain`"));
     // An MCAP file starts and ends with its magic; a finished recording has both.
     let bytes = std::fs::read(&recording).unwrap();
     let magic = b"\x89MCAP0\r\n";
     assert!(bytes.starts_with(magic) && bytes.ends_with(magic), "the recording is a finished MCAP file");
-    // Pictures at t = 0, 0.04 and 0.08.
-    let frames = std::fs::read_dir(out.path().join("frames")).unwrap();
-    let frames = frames.filter(|e| e.as_ref().unwrap().file_name().to_str().unwrap().starts_with("frame-")).count();
-    assert_eq!(frames, 3);
+    // Pictures at t = 0, 0.04 and 0.08, all of one size: the scene has no view nor domain, so every picture shows the
+    // region the first one fitted (each used to fit its own, and the size changed as the pile grew).
+    let frames: Vec<PathBuf> = (0..3).map(|k| out.path().join(format!("frames/frame-{k:05}.png"))).collect();
+    let size = |path: &PathBuf| {
+        let bytes = std::fs::read(path).unwrap();
+        let word = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
+        (word(16), word(20))
+    };
+    assert!(frames.iter().all(|f| size(f) == size(&frames[0])), "{:?}", frames.iter().map(size).collect::<Vec<_>>());
+    assert!(!out.path().join("frames/frame-00003.png").exists());
     gc2d().arg("snapshot").arg(out.path()).arg("--forces").assert().success().stderr(contains("snapshot.png"));
     let png = std::fs::read(out.path().join("snapshot.png")).unwrap();
     assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"));
@@ -715,6 +727,28 @@ fn snapshot_of_a_missing_run_is_an_input_error() {
             .code(2)
             .stderr(contains(format!("--width {width}: a picture is 1 to 16384 pixels wide")));
     }
+}
+
+/// A run killed without warning has periodic checkpoints and no final.ckpt: `snapshot` draws its newest state, as
+/// `export` and `--resume DIR` take it (it failed on the missing final.ckpt). A file name other than .png, or one that
+/// cannot be written, is an input error (exit 2).
+#[test]
+fn snapshot_draws_the_newest_state_of_a_killed_run() {
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.05", "--checkpoint-every", "0.02", "--out"]).arg(out.path()).assert().success();
+    std::fs::remove_file(out.path().join("final.ckpt")).unwrap();
+    gc2d()
+        .arg("snapshot")
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("snapshot.png").and(contains("(t = 0.040000 s")));
+    assert!(out.path().join("snapshot.png").is_file());
+    let jpeg = out.path().join("picture.jpg");
+    gc2d().arg("snapshot").arg(out.path()).arg("-o").arg(&jpeg).assert().code(2).stderr(contains("must end in .png"));
+    let folder = out.path().join("folder.png");
+    std::fs::create_dir(&folder).unwrap();
+    gc2d().arg("snapshot").arg(out.path()).arg("-o").arg(&folder).assert().code(2).stderr(contains("cannot draw"));
 }
 
 #[test]

@@ -224,3 +224,59 @@ fn the_scene_copy_of_a_run_with_a_vtk_field_finds_the_field() {
     // The same scene by another path to the same file is the same scene.
     gc2d(&["run", "scenes/../scenes/air.ron", "--quiet", "--resume", "run", "--until", "0.004"]).success();
 }
+
+/// An export into a folder holding files of the same names that no export wrote (a run's `dumps/`, with its own
+/// `particles.pvd`) replaced them; it is refused, and the folder is left as it was.
+#[test]
+fn an_export_does_not_replace_files_it_did_not_write() {
+    let (dir, run_dir) = run();
+    let folder = dir.path().join("dumps");
+    std::fs::create_dir_all(&folder).unwrap();
+    std::fs::write(folder.join("particles.pvd"), "the dumps' collection").unwrap();
+    let refused = Command::cargo_bin("gc2d-rs").unwrap().arg("export").arg(&run_dir).arg("--out").arg(&folder).assert();
+    let stderr = String::from_utf8_lossy(&refused.code(2).get_output().stderr).to_string();
+    assert!(stderr.contains("holds particles.pvd, which no export wrote"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(folder.join("particles.pvd")).unwrap(), "the dumps' collection");
+    assert_eq!(std::fs::read_dir(&folder).unwrap().count(), 1);
+    // A format named twice is written, and listed, once.
+    let csv_twice = dir.path().join("twice");
+    Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .arg("export")
+        .arg(&run_dir)
+        .args(["--format", "csv,csv", "--out"])
+        .arg(&csv_twice)
+        .assert()
+        .success();
+    let manifest = std::fs::read_to_string(csv_twice.join(".gc2d-export")).unwrap();
+    assert_eq!(manifest, "particles.csv\ncontacts.csv\n");
+}
+
+/// The particles are named from the run's `scene.ron`: a scene.ron of another run (copied over, or edited) named the
+/// pile's poured sand as steel balls of another scene's block. Where the file is not the checkpoint's scene, or is
+/// missing, the names are left empty and the export says why.
+#[test]
+fn an_export_names_no_particle_from_a_scene_that_is_not_the_runs() {
+    let (_dir, run_dir) = run();
+    let export = || {
+        let assert =
+            Command::cargo_bin("gc2d-rs").unwrap().arg("export").arg(&run_dir).args(["--format", "csv"]).assert();
+        let stderr = String::from_utf8_lossy(&assert.success().get_output().stderr).to_string();
+        let (header, rows) = csv(&run_dir.join("export/particles.csv"));
+        let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+        let (origin, material) = (column("origin"), column("material"));
+        (stderr, rows[0][origin].clone(), rows[0][material].clone())
+    };
+    let (stderr, origin, material) = export();
+    assert!(!stderr.contains("warning"), "{stderr}");
+    assert_eq!((origin.as_str(), material.as_str()), ("blocks[0] #0", "glass"));
+    let balls = std::fs::read_to_string(repo_root().join("scenes/balls.ron")).unwrap();
+    std::fs::write(run_dir.join("scene.ron"), balls).unwrap();
+    let (stderr, origin, material) = export();
+    assert!(stderr.contains("is not the scene of") && stderr.contains("left empty"), "{stderr}");
+    assert_eq!((origin.as_str(), material.as_str()), ("", ""));
+    std::fs::remove_file(run_dir.join("scene.ron")).unwrap();
+    let (stderr, origin, material) = export();
+    assert!(stderr.contains("has no scene.ron"), "{stderr}");
+    assert_eq!((origin.as_str(), material.as_str()), ("", ""));
+}

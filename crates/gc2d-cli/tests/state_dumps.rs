@@ -129,6 +129,20 @@ fn dumps_and_events_can_be_switched_off_for_a_mill_and_on_for_any_scene() {
     let plain = dir.path().join("plain");
     run(&balls, &plain, "0.0", &[]);
     assert!(!plain.join("dumps").exists() && !plain.join("events.csv").exists());
+    // A dump format without dumps was ignored without a word.
+    let formats_only = gc2d()
+        .arg("run")
+        .arg(&balls)
+        .args(["--quiet", "--until", "0", "--dump-format", "parquet", "--out"])
+        .arg(dir.path().join("formats_only"))
+        .output()
+        .unwrap();
+    assert_eq!(formats_only.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&formats_only.stderr);
+    assert!(
+        message.contains("--dump-format is given, but this run writes no dumps") && message.contains("--dump-every"),
+        "{message}"
+    );
     run(&balls, &plain, "0.0", &["--dump-every", "0.01"]);
     let rows = read_csv(&plain.join("dumps/particles_000000.csv")).unwrap();
     let world = World::load_checkpoint_file(plain.join("final.ckpt")).unwrap();

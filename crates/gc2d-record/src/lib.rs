@@ -1,7 +1,7 @@
 //! Recordings of gc2d-rs runs: MCAP files that Foxglove replays, and PNG snapshots for everyone else.
 //!
-//! A [`Recorder`] observes a World after each step ([`Observer`]) and, at the [`Cadence`] of about 30 frames per
-//! simulated second, writes the particles, walls, force network and statistics as Foxglove messages. Each frame is
+//! A [`Recorder`] observes a World after each step ([`Observer`]) and, at its [`Cadence`] (the frames per simulated
+//! second it is given: `gc2d-rs run` gives the scene's `frames_per_second`), writes the particles, walls, force network and statistics as Foxglove messages. Each frame is
 //! its own compressed chunk, flushed when written, so an interrupted run leaves a readable file. [`render_png`] draws
 //! one state with the same colours. [`FrameBuilder`] builds a frame's messages for both the recorder and the
 //! `LiveView` (feature `live`, on by default), which serves them over the Foxglove WebSocket protocol while a run goes
@@ -30,7 +30,7 @@ pub use error::RecordError;
 pub use frame::{Frame, FrameBuilder};
 #[cfg(feature = "live")]
 pub use live::LiveView;
-pub use png::{MAX_PIXELS, PngOptions, render_png};
+pub use png::{MAX_PIXELS, PngOptions, body_bounds, render_png};
 pub use quantities::{ColourBy, ColourRange};
 pub use recorder::{Observer, RecordOptions, Recorder, RecordingSummary, RunInfo, SceneFile};
 pub use scene::{FLUID_ENTITY, FRAME_ID, PARTICLE_BLOCK_SLOTS, particle_entity_id};

@@ -127,8 +127,9 @@ fn render(world: &World, options: &PngOptions) -> Result<Pixmap, RecordError> {
     Ok(pixmap)
 }
 
-/// The box around every living body, 2 % larger on each side.
-fn body_bounds(world: &World) -> Option<Aabb> {
+/// The region a picture of `world` without a view shows ([`PngOptions::view`]): the box around every living body, 2 %
+/// larger on each side; `None` for a World without bodies.
+pub fn body_bounds(world: &World) -> Option<Aabb> {
     let bounds = drawn_region(world)?;
     Some(bounds.expanded(0.02 * (bounds.max - bounds.min).max_element()))
 }

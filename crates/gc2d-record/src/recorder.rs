@@ -242,9 +242,13 @@ fn world_metadata(world: &World) -> BTreeMap<String, String> {
     let mut m = BTreeMap::new();
     m.insert("time_step".into(), world.time_step().to_string());
     m.insert("seed".into(), world.config().seed.to_string());
+    // The largest E of the overlap-area laws; none where every pair has a penetration law (a Hertz mill), whose
+    // moduli are the materials' (it said 0 there).
     let moduli =
         world.config().interactions.models().iter().filter_map(|m| m.overlap_area()).map(|l| l.elastic.e_modulus);
-    m.insert("e_modulus".into(), moduli.fold(0.0, f64::max).to_string());
+    if let Some(largest) = moduli.reduce(f64::max) {
+        m.insert("e_modulus".into(), largest.to_string());
+    }
     m.insert("bodies".into(), world.bodies().len().to_string());
     m
 }

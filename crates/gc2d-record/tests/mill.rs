@@ -72,6 +72,16 @@ fn a_mill_recording_turns_the_rotor_colours_balls_by_speed_and_carries_rotor_pow
         let message = message.unwrap();
         topics.entry(message.channel.topic.clone()).or_default().push((message.log_time, message.data.into_owned()));
     }
+    // The world's metadata gives no overlap-area modulus for a mill whose pairs all have a Hertz law (it said 0).
+    let world_record = mcap::read::LinearReader::new(&bytes)
+        .unwrap()
+        .filter_map(|record| match record.unwrap() {
+            mcap::records::Record::Metadata(metadata) if metadata.name == "gc2d-rs.world" => Some(metadata.metadata),
+            _ => None,
+        })
+        .next()
+        .expect("a gc2d-rs.world record");
+    assert!(world_record.contains_key("time_step") && !world_record.contains_key("e_modulus"), "{world_record:?}");
 
     // The rotor turns: walls are re-sent in every frame, and each blade has turned by ω·Δt since the last one (the
     // hub is a circle, traced the same at any angle).

@@ -96,7 +96,7 @@ pub fn particle_states(world: &World, materials: &[String]) -> Vec<ParticleState
             ParticleState {
                 time_s: world.time(),
                 id: id.0,
-                material: materials.get(bodies.material[i].index()).cloned().unwrap_or_else(|| "?".into()),
+                material: materials.get(bodies.material[i].index()).cloned().unwrap_or_default(),
                 shape: if bodies.shape[i] == ShapeKind::Disk { ParticleShape::Disk } else { ParticleShape::Polygon },
                 x_m: pose.position.x,
                 y_m: pose.position.y,

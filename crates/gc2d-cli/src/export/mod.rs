@@ -6,6 +6,7 @@ pub mod rows;
 pub mod vtk;
 
 use crate::object_names::ObjectNames;
+use crate::outputs::SCENE_COPY;
 use crate::parquet_table::{NamedColumn, write_parquet};
 use gc2d_analysis::particle_state::csv::quoted;
 use gc2d_engine::World;
@@ -38,6 +39,8 @@ pub struct Exported {
     pub contacts: usize,
     /// The files written.
     pub files: Vec<PathBuf>,
+    /// What the user should know about the tables: why the particles are not named.
+    pub warnings: Vec<String>,
 }
 
 /// Loads a checkpoint file, with a message naming it.
@@ -114,8 +117,50 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     }
     let (checkpoint, world) = choose(run, at)?;
     let time_s = world.time();
-    // The scene as run names the materials and the bodies' origins; without it the names are left empty.
-    let scene = Scene::from_path(run.join("scene.ron")).ok();
+    let mut formats = formats.to_vec();
+    formats.dedup();
+    refuse_to_replace_other_files(out, &planned_files(&formats, world.steps()))?;
+    // The scene as run names the materials and the bodies' origins; without it, or where it is not the scene of the
+    // checkpoint (edited, or copied from another run), the names are left empty rather than made up.
+    let scene_path = run.join(SCENE_COPY);
+    let mut warnings = Vec::new();
+    let scene = match Scene::from_path(&scene_path) {
+        Ok(scene) => match scene.differences_from_checkpoint(&world) {
+            Ok(differences) if differences.is_empty() => Some(scene),
+            Ok(differences) => {
+                warnings.push(format!(
+                    "{} is not the scene of {} ({}): the particles' origins and materials are left empty",
+                    scene_path.display(),
+                    checkpoint.display(),
+                    differences[0]
+                ));
+                None
+            }
+            Err(e) => {
+                warnings.push(format!(
+                    "{} does not build ({}): the particles' origins and materials are left empty",
+                    scene_path.display(),
+                    e.message()
+                ));
+                None
+            }
+        },
+        Err(_) if !scene_path.exists() => {
+            warnings.push(format!(
+                "{} has no {SCENE_COPY}: the particles' origins and materials are left empty",
+                run.display()
+            ));
+            None
+        }
+        Err(e) => {
+            warnings.push(format!(
+                "{} cannot be read ({}): the particles' origins and materials are left empty",
+                scene_path.display(),
+                e.message()
+            ));
+            None
+        }
+    };
     let materials = scene.as_ref().map(Scene::material_names).unwrap_or_default();
     let names = scene.as_ref().and_then(|s| s.body_origins().ok()).map(ObjectNames::from_origins);
     let particles = particle_rows(&world, &materials, names.as_ref());
@@ -133,7 +178,7 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
         std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         written(files, path)
     };
-    for format in formats {
+    for format in &formats {
         match format {
             ExportFormat::Csv => {
                 write(&mut files, "particles.csv", particles_csv(&particles))?;
@@ -156,7 +201,34 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
             }
         }
     }
-    Ok(Exported { checkpoint, time_s, particles: particles.len(), contacts: contacts.len(), files })
+    Ok(Exported { checkpoint, time_s, particles: particles.len(), contacts: contacts.len(), files, warnings })
+}
+
+/// The names of the files an export in `formats` of a checkpoint after `steps` steps writes.
+fn planned_files(formats: &[ExportFormat], steps: u64) -> Vec<String> {
+    let mut names = Vec::new();
+    for format in formats {
+        match format {
+            ExportFormat::Csv => names.extend(["particles.csv".to_string(), "contacts.csv".to_string()]),
+            ExportFormat::Vtk => names.extend([format!("particles_{steps}.vtu"), "particles.pvd".to_string()]),
+            ExportFormat::Parquet => names.extend(["particles.parquet".to_string(), "contacts.parquet".to_string()]),
+        }
+    }
+    names
+}
+
+/// Refuses an export that would overwrite a file in `out` that no earlier export there wrote (its
+/// [`EXPORT_MANIFEST`] does not list it): `--out` pointed at a run's `dumps/` replaced the dumps' `particles.pvd`.
+fn refuse_to_replace_other_files(out: &Path, planned: &[String]) -> Result<(), String> {
+    let manifest = std::fs::read_to_string(out.join(EXPORT_MANIFEST)).unwrap_or_default();
+    let exported: Vec<&str> = manifest.lines().collect();
+    match planned.iter().find(|name| out.join(name).exists() && !exported.contains(&name.as_str())) {
+        Some(name) => Err(format!(
+            "{} holds {name}, which no export wrote: exporting there would replace it; choose another --out",
+            out.display()
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The list of the files an export wrote, kept in its folder so that the next export there removes exactly those.
