@@ -231,7 +231,10 @@ struct Passage {
     mass: f64,
 }
 
-fn read_transits(path: &Path) -> Result<Vec<Passage>, AnalysisError> {
+/// The passages of `transits.csv` at `path`, each through one of `outlets` (the run's, by name); read strictly: a
+/// number field that is not one, or an outlet the run does not have, is damage named by its line. The transit time is
+/// empty for a particle that did not come through an inlet (NaN here).
+fn read_transits(path: &Path, outlets: &[&str]) -> Result<Vec<Passage>, AnalysisError> {
     if !path.exists() {
         return Err(AnalysisError::NotEnoughData(format!(
             "{} is missing: it is written by runs of scenes with outlets",
@@ -246,16 +249,21 @@ fn read_transits(path: &Path) -> Result<Vec<Passage>, AnalysisError> {
         table.column("transit_time_s", what)?,
         table.column("mass_kg", what)?,
     );
-    Ok(table
-        .rows
-        .iter()
-        .map(|r| Passage {
+    let mut passages = Vec::with_capacity(table.rows.len());
+    for (k, r) in table.rows.iter().enumerate() {
+        if !outlets.contains(&r[outlet].as_str()) {
+            let names = outlets.join(", ");
+            return Err(table.damaged(k, &format!("outlet `{}` is not one of the run's outlets ({names})", r[outlet])));
+        }
+        let transit_time_s = if r[transit].is_empty() { f64::NAN } else { table.number(k, transit)? };
+        passages.push(Passage {
             outlet: r[outlet].clone(),
-            left_s: number(&r[left]),
-            transit_time_s: number(&r[transit]),
-            mass: number(&r[mass]),
-        })
-        .collect())
+            left_s: table.number(k, left)?,
+            transit_time_s,
+            mass: table.number(k, mass)?,
+        });
+    }
+    Ok(passages)
 }
 
 /// The statistics of the feed-pipe run in `run_dir`, without writing anything.
@@ -276,7 +284,23 @@ pub fn feedpipe_report(
         AnalysisError::NotEnoughData("the run's scene has no outlet: a feed-pipe analysis needs one".into())
     })?;
     let frame = PipeFrame::of_outlet(first_outlet.outlet().from, first_outlet.outlet().to);
-    let passages = read_transits(&run_dir.join("transits.csv"))?;
+    let names: Vec<&str> = world.outlets().iter().map(|o| o.outlet().name.as_str()).collect();
+    let transits_path = run_dir.join("transits.csv");
+    let passages = read_transits(&transits_path, &names)?;
+    // Each outlet's rows against its own count in the final state: rows lost or added (a file edited, or of another
+    // run) would change the throughput without a word.
+    for state in world.outlets() {
+        let name = state.outlet().name.as_str();
+        let rows = passages.iter().filter(|p| p.outlet == name).count() as u64;
+        if rows != state.counters().removed {
+            return Err(AnalysisError::NotEnoughData(format!(
+                "{} has {rows} passages through outlet `{name}`, and the run's final state counts {} (the file is \
+                 damaged, or of another run)",
+                transits_path.display(),
+                state.counters().removed
+            )));
+        }
+    }
     let series = Table::read(&run_dir.join("timeseries.csv"))?;
     let time = series.column("time_s", "timeseries.csv")?;
     let times: Vec<f64> = series.rows.iter().map(|r| number(&r[time])).collect();
@@ -306,7 +330,8 @@ pub fn feedpipe_report(
             outlet: name.clone(),
             removed: mine.len(),
             particles_per_second: windowed.len() as f64 / duration,
-            mass_per_second: windowed.iter().map(|p| p.mass).sum::<f64>() / duration,
+            // A fold from +0 (a float sum starts from −0, which an empty window kept and feedpipe.json showed).
+            mass_per_second: windowed.iter().fold(0.0, |sum, p| sum + p.mass) / duration,
         });
         let column = series.column(&format!("outlet_{name}_removed"), "timeseries.csv")?;
         let removed: Vec<f64> = series.rows.iter().map(|r| number(&r[column])).collect();
@@ -340,7 +365,8 @@ pub fn feedpipe_report(
     let (profile, mean_slip_m_s) = profile(&frame, options.bins, &dumps, &fluid_at, &fluid_at_bin);
     let report = FeedpipeReport {
         window_s: [start, end],
-        flow_direction: frame.along.to_array(),
+        // Adding +0 turns a component of −0 (a turned unit vector's) into 0 for the JSON.
+        flow_direction: (frame.along + DVec2::ZERO).to_array(),
         outlets,
         transit_times: transit,
         profile,

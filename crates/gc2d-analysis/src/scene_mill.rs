@@ -228,19 +228,26 @@ impl MillReport {
             (false, None) => "no warm-up cut: too few samples for the test",
         };
         let median = self.ball_speeds.as_ref().map_or(self.median_speed_m_s[0], |s| s.all.median_m_s);
+        let median = match self.balls {
+            0 => "no balls".to_string(),
+            _ => format!("median ball speed {median:.3} m/s"),
+        };
+        let hits = match self.blade_hits_per_revolution {
+            hits if hits.is_finite() => format!("{hits:.2} blade hits per revolution"),
+            _ => "blade hits per revolution undefined (the rotor stands)".to_string(),
+        };
         let p = &self.power;
         let f = &self.all_classes.fractions_above;
         let relative = p.relative_torque_dissipation;
         let relative =
             if relative.is_finite() { format!("{:+.2} %", 100.0 * relative) } else { "undefined".to_string() };
         format!(
-            "Mill over {from:.3}–{to:.3} s ({how}): median ball speed {median:.3} m/s; <P_torque> {:.4} W, \
-             <P_work> {:.4} W, <D> {:.4} W ((P − D)/P {relative});\n{:.2} blade hits per revolution; impacts faster \
-             than 0.5 / 1 / 3 m/s: {:.1} / {:.1} / {:.2} % of {} collisions.",
+            "Mill over {from:.3}–{to:.3} s ({how}): {median}; <P_torque> {:.4} W, <P_work> {:.4} W, <D> {:.4} W \
+             ((P − D)/P {relative});\n{hits}; impacts faster than 0.5 / 1 / 3 m/s: {:.1} / {:.1} / {:.2} % of {} \
+             collisions.",
             p.mean_power_torque_w,
             p.mean_power_work_w,
             p.dissipation_w,
-            self.blade_hits_per_revolution,
             100.0 * f[0],
             100.0 * f[1],
             100.0 * f[2],

@@ -62,6 +62,15 @@ impl Table {
         })
     }
 
+    /// The error for row `row` holding what a run cannot have written (`what`): damage, naming the file and the line.
+    pub fn damaged(&self, row: usize, what: &str) -> AnalysisError {
+        AnalysisError::NotEnoughData(format!(
+            "{}:{}: {what} (the file is damaged, or of another run)",
+            self.path.display(),
+            self.lines[row]
+        ))
+    }
+
     /// The index of column `name`, or an error naming the file's kind.
     pub fn column(&self, name: &str, what: &str) -> Result<usize, AnalysisError> {
         self.header.iter().position(|h| h == name).ok_or_else(|| {

@@ -209,6 +209,15 @@ fn a_hand_made_mill_run_gives_the_known_statistics() {
     let given = analyze_mill(&dir, &MillOptions { warm_up_s: Some(0.0), ..MillOptions::default() }).unwrap();
     assert!(given.warm_up.given && given.window_s[0] == 0.0);
     assert_eq!(given.classes.iter().find(|c| c.class == "ball–blade").unwrap().collisions, 2);
+    let summary = given.summary();
+    assert!(summary.contains("median ball speed") && summary.contains(" blade hits per revolution;"), "{summary}");
+    // A rotor at rest has no revolutions to count hits per (the line said `NaN blade hits per revolution`), and a
+    // mill without balls no ball speed to take the median of.
+    let mut still = given.clone();
+    (still.blade_hits_per_revolution, still.balls) = (f64::NAN, 0);
+    let summary = still.summary();
+    assert!(summary.contains("blade hits per revolution undefined (the rotor stands)") && summary.contains("no balls"));
+    assert!(!summary.contains("NaN"), "{summary}");
     for file in [
         "mill.json",
         "mill_collisions.csv",

@@ -94,6 +94,23 @@ fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
         let stderr = String::from_utf8_lossy(&refused.get_output().stderr).to_string();
         assert!(stderr.contains(message), "{option} {value}: {stderr}");
     }
+    // transits.csv is read strictly: a row through an outlet the run does not have was left out of the throughput
+    // and counted among the transit times; a row removed changed the rate without a word.
+    let transits = out.join("transits.csv");
+    let text = std::fs::read_to_string(&transits).unwrap();
+    let analyze = || {
+        let mut command = Command::cargo_bin("gc2d-rs").unwrap();
+        command.args(["analyze", out.to_str().unwrap(), "--kind", "feedpipe"]);
+        String::from_utf8_lossy(&command.assert().code(2).get_output().stderr).to_string()
+    };
+    std::fs::write(&transits, text.replacen(",top,", ",nowhere,", 1)).unwrap();
+    let stderr = analyze();
+    assert!(stderr.contains("transits.csv:2: outlet `nowhere` is not one of the run's outlets (top)"), "{stderr}");
+    let mut lines: Vec<&str> = text.lines().collect();
+    lines.remove(1);
+    std::fs::write(&transits, lines.join("\n") + "\n").unwrap();
+    let stderr = analyze();
+    assert!(stderr.contains("passages through outlet `top`, and the run's final state counts"), "{stderr}");
 }
 
 #[test]

@@ -290,6 +290,8 @@ impl fmt::Display for Summary {
             for scale in &fluid.scales {
                 let speed = scale.terminal_speed_m_s;
                 let motion = match speed {
+                    f64::INFINITY => "falls freely (no drag: the fluid's density or drag coefficient is 0)".to_owned(),
+                    f64::NEG_INFINITY => "rises freely (no drag: the drag coefficient is 0)".to_owned(),
                     s if s > 0.0 => format!("sinks at {} m/s", significant(s)),
                     s if s < 0.0 => format!("rises at {} m/s", significant(-s)),
                     _ => "floats".to_owned(),

@@ -7,7 +7,8 @@ use crate::build::{shapes, walls};
 use crate::checks::{finite, finite_pair, in_range, non_negative, number, ordered_range, positive, window};
 use crate::error::{SceneError, suggest};
 use crate::schema::{
-    Area, Gravity, GravityProfile, InteractionLaw, MassModel, Material, Particle, Scene, Source, defaults,
+    Area, Damping, FrictionStiffness, Gravity, GravityProfile, InteractionLaw, MassModel, Material, Particle, Scene,
+    Source, defaults,
 };
 use crate::spans::field_path;
 use gc2d_contact::{Cohesion, ContactLaw, CundallStrack, NormalDamping, NormalElastic};
@@ -493,13 +494,73 @@ fn check_interactions(scene: &Scene, materials: &Materials, errors: &mut Vec<Sce
             }
             continue;
         }
+        // The law's own numbers, each at its field; a law with a bad one, or between materials whose own moduli are
+        // refused already, is not built (its errors would repeat the cause in the engine's terms).
+        let before = errors.len();
+        check_penetration_law(&interaction.law, &field_path(&path, "law"), errors);
         let resolved = (materials.resolve(Some(a), ""), materials.resolve(Some(b), ""));
-        if let (Ok(a), Ok(b)) = resolved
+        if errors.len() == before
+            && let (Ok(a), Ok(b)) = resolved
+            && usable_moduli(a)
+            && usable_moduli(b)
             && let Err(message) = crate::build::interactions::listed_model(&interaction.law, a, b)
         {
             errors.push(SceneError::value(field_path(&path, "law"), message).with_label("cannot be used"));
         }
     }
+}
+
+/// The numbers of a `Linear` or `Hertz` law at their fields (`interactions[0].law.friction.mu`), in the ranges the
+/// engine's law accepts.
+fn check_penetration_law(law: &InteractionLaw, path: &str, errors: &mut Vec<SceneError>) {
+    let (damping, friction, rolling) = match law {
+        InteractionLaw::OverlapArea { .. } => return,
+        InteractionLaw::Linear { stiffness_n_m, damping, friction, rolling, .. } => {
+            collect(errors, positive(&field_path(path, "stiffness_n_m"), *stiffness_n_m).map(drop));
+            (damping, friction, rolling)
+        }
+        InteractionLaw::Hertz { damping, friction, rolling, .. } => (damping, friction, rolling),
+    };
+    let at = |parent: &str, field: &str| field_path(&field_path(path, parent), field);
+    match *damping {
+        Damping::Ratio(ratio) => collect(errors, non_negative(&at("damping", "0"), ratio).map(drop)),
+        Damping::Restitution(e) if !(0.0..=1.0).contains(&e) => errors.push(
+            SceneError::value(
+                at("damping", "0"),
+                format!("{}: a coefficient of restitution lies in [0, 1]", number(e)),
+            )
+            .with_label("out of range"),
+        ),
+        Damping::PowerLaw { a, b, c } => {
+            collect(errors, non_negative(&at("damping", "a"), a).map(drop));
+            collect(errors, positive(&at("damping", "b"), b).map(drop));
+            collect(errors, finite(&at("damping", "c"), c).map(drop));
+        }
+        _ => {}
+    }
+    if let Some(friction) = friction {
+        collect(errors, non_negative(&at("friction", "mu"), friction.mu).map(drop));
+        collect(errors, non_negative(&at("friction", "damping_ratio"), friction.damping_ratio).map(drop));
+        if let Some(FrictionStiffness::Ratio(ratio)) = friction.stiffness {
+            collect(errors, non_negative(&field_path(&at("friction", "stiffness"), "0"), ratio).map(drop));
+        }
+    }
+    if let Some(rolling) = rolling {
+        for (field, value) in [
+            ("mu_r", rolling.mu_r),
+            ("stiffness_ratio", rolling.stiffness_ratio),
+            ("damping_ratio", rolling.damping_ratio),
+        ] {
+            collect(errors, non_negative(&at("rolling", field), value).map(drop));
+        }
+    }
+}
+
+/// True when `material`'s Young's modulus (where given) and Poisson's ratio are ones its own checks accept, so that a
+/// law built from them fails, if at all, for a reason of its own.
+fn usable_moduli(material: &Material) -> bool {
+    let modulus = material.youngs_modulus_pa.is_none_or(|e| e.is_finite() && e > 0.0);
+    modulus && material.poisson_ratio > -1.0 && material.poisson_ratio <= 0.5
 }
 
 fn check_particle(

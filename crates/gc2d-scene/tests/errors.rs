@@ -130,6 +130,37 @@ fn hertz_needs_the_materials_youngs_modulus_in_pascal() {
     assert!(error.message().contains("`youngs_modulus_pa`"), "{}", error.message());
 }
 
+/// A penetration law's numbers are reported at their own fields in the scene's words: `friction: (mu: -0.2)` was
+/// reported as the engine's `tangential.mu` at the whole law. A material's own bad modulus is reported once, not again
+/// as an effective modulus of 0 at every law that uses it.
+#[test]
+fn penetration_law_numbers_are_named_by_their_scene_fields() {
+    let law = |law: &str| {
+        format!(
+            "Scene(\n    mass_model: SphereEquivalent,\n    materials: [(name: \"steel\", density_kg_m3: 7850, youngs_modulus_pa: 2e11)],\n    interactions: [(materials: (\"steel\", \"steel\"), law: {law})],\n)"
+        )
+    };
+    for (text, path) in [
+        ("Hertz(friction: (mu: -0.2))", "interactions[0].law.friction.mu"),
+        ("Hertz(friction: (mu: 0.2, damping_ratio: -1))", "interactions[0].law.friction.damping_ratio"),
+        ("Hertz(friction: (mu: 0.2, stiffness: Ratio(-1)))", "interactions[0].law.friction.stiffness.0"),
+        ("Hertz(damping: Restitution(1.5))", "interactions[0].law.damping.0"),
+        ("Hertz(damping: Ratio(-0.1))", "interactions[0].law.damping.0"),
+        ("Hertz(damping: PowerLaw(a: 1, b: 0, c: 0.3))", "interactions[0].law.damping.b"),
+        ("Hertz(rolling: (mu_r: -1))", "interactions[0].law.rolling.mu_r"),
+        ("Linear(stiffness_n_m: 0)", "interactions[0].law.stiffness_n_m"),
+    ] {
+        let error = error_of(&law(text));
+        assert_eq!((error.kind(), error.path()), (ErrorKind::Value, path), "{text}: {}", error.render_plain());
+        assert!(error.location().is_some(), "{text}: not located");
+        assert!(!error.render_plain().contains("tangential.") && !error.render_plain().contains("normal."), "{text}");
+    }
+    let text = law("Hertz()").replace("youngs_modulus_pa: 2e11", "youngs_modulus_pa: NaN");
+    let report = error_of(&text).render_plain();
+    assert!(report.contains("materials[0].youngs_modulus_pa"), "{report}");
+    assert!(!report.contains("effective_modulus"), "{report}");
+}
+
 #[test]
 fn densities_follow_the_mass_model() {
     let text = "Scene(\n    materials: [(name: \"steel\", density_kg_m3: 7850)],\n)";

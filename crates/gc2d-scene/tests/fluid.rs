@@ -68,6 +68,16 @@ fn a_ball_lighter_than_its_fluid_rises_at_its_terminal_speed() {
     assert!(vy > 0.9 * w_t && vy < w_t, "{vy} against {w_t}");
 }
 
+/// A fluid of density 0 (allowed: no fluid in effect) exerts no drag: `check` said the ball sinks at 1.1e12 m/s, the
+/// bound of its search for the speed where drag balances the weight.
+#[test]
+fn a_fluid_without_drag_lets_a_ball_fall_freely() {
+    let text = ball_in_air("0.0", "").replace("density_kg_m3: 1.25", "density_kg_m3: 0.0");
+    let summary = Scene::from_str(&text, "vacuum.ron").unwrap().summary().unwrap();
+    assert_eq!(summary.fluid.as_ref().unwrap().scales[0].terminal_speed_m_s, f64::INFINITY);
+    assert!(summary.to_string().contains("falls freely (no drag"), "{summary}");
+}
+
 #[test]
 fn a_ramp_switches_the_stream_on_and_buoyancy_can_be_switched_off() {
     let w_t = styrofoam_terminal_speed();

@@ -208,3 +208,27 @@ fn an_inlet_too_fast_for_the_time_step_is_refused_at_its_velocity() {
     assert_eq!(error.path(), "inlets[0].velocity_m_s");
     assert!(error.message().contains("enter at 1 m/s spinning at 5000 rad/s"), "{}", error.message());
 }
+
+/// An inlet's window starting before the run fed the particles due before t = 0 as a backlog, which `check`'s
+/// planned count did not include: refused. A window after the run's end (or an empty one) fed nothing without a word:
+/// warned about, for sources too.
+#[test]
+fn inlet_and_source_windows_that_feed_nothing_or_start_before_the_run_are_told() {
+    let early = scene_text(&format!("{GOOD}, window_s: (-1.0, 2.0)"));
+    let error = error_of(&early);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::Value, "inlets[0].window_s"), "{}", error.render_plain());
+    assert!(error.message().contains("starts before the run does"), "{}", error.message());
+    for window in ["(5.0, 6.0)", "(0.5, 0.5)"] {
+        let late = Scene::from_str(&scene_text(&format!("{GOOD}, window_s: {window}")), "late.ron").unwrap();
+        let warnings = late.warnings();
+        assert!(
+            warnings.iter().any(|w| w.contains("inlets[0].window_s: no insertion is due before the run's end at 1 s")),
+            "{window}: {warnings:?}"
+        );
+    }
+    let source = "sources: [(position_m: (0.0, 0.5), width_m: 0.1, window_s: (2.0, 3.0), \
+                  shape: (semi_axes_m: (0.005, 0.005), disk: true))],";
+    let late_source = Scene::from_str(&format!("Scene(run: (end_time_s: 1.0), {source})"), "source.ron").unwrap();
+    let warnings = late_source.warnings();
+    assert!(warnings.iter().any(|w| w.contains("sources[0].window_s: no insertion is due")), "{warnings:?}");
+}

@@ -197,7 +197,7 @@ pub struct DragScale {
     /// The scene entry the particles come from (`particles[0]`, `inlets[1]`, …).
     pub entry: String,
     /// The terminal speed in still fluid, m/s, downwards: negative for a particle lighter than the fluid it displaces,
-    /// which rises, and 0 for one as heavy.
+    /// which rises, 0 for one as heavy, and infinite where the fluid exerts no drag (density or drag coefficient 0).
     pub terminal_speed_m_s: f64,
     /// The drag's relaxation time m/(∂F/∂w) at the reference slip, s: how fast the drag brings a particle to the
     /// fluid's speed.
@@ -318,7 +318,8 @@ pub(crate) fn summary(
 }
 
 /// The slip speed at which the drag `drag(w)` (increasing in w) equals `force`, m/s, by bisection; 0 where the force
-/// is not positive.
+/// is not positive, infinite where no speed up to 1e12 m/s brakes that much (a fluid of density 0 or a drag
+/// coefficient of 0: the particle falls freely).
 fn speed_where(drag: impl Fn(f64) -> f64, force: f64) -> f64 {
     if force.is_nan() || force <= 0.0 {
         return 0.0;
@@ -326,6 +327,9 @@ fn speed_where(drag: impl Fn(f64) -> f64, force: f64) -> f64 {
     let mut high = 1.0;
     while drag(high) < force && high < 1e12 {
         high *= 2.0;
+    }
+    if drag(high) < force {
+        return f64::INFINITY;
     }
     let mut low = 0.0;
     for _ in 0..200 {

@@ -89,7 +89,23 @@ pub(crate) fn check(scene: &Scene, materials: &Materials, errors: &mut Vec<Scene
         if let Err(error) = finite(&at("angular_velocity_rad_s"), inlet.angular_velocity_rad_s) {
             errors.push(error);
         }
-        let window_ok = window(&at("window_s"), inlet.window_s).map_err(|e| errors.push(e)).is_ok();
+        let mut window_ok = window(&at("window_s"), inlet.window_s).map_err(|e| errors.push(e)).is_ok();
+        if window_ok && inlet.window_s[0] < 0.0 {
+            // Particle k is due at t1 + k/rate: those due before the run's start would wait as a backlog.
+            errors.push(
+                SceneError::value(
+                    at("window_s"),
+                    format!(
+                        "({}, {}) starts before the run does (t = 0): the particles due before 0 would wait as a \
+                         backlog, fed as room clears",
+                        number(inlet.window_s[0]),
+                        number(inlet.window_s[1])
+                    ),
+                )
+                .with_help("start the window at 0 or later"),
+            );
+            window_ok = false;
+        }
         match finite_pair(&at("velocity_m_s"), inlet.velocity_m_s) {
             Err(error) => errors.push(error),
             Ok(velocity) if segment_ok => {

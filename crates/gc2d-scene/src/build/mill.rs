@@ -387,6 +387,7 @@ impl Occupied {
 pub(crate) fn particles(
     mill: &Mill,
     walls: &[PlacedWall],
+    others: &[(&BodyShape, Pose)],
     materials: &Materials,
     mass_model: MassModel,
     rng: &mut ChaCha8Rng,
@@ -399,7 +400,9 @@ pub(crate) fn particles(
     let material_id = MaterialId(materials.index_of(balls.material.as_deref(), &material_path)? as u16);
     let density = Materials::density(material, mass_model);
     let speed = balls.start_speed();
+    // The mill's walls, and the scene's own walls and particles (a baffle, a tracer): no ball or grain is placed on one.
     let mut occupied: Vec<Occupied> = walls.iter().map(|w| Occupied::new(&w.shape, w.pose)).collect();
+    occupied.extend(others.iter().map(|(shape, pose)| Occupied::new(shape, *pose)));
     let ball = BodyShape::Disk { radius: balls.radius_m };
     let positions = match balls.placement {
         BallPlacement::Random => random_balls(mill, &mut occupied, rng, &balls_path)?,

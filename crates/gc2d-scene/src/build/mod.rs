@@ -132,7 +132,10 @@ impl Scene {
     /// - an inlet whose start speed across its segment is below 2R·rate: particles may pile up at it;
     /// - a source's drop line or an inlet's segment that lies partly inside a wall that does not move or outside
     ///   `run.domain`: it feeds only on the rest (one wholly there is refused by [`Scene::build`]);
-    /// - an outlet wholly outside `run.domain`: the domain removes the particles first, so it counts none.
+    /// - an outlet wholly outside `run.domain`: the domain removes the particles first, so it counts none;
+    /// - a source or inlet with no insertion due before the run's end (an empty window, or one after the end);
+    /// - a pair of materials the scene uses without an `interactions` entry where the entries give penetration laws:
+    ///   it falls back to the overlap-area law.
     ///
     /// Empty for a scene without such entries, or one that does not build (its errors say why).
     pub fn warnings(&self) -> Vec<String> {
@@ -146,6 +149,31 @@ impl Scene {
         }
         for line in feed_lines::covered_lines(self, &walls).into_iter().filter(|line| line.share < 1.0) {
             warnings.push(format!("{}: {}", self.located_field(&line.field), line.warning()));
+        }
+        for (field, planned) in self
+            .sources
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (format!("sources[{i}].window_s"), planned_insertions(s, self.run.end_time_s) as f64))
+            .chain(self.inlets.iter().enumerate().map(|(i, inlet)| {
+                (format!("inlets[{i}].window_s"), inlets::planned_insertions(inlet, self.run.end_time_s))
+            }))
+        {
+            if planned == 0.0 {
+                warnings.push(format!(
+                    "{}: no insertion is due before the run's end at {} s (the window is empty, or starts at or after \
+                     the end): it feeds nothing in this run",
+                    self.located_field(&field),
+                    crate::checks::number(self.run.end_time_s)
+                ));
+            }
+        }
+        for [a, b] in interactions::unlisted_pairs(self) {
+            warnings.push(format!(
+                "{}: the pair `{a}`–`{b}` has no entry, so it takes the overlap-area law mixed from the two materials, \
+                 unlike the penetration laws the entries give: add an entry for it if it should have one of those",
+                self.located_field("interactions")
+            ));
         }
         for field in feed_lines::outlets_outside_domain(self) {
             warnings.push(format!(
@@ -198,7 +226,11 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
     let mut particles = plan_particles(scene, &materials, &mut rng)?;
     if let Some(mill) = &scene.mill {
         let mill_walls = mill::walls(mill, "mill")?;
-        particles.extend(mill::particles(mill, &mill_walls, &materials, scene.mass_model, &mut rng, "mill")?);
+        let others: Vec<(&BodyShape, Pose)> =
+            walls.iter().map(|w| (&w.shape, w.pose)).chain(particles.iter().map(|p| (&p.shape, p.pose))).collect();
+        let mill_particles =
+            mill::particles(mill, &mill_walls, &others, &materials, scene.mass_model, &mut rng, "mill")?;
+        particles.extend(mill_particles);
         walls.extend(mill_walls);
     }
     let buried = feed_lines::covered_lines(scene, &walls).into_iter().filter(|line| line.share == 1.0);
