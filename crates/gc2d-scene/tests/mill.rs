@@ -442,4 +442,9 @@ fn a_pair_left_out_of_a_hertz_scenes_interactions_is_warned_about() {
     let warnings = missing.warnings();
     assert_eq!(warnings.len(), 1, "{warnings:?}");
     assert!(warnings[0].contains("interactions: the pair `steel`–`calcite` has no entry"), "{warnings:?}");
+    // Two walls never meet: the feed pipe's `pipe`–`pipe` needs no entry.
+    let pipe =
+        std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/feedpipe.ron")).unwrap();
+    let pipe = Scene::from_str(&pipe, "feedpipe.ron").unwrap();
+    assert!(pipe.warnings().is_empty(), "{:?}", pipe.warnings());
 }

@@ -33,10 +33,10 @@ pub(crate) fn interaction_table(scene: &Scene, materials: &Materials) -> Result<
     InteractionTable::new(all.len(), &pairs).map_err(|e| SceneError::value("interactions", e.to_string()))
 }
 
-/// The pairs of materials the scene uses (by its bodies, sources, inlets and mill; an entry without a material uses the
-/// first) that have no `interactions` entry, in a scene whose entries give some pair a penetration law (`Linear`,
-/// `Hertz`): such a pair falls back to the overlap-area law mixed from the two materials, which in a Hertz scene is
-/// almost certainly a forgotten entry. Empty otherwise.
+/// The pairs of materials that can meet in the scene (two materials of its particles, or one of its particles' and one
+/// of its walls'; an entry without a material uses the first) and have no `interactions` entry, in a scene whose
+/// entries give some pair a penetration law (`Linear`, `Hertz`): such a pair falls back to the overlap-area law mixed
+/// from the two materials, which in a Hertz scene is almost certainly a forgotten entry. Empty otherwise.
 pub(crate) fn unlisted_pairs(scene: &Scene) -> Vec<[String; 2]> {
     let penetration = scene.interactions.iter().any(|entry| !matches!(entry.law, InteractionLaw::OverlapArea { .. }));
     if !penetration || scene.materials.is_empty() {
@@ -47,28 +47,33 @@ pub(crate) fn unlisted_pairs(scene: &Scene) -> Vec<[String; 2]> {
         material.as_deref().unwrap_or(first)
     }
     let named = |material| or_first(material, first);
-    let mut used: Vec<&str> = Vec::new();
-    used.extend(scene.walls.iter().map(|wall| wall.material().unwrap_or(first)));
-    used.extend(scene.particles.iter().map(|p| named(&p.material)));
-    used.extend(scene.blocks.iter().map(|b| named(&b.material)));
-    used.extend(scene.sources.iter().map(|s| named(&s.material)));
-    used.extend(scene.inlets.iter().map(|i| named(&i.material)));
+    // Particles: their entries, sources, inlets, and a mill's balls and ore; walls: theirs and a mill's chamber and
+    // rotor.
+    let mut particles: Vec<&str> = Vec::new();
+    particles.extend(scene.particles.iter().map(|p| named(&p.material)));
+    particles.extend(scene.blocks.iter().map(|b| named(&b.material)));
+    particles.extend(scene.sources.iter().map(|s| named(&s.material)));
+    particles.extend(scene.inlets.iter().map(|i| named(&i.material)));
+    let mut walls: Vec<&str> = scene.walls.iter().map(|wall| wall.material().unwrap_or(first)).collect();
     if let Some(mill) = &scene.mill {
-        used.extend([named(&mill.chamber_material), named(&mill.rotor_material), named(&mill.balls.material)]);
-        used.extend(mill.ore.iter().map(|ore| named(&ore.material)));
+        particles.push(named(&mill.balls.material));
+        particles.extend(mill.ore.iter().map(|ore| named(&ore.material)));
+        walls.extend([named(&mill.chamber_material), named(&mill.rotor_material)]);
     }
-    // In the scene's order of materials, each once.
-    let used: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).filter(|name| used.contains(name)).collect();
     let listed = |a: &str, b: &str| {
         scene.interactions.iter().any(|entry| {
             let [x, y] = [entry.materials[0].as_str(), entry.materials[1].as_str()];
             (x == a && y == b) || (x == b && y == a)
         })
     };
+    // In the scene's order of materials, each pair once.
+    let names: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();
     let mut pairs = Vec::new();
-    for (i, a) in used.iter().enumerate() {
-        for b in &used[i..] {
-            if !listed(a, b) {
+    for (i, a) in names.iter().enumerate() {
+        for b in &names[i..] {
+            let (a_moves, b_moves) = (particles.contains(a), particles.contains(b));
+            let meet = (a_moves && (b_moves || walls.contains(b))) || (b_moves && walls.contains(a));
+            if meet && !listed(a, b) {
                 pairs.push([a.to_string(), b.to_string()]);
             }
         }
