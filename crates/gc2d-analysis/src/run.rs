@@ -14,8 +14,9 @@ use gc2d_engine::World;
 use serde::Serialize;
 use std::path::Path;
 
-/// Which analyses to run.
+/// Which analyses to run; written in lower case (`"pile"`), as `analyze --kind` spells it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum SceneKind {
     /// Decide from the wall forces: a silo when the side walls carry at least [`SILO_SIDE_FORCE_FRACTION`] of the
     /// floor's normal force, otherwise a pile.

@@ -86,7 +86,7 @@ fn a_settled_pile_is_analysed_and_its_floor_carries_its_weight() {
     }
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("analysis/analysis.json")).unwrap()).unwrap();
-    assert_eq!(json["scene"], "Pile");
+    assert_eq!(json["scene"], "pile");
     let svg = std::fs::read_to_string(dir.join("analysis/floor_pressure.svg")).unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("polyline"), "floor_pressure.svg is not a line chart");
     // Analysed as a silo, a pile has no wall pressure to fit: said so, instead of a "fit" with μ_J at its bound.

@@ -26,3 +26,28 @@ pub fn err(text: &str) {
 pub fn is_closed(error: &io::Error) -> bool {
     error.kind() == io::ErrorKind::BrokenPipe
 }
+
+/// A simulated time (or any computed quantity) for a message, rounded to 9 significant digits: a time summed step by
+/// step reads 0.3, not 0.29999999999908655; the files keep every digit.
+pub fn rounded(value: f64) -> String {
+    let rounded: f64 = format!("{value:.8e}").parse().unwrap_or(value);
+    if rounded == 0.0 || !rounded.is_finite() || (1e-4..1e7).contains(&rounded.abs()) {
+        format!("{rounded}")
+    } else {
+        format!("{rounded:e}")
+    }
+}
+
+#[cfg(test)]
+mod rounding_tests {
+    use super::rounded;
+
+    #[test]
+    fn summed_times_read_as_their_decimal() {
+        assert_eq!(rounded(0.29999999999908655), "0.3");
+        assert_eq!(rounded(0.001000800000000009), "0.0010008");
+        assert_eq!(rounded(1.2999999999999998e-6), "1.3e-6");
+        assert_eq!(rounded(0.0), "0");
+        assert_eq!(rounded(f64::INFINITY), "inf");
+    }
+}

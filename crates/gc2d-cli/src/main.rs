@@ -824,7 +824,7 @@ fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: Option<Pat
     }
     console::err(&format!(
         "Exported t = {} s from {}: {} particles, {} contacts into {}.",
-        done.time_s,
+        console::rounded(done.time_s),
         done.checkpoint.display(),
         done.particles,
         done.contacts,

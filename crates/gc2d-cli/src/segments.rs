@@ -181,8 +181,11 @@ fn largest_up_to(rows: &[String], time: f64) -> Option<AlternationWindow> {
 /// after its last checkpoint had run on, or one whose later checkpoint the user passed over) is cut back: `to_time_s`
 /// to `time` (not before its `from_time_s`), `steps` in proportion (Δt is fixed for a run). A `running` status, which
 /// only a killed process leaves (the resumed one holds the directory's lock, so no other runs there), becomes `killed`,
-/// also where the row ends at `time` (a process killed right after a checkpoint). `wall_s` stays: that time was spent.
-/// Other rows ending within `slack` (half a step) of `time`, and rows that do not parse, are kept as they are.
+/// also where the row ends at `time` (a process killed right after a checkpoint); a `completed` or `interrupted` row
+/// that is cut back becomes `superseded` (its end was not where it now ends: a later process went back to an earlier
+/// checkpoint). A cut row's largest force-alternation window is left empty where it ended after `time`: it lay in the
+/// part cut away, and the row says nothing of the windows before. `wall_s` stays: that time was spent. Other rows
+/// ending within `slack` (half a step) of `time`, and rows that do not parse, are kept as they are.
 fn cut_back(row: &str, time: f64, slack: f64) -> String {
     let fields: Vec<&str> = row.splitn(SEGMENT_COLUMNS.split(',').count(), ',').collect();
     let (Some(from), Some(to), Some(steps)) = (
@@ -201,6 +204,13 @@ fn cut_back(row: &str, time: f64, slack: f64) -> String {
         let kept_steps = if to > from { (steps as f64 * (kept_to - from) / (to - from)).round() as u64 } else { 0 };
         cut[3] = kept_to.to_string();
         cut[4] = kept_steps.to_string();
+        if matches!(fields[6], "completed" | "interrupted") {
+            cut[6] = "superseded".to_owned();
+        }
+        if fields.get(8).and_then(|f| f.parse::<f64>().ok()).is_some_and(|window_end| window_end > kept_to + slack) {
+            cut[7].clear();
+            cut[8].clear();
+        }
     }
     if fields[6] == "running" {
         cut[6] = "killed".to_owned();
@@ -223,8 +233,14 @@ mod tests {
         let row = "1763766000,2,0.1,0.5,500,12.500,running,0.02,0.45,runs/a,b/checkpoint-0000000100.ckpt";
         assert_eq!(
             cut_back(row, 0.3, 5e-4),
-            "1763766000,2,0.1,0.3,250,12.500,killed,0.02,0.45,runs/a,b/checkpoint-0000000100.ckpt"
+            "1763766000,2,0.1,0.3,250,12.500,killed,,,runs/a,b/checkpoint-0000000100.ckpt"
         );
+        // A completed run resumed from an earlier checkpoint: its row no longer ends where it completed, and its largest
+        // window (at 0.256 s) lies in the part cut away, while one at 0.05 s stays.
+        let completed = "1763766000,2,0,0.3,300,1.496,completed,0.002,0.256,";
+        assert_eq!(cut_back(completed, 0.1, 5e-4), "1763766000,2,0,0.1,100,1.496,superseded,,,");
+        let early_window = "1763766000,2,0,0.3,300,1.496,completed,0.002,0.05,";
+        assert_eq!(cut_back(early_window, 0.1, 5e-4), "1763766000,2,0,0.1,100,1.496,superseded,0.002,0.05,");
         // A row that ended at the resume time is kept; so is one ending within half a step of it.
         let finished = "1763766000,2,0,0.1,100,1.000,interrupted,,,";
         assert_eq!(cut_back(finished, 0.1, 5e-4), finished);
@@ -235,7 +251,7 @@ mod tests {
         // Resumed from a checkpoint before the row began: nothing of it is kept.
         assert_eq!(
             cut_back(row, 0.05, 5e-4),
-            "1763766000,2,0.1,0.1,0,12.500,killed,0.02,0.45,runs/a,b/checkpoint-0000000100.ckpt"
+            "1763766000,2,0.1,0.1,0,12.500,killed,,,runs/a,b/checkpoint-0000000100.ckpt"
         );
         assert_eq!(cut_back("not a row", 0.0, 0.0), "not a row");
     }

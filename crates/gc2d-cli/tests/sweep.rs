@@ -407,7 +407,7 @@ fn a_pile_ensemble_is_analysed_as_a_pile_before_it_is_collected() {
     for row in &rows {
         let report: serde_json::Value =
             serde_json::from_slice(&read(out.join(&row[0]).join("analysis/analysis.json"))).unwrap();
-        assert_eq!(report["scene"], "Pile");
+        assert_eq!(report["scene"], "pile");
         let value: f64 = row[height].parse().unwrap();
         assert_eq!(value.to_bits(), report["pile"]["height"].as_f64().unwrap().to_bits());
         assert!(value > 0.0);

@@ -98,7 +98,7 @@ fn choose(run: &Path, at: Option<f64>) -> Result<(PathBuf, World), String> {
             // final.ckpt and a periodic checkpoint of the same step are one time.
             let mut steps: Vec<u64> = candidates.iter().map(|(step, _)| *step).collect();
             steps.dedup();
-            let times: Vec<String> = steps.iter().map(|step| format!("{}", *step as f64 * dt)).collect();
+            let times: Vec<String> = steps.iter().map(|step| crate::console::rounded(*step as f64 * dt)).collect();
             Err(format!(
                 "{} has no checkpoint at or before t = {} s; its checkpoints are at {} s (write more with \
                  `run --checkpoint-every`)",
