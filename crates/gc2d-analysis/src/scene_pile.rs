@@ -74,8 +74,11 @@ pub struct PileReport {
     pub area_whole_degrees: Option<f64>,
     /// Floor pressure, when the pile stands on a floor.
     pub floor: Option<FloorPressureReport>,
-    /// Side of the test areas, m.
+    /// Side of the test areas asked for (or chosen), m.
     pub grid_cell: f64,
+    /// Columns and rows of the test areas: the region over the cell side, at most
+    /// [`crate::density::MAX_GRID_CELLS_PER_AXIS`] each (a smaller cell asked for gets larger areas).
+    pub grid_size: [usize; 2],
     /// Test areas with particles (density map).
     pub density_cells: usize,
     /// Test areas with a stress (stress map).
@@ -150,6 +153,7 @@ pub fn analyze_pile(
         area_whole_degrees: repose.area_whole_degrees,
         floor,
         grid_cell: cell,
+        grid_size: [grid.nx, grid.ny],
         density_cells: densities.iter().filter(|d| d.particles > 0).count(),
         stress_cells: stresses.len(),
     })

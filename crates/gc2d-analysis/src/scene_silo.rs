@@ -41,8 +41,11 @@ pub struct SiloReport {
     pub right_wall_forces: usize,
     /// Mean floor pressure (2.36) over the floor faces, N/m.
     pub floor_mean_pressure: f64,
-    /// Side of the test areas, m.
+    /// Side of the test areas asked for (or chosen), m.
     pub grid_cell: f64,
+    /// Columns and rows of the test areas: the region over the cell side, at most
+    /// [`crate::density::MAX_GRID_CELLS_PER_AXIS`] each (a smaller cell asked for gets larger areas).
+    pub grid_size: [usize; 2],
     /// k = Σσ_xx / Σσ_zz over the rows of test areas (used in the fit).
     pub k: f64,
     /// Mean of the row values k(z) = σ_xx/σ_zz (rows with σ_zz > 0).
@@ -213,6 +216,7 @@ pub fn analyze_silo(
             face_length(snapshot, floor_selection),
         ),
         grid_cell: cell,
+        grid_size: [grid.nx, grid.ny],
         k,
         k_mean,
         k_std,

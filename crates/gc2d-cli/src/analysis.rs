@@ -103,14 +103,13 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
             };
             let report = analyze_run(run_dir, &options).map_err(failed)?;
             warnings.extend(pile_not_formed(&report));
+            warnings.extend(settings.grid_cell_m.and_then(|cell| coarser_grid(&report, cell)));
             serde_json::to_string_pretty(&report)
         }
     };
     Ok(AnalysisOutput { json: json.map_err(|e| e.to_string())?, warnings })
 }
 
-/// A warning where the run in `run_dir` did not complete (its `summary.json` says `interrupted` or `failed`):
-/// its final state is where it stopped.
 /// The balls of the mill run in `run_dir`: the bodies its `scene.ron` builds from `mill.balls`, so that ore grains
 /// drawn as disks are not taken for balls; the disk particles where the scene is missing or does not build.
 pub fn mill_balls(run_dir: &Path) -> BallIds {
@@ -125,6 +124,25 @@ pub fn mill_balls(run_dir: &Path) -> BallIds {
     }
 }
 
+/// A warning where the grid cell asked for (`--grid`, m) would give more than
+/// [`gc2d_analysis::density::MAX_GRID_CELLS_PER_AXIS`] test areas along an axis: the maps use that many, larger
+/// than asked.
+fn coarser_grid(report: &Report, cell: f64) -> Option<String> {
+    let size = report.pile.as_ref().map(|p| p.grid_size).or(report.silo.as_ref().map(|s| s.grid_size))?;
+    let most = gc2d_analysis::density::MAX_GRID_CELLS_PER_AXIS;
+    size.contains(&most).then(|| {
+        format!(
+            "--grid {} m would give more than {most} test areas along an axis: the density and stress maps use \
+             {} × {} areas, larger than asked",
+            crate::console::rounded(cell),
+            size[0],
+            size[1]
+        )
+    })
+}
+
+/// A warning where the run in `run_dir` did not complete (its `summary.json` says `interrupted` or `failed`):
+/// its final state is where it stopped.
 fn unfinished_run(run_dir: &Path) -> Option<String> {
     let status = crate::sweep::outcome(run_dir)?;
     (status != "completed").then(|| {

@@ -693,6 +693,14 @@ fn record_pictures_snapshot_and_analysis_of_a_run() {
         serde_json::from_str(&std::fs::read_to_string(out.path().join("summary.json")).unwrap()).unwrap();
     assert_eq!(report["particles"], summary["particles"]);
     assert!(out.path().join("analysis/analysis.json").exists());
+    // A cell far finer than the grid's limit of 1000 areas per axis was coarsened without a word.
+    gc2d()
+        .arg("analyze")
+        .arg(out.path())
+        .args(["--grid", "1e-9"])
+        .assert()
+        .success()
+        .stderr(contains("--grid 1e-9 m would give more than 1000 test areas along an axis"));
 }
 
 /// The pile analysis of grains still falling (a run stopped early) warns that the pile has not formed, and of an
