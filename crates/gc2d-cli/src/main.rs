@@ -448,6 +448,9 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
             .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", copy.display())))?;
     }
     let resumed = args.resume.is_some();
+    if let Some(from) = &resumed_from {
+        gc2d_cli::resume::remove_later_checkpoints(&out, from, world.steps()).map_err(CommandFailure::input)?;
+    }
     if let Some(p) = &pictures {
         p.prepare(&world, resumed).map_err(CommandFailure::input)?;
     }

@@ -154,6 +154,36 @@ fn highest_numbered_checkpoint(folder: &Path) -> Result<Option<(u64, PathBuf)>, 
     Ok(newest)
 }
 
+/// Removes the checkpoints of the run directory `out` that are further on than `steps`, the state a resumed run
+/// continues from: `final.ckpt` and `checkpoints/checkpoint-<step>.ckpt` of a part the user went back from (resuming
+/// from an earlier checkpoint). They belong to the abandoned stretch of the run, as its later rows, dumps and frames
+/// do, and `--resume DIR`, `export` and `snapshot` would otherwise take one of them for the run's newest state.
+/// `resumed_from` (the checkpoint loaded) is never removed, nor loaded again. Returns how many were removed; an error
+/// names a file that could not be removed.
+pub fn remove_later_checkpoints(out: &Path, resumed_from: &Path, steps: u64) -> Result<usize, String> {
+    let mut later: Vec<PathBuf> = Vec::new();
+    let final_checkpoint = out.join("final.ckpt");
+    let same = |a: &Path, b: &Path| a.canonicalize().ok().is_some_and(|a| b.canonicalize().ok() == Some(a));
+    if final_checkpoint.is_file()
+        && !same(&final_checkpoint, resumed_from)
+        && World::load_checkpoint_file(&final_checkpoint).is_ok_and(|world| world.steps() > steps)
+    {
+        later.push(final_checkpoint);
+    }
+    if let Ok(entries) = std::fs::read_dir(out.join("checkpoints")) {
+        later.extend(
+            entries
+                .flatten()
+                .filter(|e| e.file_name().to_str().and_then(checkpoint_step).is_some_and(|step| step > steps))
+                .map(|e| e.path()),
+        );
+    }
+    for path in &later {
+        std::fs::remove_file(path).map_err(|e| format!("cannot remove {}: {e}", path.display()))?;
+    }
+    Ok(later.len())
+}
+
 /// `<path>.tmp`: where a checkpoint, `segments.csv` or `summary.json` is written before it is renamed over `path`.
 pub fn temporary_path(path: &Path) -> PathBuf {
     let mut name = path.as_os_str().to_owned();

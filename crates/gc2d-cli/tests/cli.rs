@@ -557,6 +557,36 @@ fn the_time_series_ends_at_the_final_state_and_the_summary_balances() {
     assert!(read(out.path()) == read(whole.path()), "the split series differs from the unsplit one");
 }
 
+/// Resumed from an earlier checkpoint, a run left the later checkpoints of the stretch it went back from: `--resume
+/// DIR`, `export` and `snapshot` then took the abandoned checkpoint at 0.02 s for the run's newest state, while
+/// final.ckpt and the time series ended at 0.013 s. They are removed with that stretch's rows, dumps and frames.
+#[test]
+fn resuming_from_an_earlier_checkpoint_removes_the_later_ones() {
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.02", "--checkpoint-every", "0.01", "--out"]).arg(out.path()).assert().success();
+    let checkpoints = out.path().join("checkpoints");
+    let names = || {
+        let mut names: Vec<String> =
+            std::fs::read_dir(&checkpoints).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+        names.sort();
+        names
+    };
+    // At 0, 0.01 and 0.02 s.
+    assert_eq!(names().len(), 3, "{:?}", names());
+    let earlier = checkpoints.join(&names()[1]);
+    run_tiny_pile(&["--until", "0.013", "--resume"]).arg(&earlier).assert().success();
+    assert_eq!(names(), ["checkpoint-0000000000.ckpt", earlier.file_name().unwrap().to_str().unwrap()]);
+    run_tiny_pile(&["--until", "0.03", "--resume"])
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("final.ckpt at t = 0.013"));
+    let whole = unsplit_tiny_pile();
+    let series = |dir: &Path| std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
+    let lines = |text: String| text.lines().take(4).map(str::to_owned).collect::<Vec<_>>();
+    assert_eq!(lines(series(out.path())), lines(series(whole.path())), "the rows up to 0.03 s differ");
+}
+
 /// The run directory's own `scene.ron` edited by hand, or a checkpoint kept outside its run directory and resumed with
 /// an edited scene, has no original to compare the scene with: the checkpoint itself is compared with the World the
 /// scene builds.
