@@ -11,7 +11,7 @@
 
 use crate::export::rows::{ParticleRow, particle_rows};
 use crate::export::{ExportFormat, particle_columns, vtk};
-use crate::numbered_files::NumberedFolder;
+use crate::numbered_files::{Cadence, NumberedFolder};
 use crate::parquet_table::write_parquet;
 use crate::runner::FrameSink;
 use gc2d_analysis::particle_state::csv::{DUMPS_DIR, dump_file_name, write_csv};
@@ -66,13 +66,23 @@ impl StateDumps {
 
     /// The dumps' folder as a [`NumberedFolder`].
     pub fn folder(&self) -> NumberedFolder<'_> {
-        NumberedFolder { dir: &self.dir, prefix: "particles_", flag: "--dump-every" }
+        NumberedFolder { dir: &self.dir, prefix: "particles_", flag: "--dump-every", format_flag: "--dump-format" }
+    }
+
+    /// The interval and formats the dumps are written with.
+    pub fn cadence(&self) -> Cadence {
+        let names: Vec<String> = self
+            .formats
+            .iter()
+            .filter_map(|f| clap::ValueEnum::to_possible_value(f).map(|v| v.get_name().to_owned()))
+            .collect();
+        Cadence { interval: self.interval, formats: names.join(","), region: None }
     }
 
     /// Makes `dumps/` ready for a part of the run that starts at `world`'s time (after
-    /// [`NumberedFolder::refuse_other_interval`] for a resumed one): a resumed part removes the earlier part's dumps
+    /// [`NumberedFolder::refuse_other_cadence`] for a resumed one): a resumed part removes the earlier part's dumps
     /// from its own first one on, in every format, and writes `particles.pvd` again without them; every part records
-    /// its interval.
+    /// its cadence.
     pub fn prepare(&self, world: &World, resumed: bool) -> Result<(), String> {
         let folder = self.folder();
         if resumed {
@@ -81,7 +91,7 @@ impl StateDumps {
                 self.write_collection(first.saturating_sub(1))?;
             }
         }
-        folder.record_interval(self.interval)
+        folder.record(&self.cadence())
     }
 
     /// Rewrites `particles.pvd` with every dump's `.vtu` up to `last` that exists, at its nominal time k·T.

@@ -425,9 +425,9 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         (dump_interval > 0.0).then(|| StateDumps::new(&out, dump_interval, scene.material_names(), dump_formats));
     if args.resume.is_some() {
         let folders =
-            pictures.iter().map(|p| (p.folder(), p.interval)).chain(dumps.iter().map(|d| (d.folder(), dump_interval)));
-        for (folder, interval) in folders {
-            folder.refuse_other_interval(interval).map_err(CommandFailure::input)?;
+            pictures.iter().map(|p| (p.folder(), p.cadence())).chain(dumps.iter().map(|d| (d.folder(), d.cadence())));
+        for (folder, cadence) in folders {
+            folder.refuse_other_cadence(&cadence).map_err(CommandFailure::input)?;
         }
     }
     if args.resume.is_none() {
@@ -451,7 +451,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     if let Some(from) = &resumed_from {
         gc2d_cli::resume::remove_later_checkpoints(&out, from, world.steps()).map_err(CommandFailure::input)?;
     }
-    if let Some(p) = &pictures {
+    if let Some(p) = &mut pictures {
         p.prepare(&world, resumed).map_err(CommandFailure::input)?;
     }
     if let Some(d) = &dumps {

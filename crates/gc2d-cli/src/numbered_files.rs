@@ -1,13 +1,60 @@
 //! Folders of files numbered on a cadence, `dumps/particles_<k>.*` and `frames/frame-<k>.png`, file k holding the
-//! state at k·interval, across a resume. Each folder records its interval in [`CADENCE_FILE`]; a resumed part that
-//! would number on another interval is refused (two intervals under one numbering gave files whose number no longer
-//! told their time, and a `particles.pvd` with wrong times), and the files an earlier part wrote from the resumed
-//! part's first tick on are removed, in every format, so that none of them outlives the resumed part's own.
+//! state at k·interval, across a resume. Each folder records its [`Cadence`] in [`CADENCE_FILE`]: the interval, the
+//! formats written and, for pictures, the region they show. A resumed part that would number on another interval is
+//! refused (two intervals under one numbering gave files whose number no longer told their time, and a
+//! `particles.pvd` with wrong times), and so is one that would write other formats (an analysis reads the CSV dumps,
+//! and would see only the earlier part's); the files an earlier part wrote from the resumed part's first tick on are
+//! removed, in every format, so that none of them outlives the resumed part's own.
 
+use gc2d_geometry::{Aabb, DVec2};
 use std::path::Path;
 
-/// The file in a numbered folder that records the interval its files are numbered on, s.
+/// The file in a numbered folder that records its [`Cadence`].
 pub const CADENCE_FILE: &str = ".gc2d-cadence";
+
+/// How a folder's files are numbered and written.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cadence {
+    /// Simulated time between two files, s: file k holds the state at k·interval.
+    pub interval: f64,
+    /// The formats written, as the option lists them (`csv,vtk`; `png` for pictures).
+    pub formats: String,
+    /// The region the pictures show, m, once it is known (pictures only).
+    pub region: Option<Aabb>,
+}
+
+impl Cadence {
+    /// The record's text: one `key = value` line per field.
+    fn text(&self) -> String {
+        let mut text = format!("interval_s = {:?}\nformats = {}\n", self.interval, self.formats);
+        if let Some(r) = self.region {
+            text += &format!("region_m = {:?} {:?} {:?} {:?}\n", r.min.x, r.max.x, r.min.y, r.max.y);
+        }
+        text
+    }
+
+    /// Reads a record; `None` where it is not one. A record of one number (the first version's) is an interval alone.
+    fn parse(text: &str) -> Option<Self> {
+        if let Ok(interval) = text.trim().parse::<f64>() {
+            return Some(Self { interval, formats: String::new(), region: None }).filter(|c| c.interval > 0.0);
+        }
+        let mut cadence = Self { interval: f64::NAN, formats: String::new(), region: None };
+        for line in text.lines().filter(|line| !line.trim().is_empty()) {
+            let (key, value) = line.split_once('=')?;
+            match key.trim() {
+                "interval_s" => cadence.interval = value.trim().parse().ok()?,
+                "formats" => cadence.formats = value.trim().to_owned(),
+                "region_m" => {
+                    let numbers: Vec<f64> = value.split_whitespace().map(str::parse).collect::<Result<_, _>>().ok()?;
+                    let [x0, x1, y0, y1] = numbers[..] else { return None };
+                    cadence.region = Some(Aabb { min: DVec2::new(x0, y0), max: DVec2::new(x1, y1) });
+                }
+                _ => return None,
+            }
+        }
+        (cadence.interval.is_finite() && cadence.interval > 0.0).then_some(cadence)
+    }
+}
 
 /// A folder of numbered files: `<dir>/<prefix><k>.<extension>`.
 pub struct NumberedFolder<'a> {
@@ -17,21 +64,38 @@ pub struct NumberedFolder<'a> {
     pub prefix: &'a str,
     /// The option that sets the interval, for messages (`--dump-every`).
     pub flag: &'a str,
+    /// The option that sets the formats, for messages (`--dump-format`).
+    pub format_flag: &'a str,
 }
 
 impl NumberedFolder<'_> {
-    /// Refuses a resumed part that would number on `interval` where the folder's files were numbered on another.
-    /// Touches nothing.
-    pub fn refuse_other_interval(&self, interval: f64) -> Result<(), String> {
-        match self.recorded_interval()? {
-            Some(earlier) if earlier != interval => Err(format!(
-                "{} numbers its files on an interval of {earlier} s, and this part would number on {interval} s, \
-                 giving one number two times: resume with `{} {earlier}`, or into a new --out",
+    /// Refuses a resumed part that would number on another interval, or write other formats, than the folder's files
+    /// were. Touches nothing.
+    pub fn refuse_other_cadence(&self, ours: &Cadence) -> Result<(), String> {
+        let Some(earlier) = self.recorded()? else { return Ok(()) };
+        if earlier.interval != ours.interval {
+            return Err(format!(
+                "{} numbers its files on an interval of {} s, and this part would number on {} s, giving one number \
+                 two times: resume with `{} {}`, or into a new --out",
                 self.dir.display(),
-                self.flag
-            )),
-            _ => Ok(()),
+                earlier.interval,
+                ours.interval,
+                self.flag,
+                earlier.interval
+            ));
         }
+        if !earlier.formats.is_empty() && earlier.formats != ours.formats {
+            return Err(format!(
+                "{} holds files in {}, and this part would write {}, so that no format would cover the whole run: \
+                 resume with `{} {}`, or into a new --out",
+                self.dir.display(),
+                earlier.formats,
+                ours.formats,
+                self.format_flag,
+                earlier.formats
+            ));
+        }
+        Ok(())
     }
 
     /// Removes the files numbered `first` or later (in every format), which a resumed part starting at its tick
@@ -50,25 +114,23 @@ impl NumberedFolder<'_> {
         Ok(removed)
     }
 
-    /// Records `interval` as the folder's cadence (creating the folder).
-    pub fn record_interval(&self, interval: f64) -> Result<(), String> {
+    /// Records `cadence` as the folder's (creating the folder).
+    pub fn record(&self, cadence: &Cadence) -> Result<(), String> {
         std::fs::create_dir_all(self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
         let path = self.dir.join(CADENCE_FILE);
-        std::fs::write(&path, format!("{interval:?}\n")).map_err(|e| format!("cannot write {}: {e}", path.display()))
+        std::fs::write(&path, cadence.text()).map_err(|e| format!("cannot write {}: {e}", path.display()))
     }
 
-    /// The interval recorded in the folder, if any (a folder an older version wrote has none).
-    fn recorded_interval(&self) -> Result<Option<f64>, String> {
+    /// The cadence recorded in the folder, if any (a folder an older version wrote has none).
+    pub fn recorded(&self) -> Result<Option<Cadence>, String> {
         let path = self.dir.join(CADENCE_FILE);
         let Ok(text) = std::fs::read_to_string(&path) else { return Ok(None) };
-        match text.trim().parse::<f64>() {
-            Ok(interval) if interval.is_finite() && interval > 0.0 => Ok(Some(interval)),
-            _ => Err(format!(
-                "{} is damaged: it should hold the interval in seconds, not `{}`",
-                path.display(),
-                text.trim()
-            )),
-        }
+        Cadence::parse(&text).map(Some).ok_or_else(|| {
+            format!(
+                "{} is damaged: it should hold the interval, formats and region the files were written with",
+                path.display()
+            )
+        })
     }
 
     /// The number k of the file `name` (`<prefix><k>.<extension>`), if it is one of the folder's numbered files.
@@ -82,22 +144,42 @@ impl NumberedFolder<'_> {
 mod tests {
     use super::*;
 
+    fn cadence(interval: f64, formats: &str) -> Cadence {
+        Cadence { interval, formats: formats.to_owned(), region: None }
+    }
+
     #[test]
     fn a_resumed_part_removes_the_later_files_in_every_format_and_keeps_the_rest() {
         let dir = tempfile::tempdir().unwrap();
-        let folder = NumberedFolder { dir: dir.path(), prefix: "particles_", flag: "--dump-every" };
-        folder.record_interval(0.01).unwrap();
+        let folder = NumberedFolder {
+            dir: dir.path(),
+            prefix: "particles_",
+            flag: "--dump-every",
+            format_flag: "--dump-format",
+        };
+        folder.record(&cadence(0.01, "csv,vtk")).unwrap();
         for name in ["particles_000001.csv", "particles_000002.vtu", "particles_000003.csv", "particles_000003.vtu"] {
             std::fs::write(dir.path().join(name), "").unwrap();
         }
         std::fs::write(dir.path().join("particles.pvd"), "").unwrap();
-        folder.refuse_other_interval(0.01).unwrap();
+        folder.refuse_other_cadence(&cadence(0.01, "csv,vtk")).unwrap();
         assert!(folder.remove_from(2).unwrap());
         let mut left: Vec<String> =
             std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
         left.sort();
         assert_eq!(left, [CADENCE_FILE, "particles.pvd", "particles_000001.csv"]);
-        let refused = folder.refuse_other_interval(0.02).unwrap_err();
+        let refused = folder.refuse_other_cadence(&cadence(0.02, "csv,vtk")).unwrap_err();
         assert!(refused.contains("interval of 0.01 s") && refused.contains("`--dump-every 0.01`"), "{refused}");
+        let refused = folder.refuse_other_cadence(&cadence(0.01, "parquet")).unwrap_err();
+        assert!(refused.contains("holds files in csv,vtk") && refused.contains("`--dump-format csv,vtk`"), "{refused}");
+    }
+
+    #[test]
+    fn the_record_reads_back_with_its_region_and_the_first_versions_number_is_an_interval() {
+        let region = Aabb { min: DVec2::new(-0.1, -0.01), max: DVec2::new(0.1, 0.2) };
+        let recorded = Cadence { interval: 0.005, formats: "png".to_owned(), region: Some(region) };
+        assert_eq!(Cadence::parse(&recorded.text()), Some(recorded));
+        assert_eq!(Cadence::parse("0.002\n"), Some(cadence(0.002, "")));
+        assert_eq!(Cadence::parse("interval_s = x\n"), None);
     }
 }

@@ -1,6 +1,6 @@
 //! The run loop's frame sinks: an MCAP recording for Foxglove, PNG pictures and restartable checkpoints.
 
-use crate::numbered_files::NumberedFolder;
+use crate::numbered_files::{Cadence, NumberedFolder};
 use crate::runner::{FrameSink, first_tick};
 use gc2d_engine::{CheckpointError, World};
 use gc2d_geometry::{Aabb, DVec2};
@@ -32,7 +32,8 @@ impl FrameSink for Recording {
 /// Writes `<dir>/frame-<k>.png` on its cadence, k the picture's place on it (taken at k·interval), so that a
 /// resumed run numbers its pictures on from where the earlier part stopped instead of overwriting them from 0. Every
 /// picture shows one region, so that the frames have one size and scale (a movie needs both): the options' view, or
-/// where they have none the region the first picture of this process would fit.
+/// where they have none the region the run's first picture fitted (recorded in the folder's cadence, so that a
+/// resumed part keeps it).
 pub struct PngFrames {
     /// Output directory.
     pub dir: PathBuf,
@@ -45,17 +46,24 @@ pub struct PngFrames {
 impl PngFrames {
     /// The pictures' folder as a [`NumberedFolder`].
     pub fn folder(&self) -> NumberedFolder<'_> {
-        NumberedFolder { dir: &self.dir, prefix: "frame-", flag: "--png-every" }
+        NumberedFolder { dir: &self.dir, prefix: "frame-", flag: "--png-every", format_flag: "--png-every" }
+    }
+
+    /// The interval the pictures are taken on, and the region they show once it is known.
+    pub fn cadence(&self) -> Cadence {
+        Cadence { interval: self.interval, formats: "png".to_owned(), region: self.options.view }
     }
 
     /// Makes `frames/` ready for a part of the run that starts at `world`'s time, as [`crate::dumps::StateDumps::prepare`]
-    /// does `dumps/`.
-    pub fn prepare(&self, world: &World, resumed: bool) -> Result<(), String> {
+    /// does `dumps/`; a resumed part without a view of its own shows the region the earlier part's pictures show.
+    pub fn prepare(&mut self, world: &World, resumed: bool) -> Result<(), String> {
         let folder = self.folder();
         if resumed {
+            let earlier = folder.recorded()?.and_then(|cadence| cadence.region);
             folder.remove_from(first_tick(self.interval, world.time(), 0.5 * world.time_step()))?;
+            self.options.view = self.options.view.or(earlier);
         }
-        folder.record_interval(self.interval)
+        self.folder().record(&self.cadence())
     }
 }
 
@@ -70,6 +78,7 @@ impl FrameSink for PngFrames {
         let path = self.dir.join(format!("frame-{index:05}.png"));
         if self.options.view.is_none() {
             self.options.view = body_bounds(world);
+            self.folder().record(&self.cadence())?;
         }
         render_png(world, &path, &self.options).map_err(|e| format!("picture {}: {e}", path.display()))
     }

@@ -493,6 +493,13 @@ fn a_resumed_run_numbers_its_pictures_on() {
     };
     assert_eq!(frames(), ["frame-00000.png", "frame-00001.png", "frame-00002.png"]);
     assert!(std::fs::read(out.path().join("frames/frame-00000.png")).unwrap() == first, "the first picture changed");
+    // The resumed part shows the region the first part's pictures fitted (recorded with their cadence): it fitted its
+    // own, and one folder held two scales.
+    let size = |name: &String| {
+        let bytes = std::fs::read(out.path().join("frames").join(name)).unwrap();
+        (bytes[16..20].to_vec(), bytes[20..24].to_vec())
+    };
+    assert!(frames().iter().all(|f| size(f) == size(&frames()[0])), "the frames differ in size");
     // Another interval would number the resumed part's pictures on another clock: frame 2 at t = 0.02 after frame 2
     // at t = 0.04. It is refused before anything is touched; the same interval from an earlier checkpoint replaces the
     // pictures after it.

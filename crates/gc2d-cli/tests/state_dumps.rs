@@ -53,7 +53,10 @@ fn a_mill_run_dumps_its_balls_at_the_frame_rate_and_the_last_dump_is_the_final_s
     let names: Vec<&str> = files.iter().map(|f| f.0.as_str()).collect();
     assert_eq!(names, (0..=5).map(|k| format!("particles_{k:06}.csv")).collect::<Vec<_>>());
     // The interval the dumps are numbered on, which a resumed part must keep.
-    assert_eq!(std::fs::read_to_string(out.join("dumps/.gc2d-cadence")).unwrap(), "0.002\n");
+    assert_eq!(
+        std::fs::read_to_string(out.join("dumps/.gc2d-cadence")).unwrap(),
+        "interval_s = 0.002\nformats = csv\n"
+    );
     assert!(out.join("events.csv").exists());
     let first = read_csv(&out.join("dumps/particles_000000.csv")).unwrap();
     assert_eq!(files[0].1.lines().next().unwrap(), PARTICLE_STATE_COLUMNS.join(","));
@@ -193,8 +196,9 @@ fn parquet_and_vtk_dumps_with_their_collection_are_the_same_for_any_thread_count
         .unwrap();
     assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
     assert!(dump_bytes(&split) == files, "dumps differ across a resume");
-    // Resumed at t = 0.004 with CSV dumps only: the later Parquet and VTK dumps of the whole run went with it (a stale
-    // `.vtu` lay beside the new part's `.csv` of the same number), and `particles.pvd` lists what is left.
+    // Resumed at t = 0.004 and run to 0.006: the dumps from 0.004 on are the resumed part's, in every format, and the
+    // earlier part's later ones (0.008, 0.01) are gone with the stretch the run went back from; particles.pvd lists
+    // what is left.
     let checkpoint = dir.path().join("at_0.004.ckpt");
     run(&scene, &dir.path().join("short"), "0.004", &[]);
     std::fs::copy(dir.path().join("short/final.ckpt"), &checkpoint).unwrap();
@@ -202,7 +206,7 @@ fn parquet_and_vtk_dumps_with_their_collection_are_the_same_for_any_thread_count
         gc2d()
             .arg("run")
             .arg(&scene)
-            .args(["--quiet", "--until", "0.01", "--resume"])
+            .args(["--quiet", "--until", "0.006", "--resume"])
             .arg(&checkpoint)
             .arg("--out")
             .arg(&two)
@@ -210,18 +214,31 @@ fn parquet_and_vtk_dumps_with_their_collection_are_the_same_for_any_thread_count
             .output()
             .unwrap()
     };
-    let csv_only = resume_from_checkpoint(&["--dump-format", "csv"]);
-    assert!(csv_only.status.success(), "{}", String::from_utf8_lossy(&csv_only.stderr));
-    let names: Vec<String> = dump_bytes(&two).into_iter().map(|f| f.0).collect();
-    for k in 0..=5 {
-        let has = |extension: &str| names.contains(&format!("particles_{k:06}.{extension}"));
-        // Dumps 0 and 1 are before the checkpoint's time and stay; from dump 2 on only the new part's CSV is there.
-        assert!(has("csv") && has("vtu") == (k < 2) && has("parquet") == (k < 2), "dump {k}: {names:?}");
+    let shorter = resume_from_checkpoint(&formats);
+    assert!(shorter.status.success(), "{}", String::from_utf8_lossy(&shorter.stderr));
+    let now = dump_bytes(&two);
+    for (name, bytes) in &files {
+        let k: u64 =
+            name.strip_prefix("particles_").and_then(|n| n.split('.').next()).map_or(0, |k| k.parse().unwrap());
+        let kept = now.iter().find(|f| &f.0 == name);
+        if name.starts_with("particles_") && k > 3 {
+            assert!(kept.is_none(), "{name} of the abandoned stretch is still there");
+        } else if name.starts_with("particles_") {
+            assert!(kept.is_some_and(|f| &f.1 == bytes), "{name} differs from the unsplit run's");
+        }
     }
     let pvd = std::fs::read_to_string(two.join("dumps/particles.pvd")).unwrap();
-    assert_eq!(pvd.matches("<DataSet ").count(), 2, "{pvd}");
+    assert_eq!(pvd.matches("<DataSet ").count(), 4, "{pvd}");
+    // Other formats would leave no format covering the whole run (an analysis reads the CSV dumps): refused.
+    let other = resume_from_checkpoint(&["--dump-format", "csv"]);
+    assert_eq!(other.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&other.stderr);
+    assert!(
+        message.contains("holds files in csv,parquet,vtk") && message.contains("`--dump-format csv,parquet,vtk`"),
+        "{message}"
+    );
     // Another interval is refused, naming the one the files are numbered on.
-    let other = resume_from_checkpoint(&["--dump-every", "0.001"]);
+    let other = resume_from_checkpoint(&[&formats[..], &["--dump-every", "0.001"]].concat());
     assert_eq!(other.status.code(), Some(2));
     let message = String::from_utf8_lossy(&other.stderr);
     assert!(message.contains("interval of 0.002 s") && message.contains("`--dump-every 0.002`"), "{message}");
