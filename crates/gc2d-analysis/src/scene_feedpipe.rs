@@ -231,10 +231,12 @@ struct Passage {
     mass: f64,
 }
 
-/// The passages of `transits.csv` at `path`, each through one of `outlets` (the run's, by name); read strictly: a
-/// number field that is not one, or an outlet the run does not have, is damage named by its line. The transit time is
-/// empty for a particle that did not come through an inlet (NaN here).
-fn read_transits(path: &Path, outlets: &[&str]) -> Result<Vec<Passage>, AnalysisError> {
+/// The passages of `transits.csv` at `path` of the run whose final state is `world`, read strictly: every row must be
+/// one the run could have written, or it is damage named by its line (a field that must be a number and is not, an
+/// outlet or inlet the run does not have, a particle listed twice, a time outside the run or an entry after the exit,
+/// a transit time that is not the exit less the entry, a mass that is not positive). The inlet, entry and transit
+/// time are empty for a particle that did not come through an inlet (transit time NaN here).
+fn read_transits(path: &Path, world: &World) -> Result<Vec<Passage>, AnalysisError> {
     if !path.exists() {
         return Err(AnalysisError::NotEnoughData(format!(
             "{} is missing: it is written by runs of scenes with outlets",
@@ -243,25 +245,49 @@ fn read_transits(path: &Path, outlets: &[&str]) -> Result<Vec<Passage>, Analysis
     }
     let table = Table::read(path)?;
     let what = "transits.csv";
-    let (outlet, left, transit, mass) = (
-        table.column("outlet", what)?,
-        table.column("left_s", what)?,
-        table.column("transit_time_s", what)?,
-        table.column("mass_kg", what)?,
-    );
+    let column = |name: &str| table.column(name, what);
+    let (particle, inlet, entered, outlet) =
+        (column("particle")?, column("inlet")?, column("entered_s")?, column("outlet")?);
+    let (left, transit, mass) = (column("left_s")?, column("transit_time_s")?, column("mass_kg")?);
+    let outlets: Vec<&str> = world.outlets().iter().map(|o| o.outlet().name.as_str()).collect();
+    let inlets: Vec<&str> = world.inlets().iter().map(|i| i.inlet().name.as_str()).collect();
+    let end = world.time() + 0.5 * world.time_step();
+    let mut seen = std::collections::HashSet::new();
     let mut passages = Vec::with_capacity(table.rows.len());
     for (k, r) in table.rows.iter().enumerate() {
+        let damaged = |what: String| Err(table.damaged(k, &what));
         if !outlets.contains(&r[outlet].as_str()) {
-            let names = outlets.join(", ");
-            return Err(table.damaged(k, &format!("outlet `{}` is not one of the run's outlets ({names})", r[outlet])));
+            return damaged(format!("outlet `{}` is not one of the run's outlets ({})", r[outlet], outlets.join(", ")));
         }
-        let transit_time_s = if r[transit].is_empty() { f64::NAN } else { table.number(k, transit)? };
-        passages.push(Passage {
-            outlet: r[outlet].clone(),
-            left_s: table.number(k, left)?,
-            transit_time_s,
-            mass: table.number(k, mass)?,
-        });
+        let id = table.number(k, particle)?;
+        if !seen.insert(id.to_bits()) {
+            return damaged(format!("particle {id} leaves twice"));
+        }
+        let left_s = table.number(k, left)?;
+        if !(0.0..=end).contains(&left_s) {
+            return damaged(format!("a particle leaves at {left_s} s, outside the run (0 to {} s)", world.time()));
+        }
+        let mass_kg = table.number(k, mass)?;
+        if !(mass_kg > 0.0 && mass_kg.is_finite()) {
+            return damaged(format!("a mass of {mass_kg} kg"));
+        }
+        let transit_time_s = if r[inlet].is_empty() && r[entered].is_empty() && r[transit].is_empty() {
+            f64::NAN
+        } else {
+            if !inlets.contains(&r[inlet].as_str()) {
+                return damaged(format!("inlet `{}` is not one of the run's inlets ({})", r[inlet], inlets.join(", ")));
+            }
+            let (entered_s, transit_s) = (table.number(k, entered)?, table.number(k, transit)?);
+            if !(0.0..=left_s).contains(&entered_s) {
+                return damaged(format!("a particle enters at {entered_s} s and leaves at {left_s} s"));
+            }
+            // The run writes the difference of the two times it writes, each to every digit.
+            if (transit_s - (left_s - entered_s)).abs() > 1e-9 * left_s.max(1e-9) {
+                return damaged(format!("a transit time of {transit_s} s between {entered_s} s and {left_s} s"));
+            }
+            transit_s
+        };
+        passages.push(Passage { outlet: r[outlet].clone(), left_s, transit_time_s, mass: mass_kg });
     }
     Ok(passages)
 }
@@ -284,9 +310,8 @@ pub fn feedpipe_report(
         AnalysisError::NotEnoughData("the run's scene has no outlet: a feed-pipe analysis needs one".into())
     })?;
     let frame = PipeFrame::of_outlet(first_outlet.outlet().from, first_outlet.outlet().to);
-    let names: Vec<&str> = world.outlets().iter().map(|o| o.outlet().name.as_str()).collect();
     let transits_path = run_dir.join("transits.csv");
-    let passages = read_transits(&transits_path, &names)?;
+    let passages = read_transits(&transits_path, &world)?;
     // Each outlet's rows against its own count in the final state: rows lost or added (a file edited, or of another
     // run) would change the throughput without a word.
     for state in world.outlets() {

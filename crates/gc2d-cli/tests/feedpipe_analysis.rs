@@ -111,6 +111,41 @@ fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
     std::fs::write(&transits, lines.join("\n") + "\n").unwrap();
     let stderr = analyze();
     assert!(stderr.contains("passages through outlet `top`, and the run's final state counts"), "{stderr}");
+    // Rows the run cannot have written changed the statistics without a word: each is refused at its line.
+    let lines: Vec<&str> = text.lines().collect();
+    let first: Vec<&str> = lines[1].split(',').collect();
+    let second: Vec<&str> = lines[2].split(',').collect();
+    let edited = |field: usize, value: &str| {
+        let mut row = first.clone();
+        row[field] = value;
+        row.join(",")
+    };
+    let (entered, left) = (first[2], first[4]);
+    let swapped = {
+        let mut row = first.clone();
+        (row[2], row[4]) = (left, entered);
+        row.join(",")
+    };
+    let twice = {
+        let mut row = second.clone();
+        row[0] = first[0];
+        row.join(",")
+    };
+    for (row, line, message) in [
+        (swapped, 2, "a particle enters at"),
+        (edited(5, "5.0"), 2, "a transit time of 5 s between"),
+        (edited(4, "7.0"), 2, "a particle leaves at 7 s, outside the run"),
+        (edited(6, "-1e-5"), 2, "a mass of -0.00001 kg"),
+        (edited(1, "nosuch"), 2, "inlet `nosuch` is not one of the run's inlets (feed)"),
+        (twice, 3, "leaves twice"),
+    ] {
+        let mut damaged = lines.clone();
+        let at = line - 1;
+        damaged[at] = &row;
+        std::fs::write(&transits, damaged.join("\n") + "\n").unwrap();
+        let stderr = analyze();
+        assert!(stderr.contains(&format!("transits.csv:{line}: ")) && stderr.contains(message), "{row}: {stderr}");
+    }
 }
 
 #[test]
