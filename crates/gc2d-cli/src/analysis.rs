@@ -7,6 +7,7 @@ use gc2d_analysis::{
     AnalysisError, AnalyzeOptions, BallIds, FeedpipeOptions, MillOptions, Report, SceneKind, analyze_feedpipe,
     analyze_mill, analyze_run,
 };
+use gc2d_engine::World;
 use gc2d_scene::Scene;
 use serde::Deserialize;
 use std::path::Path;
@@ -82,7 +83,9 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
     let failed = |e: AnalysisError| e.to_string();
     let json = match kind {
         AnalysisKind::Mill => {
-            let options = MillOptions { warm_up_s: settings.warm_up_s, balls: mill_balls(run_dir) };
+            let (balls, warning) = mill_balls(run_dir);
+            warnings.extend(warning);
+            let options = MillOptions { warm_up_s: settings.warm_up_s, balls };
             let report = analyze_mill(run_dir, &options).map_err(failed)?;
             serde_json::to_string_pretty(&report)
         }
@@ -111,17 +114,41 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
 }
 
 /// The balls of the mill run in `run_dir`: the bodies its `scene.ron` builds from `mill.balls`, so that ore grains
-/// drawn as disks are not taken for balls; the disk particles where the scene is missing or does not build.
-pub fn mill_balls(run_dir: &Path) -> BallIds {
-    let Ok(origins) = Scene::from_path(run_dir.join(SCENE_COPY)).and_then(|scene| scene.body_origins()) else {
-        return BallIds::Disks;
+/// drawn as disks are not taken for balls. Where the scene is missing, unreadable, does not build or is not the scene
+/// of the run's `final.ckpt` (edited, or copied from another run), the disk particles, with a warning that says why.
+pub fn mill_balls(run_dir: &Path) -> (BallIds, Option<String>) {
+    let scene_path = run_dir.join(SCENE_COPY);
+    let by_shape = |why: String| {
+        let warning =
+            format!("{why}: the balls are taken to be the disk particles (ore grains drawn as disks count as balls)");
+        (BallIds::Disks, Some(warning))
     };
+    let scene = match Scene::from_path(&scene_path) {
+        Ok(scene) => scene,
+        Err(_) if !scene_path.exists() => return by_shape(format!("{} has no {SCENE_COPY}", run_dir.display())),
+        Err(e) => return by_shape(format!("{} cannot be read ({})", scene_path.display(), e.message())),
+    };
+    if let Ok(world) = World::load_checkpoint_file(run_dir.join("final.ckpt")) {
+        match scene.differences_from_checkpoint(&world) {
+            Ok(differences) if !differences.is_empty() => {
+                return by_shape(format!(
+                    "{} is not the scene of the run's final.ckpt ({})",
+                    scene_path.display(),
+                    differences[0]
+                ));
+            }
+            Err(e) => return by_shape(format!("{} does not build ({})", scene_path.display(), e.message())),
+            Ok(_) => {}
+        }
+    }
+    let Ok(origins) = scene.body_origins() else { return (BallIds::Disks, None) };
     // A single ball is named `mill.balls`, several `mill.balls #k` ([`Scene::body_origins`]).
     let is_ball = |origin: &String| origin == "mill.balls" || origin.starts_with("mill.balls #");
-    match (origins.iter().position(is_ball), origins.iter().rposition(is_ball)) {
+    let balls = match (origins.iter().position(is_ball), origins.iter().rposition(is_ball)) {
         (Some(first), Some(last)) => BallIds::Range(first..last + 1),
         _ => BallIds::Range(0..0),
-    }
+    };
+    (balls, None)
 }
 
 /// A warning where the grid cell asked for (`--grid`, m) would give more than

@@ -580,7 +580,11 @@ const THESIS_WINDOW_S: [f64; 2] = [0.2, 1.0];
 fn print_mill_summary(out: &Path, end: f64) {
     let warm_up_s = (end >= THESIS_WINDOW_S[1]).then_some(THESIS_WINDOW_S[0]);
     let analyze = format!("`gc2d-rs analyze {} --kind mill`", out.display());
-    match mill_report(out, &MillOptions { warm_up_s, balls: gc2d_cli::analysis::mill_balls(out) }) {
+    let (balls, warning) = gc2d_cli::analysis::mill_balls(out);
+    if let Some(warning) = warning {
+        console::err(&format!("warning: {warning}"));
+    }
+    match mill_report(out, &MillOptions { warm_up_s, balls }) {
         Ok(report) => console::err(&format!("{}\nTables, maps and figures: {analyze}.", report.summary())),
         Err(e) => console::err(&format!("No mill summary: {e}.")),
     }

@@ -122,4 +122,25 @@ fn ore_grains_drawn_as_disks_are_not_taken_for_balls() {
         report["classes"].as_array().unwrap().iter().map(|c| c["class"].as_str().unwrap()).collect();
     assert!(classes.iter().any(|c| c.starts_with("ore–") || *c == "ball–ore"), "{classes:?}");
     assert!(report["stress_energy"].is_object(), "{}", report["stress_energy"]);
+    // Without its scene, or with one edited since, the run's balls are not known: taken by shape, with a warning.
+    let analyze_with_scene = |text: Option<String>| {
+        match &text {
+            Some(text) => std::fs::write(out.join("scene.ron"), text).unwrap(),
+            None => std::fs::remove_file(out.join("scene.ron")).unwrap(),
+        }
+        let output = gc2d().arg("analyze").arg(&out).args(["--kind", "mill", "--warm-up", "0.002"]).output().unwrap();
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+        (String::from_utf8_lossy(&output.stderr).to_string(), report["balls"].as_u64().unwrap())
+    };
+    let copy = std::fs::read_to_string(out.join("scene.ron")).unwrap();
+    assert!(copy.contains("count: 100"));
+    let (stderr, balls) = analyze_with_scene(Some(copy.replace("count: 100", "count: 90")));
+    assert!(
+        stderr.contains("is not the scene of the run's final.ckpt") && stderr.contains("disk particles"),
+        "{stderr}"
+    );
+    assert_eq!(balls, 140, "taken by shape");
+    let (stderr, _) = analyze_with_scene(None);
+    assert!(stderr.contains("has no scene.ron") && stderr.contains("disk particles"), "{stderr}");
 }
