@@ -222,7 +222,7 @@ fn inlet_and_source_windows_that_feed_nothing_or_start_before_the_run_are_told()
         let late = Scene::from_str(&scene_text(&format!("{GOOD}, window_s: {window}")), "late.ron").unwrap();
         let warnings = late.warnings();
         assert!(
-            warnings.iter().any(|w| w.contains("inlets[0].window_s: no insertion is due before the run's end at 1 s")),
+            warnings.iter().any(|w| w.contains("inlets[0].window_s: no insertion is due between t = 0 and `run.end_time_s` = 1 s")),
             "{window}: {warnings:?}"
         );
     }

@@ -49,17 +49,21 @@ pub(crate) fn unlisted_pairs(scene: &Scene) -> Vec<[String; 2]> {
     let named = |material| or_first(material, first);
     // Particles: their entries, sources, inlets, and a mill's balls and ore; walls: theirs and a mill's chamber and
     // rotor.
-    let mut particles: Vec<&str> = Vec::new();
-    particles.extend(scene.particles.iter().map(|p| named(&p.material)));
-    particles.extend(scene.blocks.iter().map(|b| named(&b.material)));
-    particles.extend(scene.sources.iter().map(|s| named(&s.material)));
-    particles.extend(scene.inlets.iter().map(|i| named(&i.material)));
+    // Materials of many particles (blocks, sources, inlets, a mill's balls and ore), and one per single particle.
+    let mut many: Vec<&str> = Vec::new();
+    many.extend(scene.blocks.iter().map(|b| named(&b.material)));
+    many.extend(scene.sources.iter().map(|s| named(&s.material)));
+    many.extend(scene.inlets.iter().map(|i| named(&i.material)));
+    let singles: Vec<&str> = scene.particles.iter().map(|p| named(&p.material)).collect();
     let mut walls: Vec<&str> = scene.walls.iter().map(|wall| wall.material().unwrap_or(first)).collect();
     if let Some(mill) = &scene.mill {
-        particles.push(named(&mill.balls.material));
-        particles.extend(mill.ore.iter().map(|ore| named(&ore.material)));
+        many.push(named(&mill.balls.material));
+        many.extend(mill.ore.iter().map(|ore| named(&ore.material)));
         walls.extend([named(&mill.chamber_material), named(&mill.rotor_material)]);
     }
+    let particles: Vec<&str> = many.iter().chain(&singles).copied().collect();
+    // Two particles of one material meet only where there are two.
+    let two_of = |m: &str| many.contains(&m) || singles.iter().filter(|&&s| s == m).count() >= 2;
     let listed = |a: &str, b: &str| {
         scene.interactions.iter().any(|entry| {
             let [x, y] = [entry.materials[0].as_str(), entry.materials[1].as_str()];
@@ -72,7 +76,8 @@ pub(crate) fn unlisted_pairs(scene: &Scene) -> Vec<[String; 2]> {
     for (i, a) in names.iter().enumerate() {
         for b in &names[i..] {
             let (a_moves, b_moves) = (particles.contains(a), particles.contains(b));
-            let meet = (a_moves && (b_moves || walls.contains(b))) || (b_moves && walls.contains(a));
+            let particles_meet = if a == b { two_of(a) } else { a_moves && b_moves };
+            let meet = particles_meet || (a_moves && walls.contains(b)) || (b_moves && walls.contains(a));
             if meet && !listed(a, b) {
                 pairs.push([a.to_string(), b.to_string()]);
             }

@@ -75,14 +75,15 @@ pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
             format!("{tip}: the blade tips must reach beyond the hub and stay inside the chamber"),
         ));
     }
-    // An arm is a capsule from the hub's centre whose round end reaches the tip: it needs a straight part.
+    // An arm is a capsule from the hub's centre whose round end reaches the tip: it needs a straight part, and one of
+    // round-off's length (a width a few ulps below twice the tip) made two opposite arms one wall.
     let width = mill.rotor.blade_width_m;
-    if width >= 2.0 * tip {
+    if tip - 0.5 * width <= 1e-6 * tip {
         return Err(SceneError::value(
             rotor("blade_width_m"),
             format!(
                 "{}: a blade must be narrower than twice the tip radius ({} m), so that its round end reaches the tip \
-                 from the rotor's centre",
+                 from the rotor's centre along a straight part (of at least a millionth of the tip radius)",
                 number(width),
                 number(2.0 * tip)
             ),

@@ -161,8 +161,9 @@ impl Scene {
         {
             if planned == 0.0 {
                 warnings.push(format!(
-                    "{}: no insertion is due before the run's end at {} s (the window is empty, or starts at or after \
-                     the end): it feeds nothing in this run",
+                    "{}: no insertion is due between t = 0 and `run.end_time_s` = {} s (the window is empty, ends before \
+                     the run starts, or starts at or after the end time): it feeds nothing, unless `--until` runs on \
+                     into the window",
                     self.located_field(&field),
                     crate::checks::number(self.run.end_time_s)
                 ));
