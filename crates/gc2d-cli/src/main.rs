@@ -400,13 +400,6 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
             ..PngOptions::default()
         },
     });
-    if pictures.as_ref().is_some_and(|p| p.options.view.is_none()) {
-        console::err(
-            "warning: the scene has neither a `view` nor a `run.domain`: every picture shows the region the first one \
-             fits (the bodies at its time), so later bodies outside it are cut off; give the scene a `view` to choose \
-             the region",
-        );
-    }
     let mill = scene.mill.is_some();
     let dumps_by_default = mill || scene.fluid.is_some();
     let dump_interval = args.dump_every.unwrap_or(if dumps_by_default { frame_interval } else { 0.0 });
@@ -453,6 +446,14 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     }
     if let Some(p) = &mut pictures {
         p.prepare(&world, resumed).map_err(CommandFailure::input)?;
+        // Without a view of the scene's, its domain or the earlier part's pictures, the first picture sets the region.
+        if p.options.view.is_none() {
+            console::err(
+                "warning: the scene has neither a `view` nor a `run.domain`: every picture shows the region the first \
+                 one fits (the bodies at its time), so later bodies outside it are cut off; give the scene a `view` to \
+                 choose the region",
+            );
+        }
     }
     if let Some(d) = &dumps {
         d.prepare(&world, resumed).map_err(CommandFailure::input)?;
