@@ -389,8 +389,8 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
         None => None,
     };
-    // The outputs numbered on a cadence: a resumed part on another interval than the earlier part's is refused here,
-    // before the run directory is touched.
+    // The outputs numbered on a cadence: a resumed part on another interval, or with other formats, than the earlier
+    // part's is refused here, before the run directory is touched.
     let mut pictures = args.png_every.map(|interval| PngFrames {
         dir: out.join("frames"),
         interval,
