@@ -1,14 +1,13 @@
 //! The scene-type analyses of a finished run, as `gc2d-rs analyze --kind …` and a sweep's collection run them: one
 //! name per kind, the file each writes, and one call that runs it.
 
-use crate::outputs::SCENE_COPY;
+use crate::outputs::run_scene;
 use clap::ValueEnum;
 use gc2d_analysis::{
     AnalysisError, AnalyzeOptions, BallIds, FeedpipeOptions, MillOptions, Report, SceneKind, analyze_feedpipe,
     analyze_mill, analyze_run,
 };
 use gc2d_engine::World;
-use gc2d_scene::Scene;
 use serde::Deserialize;
 use std::path::Path;
 
@@ -117,32 +116,19 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
 /// drawn as disks are not taken for balls. Where the scene is missing, unreadable, does not build or is not the scene
 /// of the run's `final.ckpt` (edited, or copied from another run), the disk particles, with a warning that says why.
 pub fn mill_balls(run_dir: &Path) -> (BallIds, Option<String>) {
-    let scene_path = run_dir.join(SCENE_COPY);
-    let by_shape = |why: String| {
-        let warning =
-            format!("{why}: the balls are taken to be the disk particles (ore grains drawn as disks count as balls)");
-        (BallIds::Disks, Some(warning))
-    };
-    let scene = match Scene::from_path(&scene_path) {
+    // A checkpoint that cannot be read fails the analysis itself, with its own message.
+    let Ok(world) = World::load_checkpoint_file(run_dir.join("final.ckpt")) else { return (BallIds::Disks, None) };
+    let scene = match run_scene(run_dir, &world, "the run's final.ckpt") {
         Ok(scene) => scene,
-        Err(_) if !scene_path.exists() => return by_shape(format!("{} has no {SCENE_COPY}", run_dir.display())),
-        Err(e) => return by_shape(format!("{} cannot be read ({})", scene_path.display(), e.message())),
-    };
-    if let Ok(world) = World::load_checkpoint_file(run_dir.join("final.ckpt")) {
-        match scene.differences_from_checkpoint(&world) {
-            Ok(differences) if !differences.is_empty() => {
-                return by_shape(format!(
-                    "{} is not the scene of the run's final.ckpt ({})",
-                    scene_path.display(),
-                    differences[0]
-                ));
-            }
-            Err(e) => return by_shape(format!("{} does not build ({})", scene_path.display(), e.message())),
-            Ok(_) => {}
+        Err(why) => {
+            let warning = format!(
+                "{why}: the balls are taken to be the disk particles (ore grains drawn as disks count as balls)"
+            );
+            return (BallIds::Disks, Some(warning));
         }
-    }
+    };
     let Ok(origins) = scene.body_origins() else { return (BallIds::Disks, None) };
-    // A single ball is named `mill.balls`, several `mill.balls #k` ([`Scene::body_origins`]).
+    // A single ball is named `mill.balls`, several `mill.balls #k` (`Scene::body_origins`).
     let is_ball = |origin: &String| origin == "mill.balls" || origin.starts_with("mill.balls #");
     let balls = match (origins.iter().position(is_ball), origins.iter().rposition(is_ball)) {
         (Some(first), Some(last)) => BallIds::Range(first..last + 1),

@@ -13,6 +13,25 @@ use std::path::Path;
 /// The name of the scene copy in a run's output directory.
 pub const SCENE_COPY: &str = "scene.ron";
 
+/// The scene of the run in `run_dir` whose state is `world` (a checkpoint of the run, named `checkpoint` in messages):
+/// its [`SCENE_COPY`], where that can be read, builds, and builds `world`'s World but for what a resumed run may
+/// change ([`Scene::differences_from_checkpoint`]). Otherwise why not, naming the file: missing, unreadable, not
+/// building, or the first difference (a `scene.ron` edited, or copied from another run). Analyses and exports name
+/// bodies and materials by it, so a wrong one would name them wrongly.
+pub fn run_scene(run_dir: &Path, world: &World, checkpoint: &str) -> Result<Scene, String> {
+    let path = run_dir.join(SCENE_COPY);
+    let scene = match Scene::from_path(&path) {
+        Ok(scene) => scene,
+        Err(_) if !path.exists() => return Err(format!("{} has no {SCENE_COPY}", run_dir.display())),
+        Err(e) => return Err(format!("{} cannot be read ({})", path.display(), e.message())),
+    };
+    match scene.differences_from_checkpoint(world) {
+        Ok(differences) if differences.is_empty() => Ok(scene),
+        Ok(differences) => Err(format!("{} is not the scene of {checkpoint} ({})", path.display(), differences[0])),
+        Err(e) => Err(format!("{} does not build ({})", path.display(), e.message())),
+    }
+}
+
 /// Writes `scene` as the run uses it (after `--seed`) to `path`, every field spelled out: what a run directory was
 /// made from stays with it, so an ensemble of runs can be checked to share one scene and a run can be repeated
 /// after the scene file has changed. The files the scene reads (a fluid's VTK field) are named by absolute paths, so

@@ -3,7 +3,7 @@
 use crate::numbered_files::{Cadence, NumberedFolder};
 use crate::runner::{FrameSink, first_tick};
 use gc2d_engine::{CheckpointError, World};
-use gc2d_geometry::{Aabb, DVec2};
+use gc2d_geometry::Aabb;
 use gc2d_record::{PngOptions, Recorder, body_bounds, render_png};
 use gc2d_scene::Scene;
 use std::path::{Path, PathBuf};
@@ -87,9 +87,7 @@ impl FrameSink for PngFrames {
 /// The region every picture of a run of `scene` shows: its `view`, else its `run.domain`; `None` where it has neither
 /// (the first picture then fits the bodies, [`PngFrames`]).
 pub fn picture_region(scene: &Scene) -> Option<Aabb> {
-    let ranges =
-        scene.view.map(|v| (v.x_range_m, v.y_range_m)).or(scene.run.domain.map(|d| (d.x_range_m, d.y_range_m)));
-    ranges.map(|(x, y)| Aabb { min: DVec2::new(x[0], y[0]), max: DVec2::new(x[1], y[1]) })
+    scene.view.or(scene.run.domain).map(|area| area.aabb())
 }
 
 /// Writes `<dir>/checkpoint-<step>.ckpt` on its cadence.

@@ -29,6 +29,13 @@ fn wait_for(what: &str, done: impl Fn() -> bool) {
     }
 }
 
+/// A PNG picture's width and height, pixels (its IHDR chunk, right after the signature).
+fn png_size(path: &Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).unwrap();
+    let word = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
+    (word(16), word(20))
+}
+
 /// tiny_pile.ron run in one go, the reference for the resume tests.
 fn unsplit_tiny_pile() -> tempfile::TempDir {
     let whole = tempfile::tempdir().unwrap();
@@ -496,10 +503,7 @@ fn a_resumed_run_numbers_its_pictures_on() {
     assert!(std::fs::read(out.path().join("frames/frame-00000.png")).unwrap() == first, "the first picture changed");
     // The resumed part shows the region the first part's pictures fitted (recorded with their cadence): it fitted its
     // own, and one folder held two scales.
-    let size = |name: &String| {
-        let bytes = std::fs::read(out.path().join("frames").join(name)).unwrap();
-        (bytes[16..20].to_vec(), bytes[20..24].to_vec())
-    };
+    let size = |name: &String| png_size(&out.path().join("frames").join(name));
     assert!(frames().iter().all(|f| size(f) == size(&frames()[0])), "the frames differ in size");
     // Another interval would number the resumed part's pictures on another clock: frame 2 at t = 0.02 after frame 2
     // at t = 0.04. It is refused before anything is touched; the same interval from an earlier checkpoint replaces the
@@ -715,12 +719,8 @@ fn record_pictures_snapshot_and_analysis_of_a_run() {
     // Pictures at t = 0, 0.04 and 0.08, all of one size: the scene has no view nor domain, so every picture shows the
     // region the first one fitted (each used to fit its own, and the size changed as the pile grew).
     let frames: Vec<PathBuf> = (0..3).map(|k| out.path().join(format!("frames/frame-{k:05}.png"))).collect();
-    let size = |path: &PathBuf| {
-        let bytes = std::fs::read(path).unwrap();
-        let word = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
-        (word(16), word(20))
-    };
-    assert!(frames.iter().all(|f| size(f) == size(&frames[0])), "{:?}", frames.iter().map(size).collect::<Vec<_>>());
+    let sizes: Vec<(u32, u32)> = frames.iter().map(|f| png_size(f)).collect();
+    assert!(sizes.iter().all(|size| *size == sizes[0]), "{sizes:?}");
     assert!(!out.path().join("frames/frame-00003.png").exists());
     gc2d().arg("snapshot").arg(out.path()).arg("--forces").assert().success().stderr(contains("snapshot.png"));
     let png = std::fs::read(out.path().join("snapshot.png")).unwrap();

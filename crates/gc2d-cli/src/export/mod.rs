@@ -6,7 +6,7 @@ pub mod rows;
 pub mod vtk;
 
 use crate::object_names::ObjectNames;
-use crate::outputs::SCENE_COPY;
+use crate::outputs::run_scene;
 use crate::parquet_table::{NamedColumn, write_parquet};
 use gc2d_analysis::particle_state::csv::quoted;
 use gc2d_engine::World;
@@ -117,47 +117,22 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     }
     let (checkpoint, world) = choose(run, at)?;
     let time_s = world.time();
-    let mut formats = formats.to_vec();
-    formats.dedup();
+    // Each format once, in the order given (`csv,parquet,csv` listed the CSV files twice in the manifest).
+    let mut once: Vec<ExportFormat> = Vec::new();
+    for format in formats {
+        if !once.contains(format) {
+            once.push(*format);
+        }
+    }
+    let formats = once;
     refuse_to_replace_other_files(out, &planned_files(&formats, world.steps()))?;
     // The scene as run names the materials and the bodies' origins; without it, or where it is not the scene of the
     // checkpoint (edited, or copied from another run), the names are left empty rather than made up.
-    let scene_path = run.join(SCENE_COPY);
     let mut warnings = Vec::new();
-    let scene = match Scene::from_path(&scene_path) {
-        Ok(scene) => match scene.differences_from_checkpoint(&world) {
-            Ok(differences) if differences.is_empty() => Some(scene),
-            Ok(differences) => {
-                warnings.push(format!(
-                    "{} is not the scene of {} ({}): the particles' origins and materials are left empty",
-                    scene_path.display(),
-                    checkpoint.display(),
-                    differences[0]
-                ));
-                None
-            }
-            Err(e) => {
-                warnings.push(format!(
-                    "{} does not build ({}): the particles' origins and materials are left empty",
-                    scene_path.display(),
-                    e.message()
-                ));
-                None
-            }
-        },
-        Err(_) if !scene_path.exists() => {
-            warnings.push(format!(
-                "{} has no {SCENE_COPY}: the particles' origins and materials are left empty",
-                run.display()
-            ));
-            None
-        }
-        Err(e) => {
-            warnings.push(format!(
-                "{} cannot be read ({}): the particles' origins and materials are left empty",
-                scene_path.display(),
-                e.message()
-            ));
+    let scene = match run_scene(run, &world, &checkpoint.display().to_string()) {
+        Ok(scene) => Some(scene),
+        Err(why) => {
+            warnings.push(format!("{why}: the particles' origins and materials are left empty"));
             None
         }
     };
@@ -179,22 +154,22 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
         written(files, path)
     };
     for format in &formats {
+        let [first, second] = file_names(*format, world.steps());
         match format {
             ExportFormat::Csv => {
-                write(&mut files, "particles.csv", particles_csv(&particles))?;
-                write(&mut files, "contacts.csv", contacts_csv(&contacts, time_s))?;
+                write(&mut files, &first, particles_csv(&particles))?;
+                write(&mut files, &second, contacts_csv(&contacts, time_s))?;
             }
             ExportFormat::Vtk => {
-                let name = format!("particles_{}.vtu", world.steps());
-                write(&mut files, &name, vtk::particles_vtu(&world, &particles))?;
-                write(&mut files, "particles.pvd", vtk::collection(&[(time_s, Path::new(&name))]))?;
+                write(&mut files, &first, vtk::particles_vtu(&world, &particles))?;
+                write(&mut files, &second, vtk::collection(&[(time_s, Path::new(&first))]))?;
             }
             ExportFormat::Parquet => {
-                for (name, columns) in
-                    [("particles", particle_columns(&particles)), ("contacts", contact_columns(&contacts, time_s))]
-                {
-                    let path = out.join(format!("{name}.parquet"));
-                    write_parquet(name, &columns, &path)
+                let tables =
+                    [("particles", particle_columns(&particles)), ("contacts", contact_columns(&contacts, time_s))];
+                for ((table, columns), name) in tables.into_iter().zip([first, second]) {
+                    let path = out.join(name);
+                    write_parquet(table, &columns, &path)
                         .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
                     written(&mut files, path)?;
                 }
@@ -204,17 +179,19 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     Ok(Exported { checkpoint, time_s, particles: particles.len(), contacts: contacts.len(), files, warnings })
 }
 
+/// The two files an export writes in `format` of a checkpoint after `steps` steps: the particles' and the contacts'
+/// tables (CSV, Parquet), or the particles' outlines and their collection (VTK).
+fn file_names(format: ExportFormat, steps: u64) -> [String; 2] {
+    match format {
+        ExportFormat::Csv => ["particles.csv".to_string(), "contacts.csv".to_string()],
+        ExportFormat::Vtk => [format!("particles_{steps}.vtu"), "particles.pvd".to_string()],
+        ExportFormat::Parquet => ["particles.parquet".to_string(), "contacts.parquet".to_string()],
+    }
+}
+
 /// The names of the files an export in `formats` of a checkpoint after `steps` steps writes.
 fn planned_files(formats: &[ExportFormat], steps: u64) -> Vec<String> {
-    let mut names = Vec::new();
-    for format in formats {
-        match format {
-            ExportFormat::Csv => names.extend(["particles.csv".to_string(), "contacts.csv".to_string()]),
-            ExportFormat::Vtk => names.extend([format!("particles_{steps}.vtu"), "particles.pvd".to_string()]),
-            ExportFormat::Parquet => names.extend(["particles.parquet".to_string(), "contacts.parquet".to_string()]),
-        }
-    }
-    names
+    formats.iter().flat_map(|&format| file_names(format, steps)).collect()
 }
 
 /// Refuses an export that would overwrite a file in `out` that no earlier export there wrote (its

@@ -10,7 +10,7 @@ use crate::error::SceneError;
 use crate::schema::{DropHeight, Scene};
 use crate::spans::field_path;
 use gc2d_engine::shape_view;
-use gc2d_geometry::DVec2;
+use gc2d_geometry::{Aabb, DVec2};
 
 /// Points sampled along each line, at the middles of equal pieces.
 const SAMPLES: usize = 200;
@@ -80,10 +80,7 @@ pub(crate) fn covered_lines(scene: &Scene, walls: &[PlacedWall]) -> Vec<CoveredL
         .filter(|w| w.motion.is_static())
         .map(|w| (w.shape.body_points().iter().map(|v| w.pose.apply(*v)).collect(), w))
         .collect();
-    let domain = scene
-        .run
-        .domain
-        .map(|d| (DVec2::new(d.x_range_m[0], d.y_range_m[0]), DVec2::new(d.x_range_m[1], d.y_range_m[1])));
+    let domain = scene.run.domain.map(|d| d.aabb());
     // Where a point lies that no particle can stay at: inside a wall, or beyond the domain's sides by more than the
     // tolerance (a line along a side counts as inside, as a centre on it does for the engine).
     let place = |point: DVec2, tolerance: f64| {
@@ -92,19 +89,15 @@ pub(crate) fn covered_lines(scene: &Scene, walls: &[PlacedWall]) -> Vec<CoveredL
         });
         match (wall, domain) {
             (Some((_, w)), _) => Some(format!("inside `{}`", w.path)),
-            (None, Some((min, max))) => {
-                let beyond = (min - point).max(point - max).max_element();
-                (beyond > tolerance).then(|| "outside `run.domain`".to_string())
-            }
+            (None, Some(domain)) => (beyond(domain, point) > tolerance).then(|| "outside `run.domain`".to_string()),
             (None, None) => None,
         }
     };
     let cover = |from: DVec2, to: DVec2, field: String, what: &'static str| {
-        let size = from.distance(to).max(from.abs().max_element()).max(to.abs().max_element());
+        let tolerance = DEPTH_TOLERANCE * line_size(from, to);
         let mut places: Vec<(String, usize)> = Vec::new();
-        for k in 0..SAMPLES {
-            let point = from.lerp(to, (k as f64 + 0.5) / SAMPLES as f64);
-            if let Some(place) = place(point, DEPTH_TOLERANCE * size) {
+        for point in samples(from, to) {
+            if let Some(place) = place(point, tolerance) {
                 match places.iter_mut().find(|(known, _)| *known == place) {
                     Some((_, count)) => *count += 1,
                     None => places.push((place, 1)),
@@ -133,22 +126,31 @@ pub(crate) fn covered_lines(scene: &Scene, walls: &[PlacedWall]) -> Vec<CoveredL
 /// domain removes every particle before it could cross such an outlet, which then counts nothing. Their fields
 /// (`outlets[0].from_m`), in scene order.
 pub(crate) fn outlets_outside_domain(scene: &Scene) -> Vec<String> {
-    let Some(domain) = scene.run.domain else { return Vec::new() };
-    let (min, max) =
-        (DVec2::new(domain.x_range_m[0], domain.y_range_m[0]), DVec2::new(domain.x_range_m[1], domain.y_range_m[1]));
+    let Some(domain) = scene.run.domain.map(|d| d.aabb()) else { return Vec::new() };
     scene
         .outlets
         .iter()
         .enumerate()
         .filter(|(_, outlet)| {
             let (from, to) = (DVec2::from_array(outlet.from_m), DVec2::from_array(outlet.to_m));
-            let tolerance =
-                DEPTH_TOLERANCE * from.distance(to).max(from.abs().max_element()).max(to.abs().max_element());
-            (0..SAMPLES).all(|k| {
-                let point = from.lerp(to, (k as f64 + 0.5) / SAMPLES as f64);
-                (min - point).max(point - max).max_element() > tolerance
-            })
+            let tolerance = DEPTH_TOLERANCE * line_size(from, to);
+            samples(from, to).all(|point| beyond(domain, point) > tolerance)
         })
         .map(|(i, _)| field_path(&format!("outlets[{i}]"), "from_m"))
         .collect()
+}
+
+/// A line's size for the depth tolerance: its length, or the distance of its ends from the origin where that is more.
+fn line_size(from: DVec2, to: DVec2) -> f64 {
+    from.distance(to).max(from.abs().max_element()).max(to.abs().max_element())
+}
+
+/// The [`SAMPLES`] points of the line from `from` to `to`, at the middles of equal pieces.
+fn samples(from: DVec2, to: DVec2) -> impl Iterator<Item = DVec2> {
+    (0..SAMPLES).map(move |k| from.lerp(to, (k as f64 + 0.5) / SAMPLES as f64))
+}
+
+/// How far `point` lies beyond the sides of `domain`, m (negative inside).
+fn beyond(domain: Aabb, point: DVec2) -> f64 {
+    (domain.min - point).max(point - domain.max).max_element()
 }

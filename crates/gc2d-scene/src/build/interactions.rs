@@ -18,11 +18,7 @@ pub(crate) fn interaction_table(scene: &Scene, materials: &Materials) -> Result<
     let mut pairs = Vec::with_capacity(all.len() * (all.len() + 1) / 2);
     for a in 0..all.len() {
         for b in a..all.len() {
-            let listed = scene.interactions.iter().find(|entry| {
-                let [x, y] = [entry.materials[0].as_str(), entry.materials[1].as_str()];
-                (x == all[a].name && y == all[b].name) || (x == all[b].name && y == all[a].name)
-            });
-            let model = match listed {
+            let model = match listed_entry(scene, &all[a].name, &all[b].name) {
                 Some(entry) => listed_model(&entry.law, &all[a], &all[b])
                     .map_err(|message| SceneError::value(interaction_path(scene, entry), message))?,
                 None => mixed_model(&all[a], &all[b]),
@@ -31,6 +27,14 @@ pub(crate) fn interaction_table(scene: &Scene, materials: &Materials) -> Result<
         }
     }
     InteractionTable::new(all.len(), &pairs).map_err(|e| SceneError::value("interactions", e.to_string()))
+}
+
+/// The `interactions` entry of the materials named `a` and `b`, in either order.
+fn listed_entry<'a>(scene: &'a Scene, a: &str, b: &str) -> Option<&'a crate::schema::Interaction> {
+    scene.interactions.iter().find(|entry| {
+        let [x, y] = [entry.materials[0].as_str(), entry.materials[1].as_str()];
+        (x == a && y == b) || (x == b && y == a)
+    })
 }
 
 /// The pairs of materials that can meet in the scene (two materials of its particles, or one of its particles' and one
@@ -64,12 +68,6 @@ pub(crate) fn unlisted_pairs(scene: &Scene) -> Vec<[String; 2]> {
     let particles: Vec<&str> = many.iter().chain(&singles).copied().collect();
     // Two particles of one material meet only where there are two.
     let two_of = |m: &str| many.contains(&m) || singles.iter().filter(|&&s| s == m).count() >= 2;
-    let listed = |a: &str, b: &str| {
-        scene.interactions.iter().any(|entry| {
-            let [x, y] = [entry.materials[0].as_str(), entry.materials[1].as_str()];
-            (x == a && y == b) || (x == b && y == a)
-        })
-    };
     // In the scene's order of materials, each pair once.
     let names: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();
     let mut pairs = Vec::new();
@@ -78,7 +76,7 @@ pub(crate) fn unlisted_pairs(scene: &Scene) -> Vec<[String; 2]> {
             let (a_moves, b_moves) = (particles.contains(a), particles.contains(b));
             let particles_meet = if a == b { two_of(a) } else { a_moves && b_moves };
             let meet = particles_meet || (a_moves && walls.contains(b)) || (b_moves && walls.contains(a));
-            if meet && !listed(a, b) {
+            if meet && listed_entry(scene, a, b).is_none() {
                 pairs.push([a.to_string(), b.to_string()]);
             }
         }

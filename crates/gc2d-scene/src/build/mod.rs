@@ -31,7 +31,7 @@ use gc2d_engine::schedules::{
 use gc2d_engine::{
     BodyShape, DropSource, GearC0, Integrator, MaterialId, SafetyLimits, TimeWindow, World, WorldConfig, WorldError,
 };
-use gc2d_geometry::{Aabb, DVec2, Pose};
+use gc2d_geometry::{DVec2, Pose};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use safety::{PlacedBody, TimeStepBound};
@@ -241,10 +241,7 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
     if let Some(error) = SceneError::combine(safety::unusable_masses(&particles, scene.mass_model)) {
         return Err(error);
     }
-    let domain = scene.run.domain.map(|d| Aabb {
-        min: DVec2::new(d.x_range_m[0], d.y_range_m[0]),
-        max: DVec2::new(d.x_range_m[1], d.y_range_m[1]),
-    });
+    let domain = scene.run.domain.map(|d| d.aabb());
     if let Some(domain) = domain
         && let Some(error) = SceneError::combine(safety::outside_domain(&particles, domain))
     {

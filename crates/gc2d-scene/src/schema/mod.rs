@@ -175,6 +175,16 @@ pub struct Area {
     pub y_range_m: [f64; 2],
 }
 
+impl Area {
+    /// The rectangle as a box, m.
+    pub fn aabb(&self) -> gc2d_geometry::Aabb {
+        gc2d_geometry::Aabb {
+            min: gc2d_geometry::DVec2::new(self.x_range_m[0], self.y_range_m[0]),
+            max: gc2d_geometry::DVec2::new(self.x_range_m[1], self.y_range_m[1]),
+        }
+    }
+}
+
 /// The magnitude of gravity over time; it acts along −y (gsi `G`, `G_TIME`, `G_PARAMETER`, `G_TYPE`, §2.13).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
