@@ -11,7 +11,9 @@ use crate::schema::{
     Source, defaults,
 };
 use crate::spans::field_path;
-use gc2d_contact::{Cohesion, ContactLaw, CundallStrack, NormalDamping, NormalElastic};
+use gc2d_contact::{
+    Cohesion, ContactLaw, CundallStrack, NormalDamping, NormalElastic, PenetrationLawError, RestitutionTable,
+};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::borrow::Cow;
@@ -535,6 +537,17 @@ fn check_penetration_law(law: &InteractionLaw, path: &str, errors: &mut Vec<Scen
             collect(errors, non_negative(&at("damping", "a"), a).map(drop));
             collect(errors, positive(&at("damping", "b"), b).map(drop));
             collect(errors, finite(&at("damping", "c"), c).map(drop));
+        }
+        Damping::Table(ref points) => {
+            if let Err(error) = RestitutionTable::new(points) {
+                // A bad point is named by its index in the list, a bad length at the list.
+                let field = match error {
+                    PenetrationLawError::TableSpeed { index, .. }
+                    | PenetrationLawError::TableRestitution { index, .. } => format!("{}[{index}]", at("damping", "0")),
+                    _ => at("damping", "0"),
+                };
+                errors.push(SceneError::value(field, format!("damping table: {error}")).with_label("out of range"));
+            }
         }
         _ => {}
     }

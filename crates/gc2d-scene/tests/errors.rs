@@ -147,6 +147,9 @@ fn penetration_law_numbers_are_named_by_their_scene_fields() {
         ("Hertz(damping: Restitution(1.5))", "interactions[0].law.damping.0"),
         ("Hertz(damping: Ratio(-0.1))", "interactions[0].law.damping.0"),
         ("Hertz(damping: PowerLaw(a: 1, b: 0, c: 0.3))", "interactions[0].law.damping.b"),
+        ("Hertz(damping: Table([]))", "interactions[0].law.damping.0"),
+        ("Hertz(damping: Table([(0, 0.9), (0, 0.8)]))", "interactions[0].law.damping.0[1]"),
+        ("Hertz(damping: Table([(0, 1.5)]))", "interactions[0].law.damping.0[0]"),
         ("Hertz(rolling: (mu_r: -1))", "interactions[0].law.rolling.mu_r"),
         ("Linear(stiffness_n_m: 0)", "interactions[0].law.stiffness_n_m"),
     ] {
