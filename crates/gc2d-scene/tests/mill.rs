@@ -91,6 +91,14 @@ fn mill_errors_name_the_field() {
     assert!(e.message().contains("2000000 from `mill.balls.count`"), "{}", e.message());
     let e = error(scene("rpm: 1000", "count: 10, material: \"stel\""));
     assert_eq!(e.path(), "mill.balls.material", "{}", e.render_plain());
+    // A mill far from the origin: its coordinates keep too few digits, which made its two blades look like one wall
+    // ("an arm given twice"). Refused at the centre; a kilometre off is still fine.
+    let far =
+        |centre: &str| scene("rpm: 1000", "count: 10").replace("mill: (", &format!("mill: (centre_m: {centre}, "));
+    let e = error(far("(1e12, 0)"));
+    assert_eq!((e.kind(), e.path()), (ErrorKind::Value, "mill.centre_m"), "{}", e.render_plain());
+    assert!(e.message().contains("chamber radii from the origin"), "{}", e.message());
+    assert!(Scene::from_str(&far("(0, -1000)"), "far.ron").unwrap().build().is_ok());
 }
 
 #[test]

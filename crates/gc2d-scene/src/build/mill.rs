@@ -30,6 +30,8 @@ pub const MAX_CHAMBER_SEGMENTS: usize = 10_000;
 const MAX_SEGMENT_PER_BALL_RADIUS: f64 = 1.0;
 /// The gap between neighbouring balls of a bed, as a fraction of the ball diameter (a loose packing).
 const BED_GAP: f64 = 0.01;
+/// The farthest a mill's centre may lie from the origin, in chamber radii (see `check`).
+const MAX_CENTRE_OFFSET_RADII: f64 = 1e6;
 /// Samples of one wave when the wavy wall's curvature is checked.
 const CURVATURE_SAMPLES_PER_LOBE: usize = 4096;
 
@@ -64,6 +66,22 @@ pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
     let balls = |field: &str| field_path(&at("balls"), field);
     finite_pair(&at("centre_m"), mill.centre_m)?;
     positive(&at("chamber_radius_m"), mill.chamber_radius_m)?;
+    // Far from the origin, f64 coordinates keep too few digits for the contacts of balls a fraction of the chamber's
+    // size (at 1e6 radii, about 1e-10 of a radius; further out, the blades' ends and the balls' overlaps blur).
+    let offset = mill.centre_m[0].abs().max(mill.centre_m[1].abs());
+    if offset > MAX_CENTRE_OFFSET_RADII * mill.chamber_radius_m {
+        return Err(SceneError::value(
+            at("centre_m"),
+            format!(
+                "({}, {}): the mill's centre lies {} chamber radii from the origin, beyond the {} at which                  coordinates keep enough digits for its contacts",
+                number(mill.centre_m[0]),
+                number(mill.centre_m[1]),
+                number(offset / mill.chamber_radius_m),
+                number(MAX_CENTRE_OFFSET_RADII)
+            ),
+        )
+        .with_help("place the mill near the origin, e.g. `centre_m: (0, 0)`"));
+    }
     finite(&rotor("rpm"), mill.rotor.rpm)?;
     non_negative(&rotor("spin_up_s"), mill.rotor.spin_up_s)?;
     positive(&rotor("hub_radius_m"), mill.rotor.hub_radius_m)?;
