@@ -777,7 +777,15 @@ fn snapshot(
     let output = output.unwrap_or_else(|| {
         if run.is_dir() { run.join("snapshot.png") } else { checkpoint.with_file_name("snapshot.png") }
     });
-    let options = PngOptions { width, colour_by: colour_by.into(), force_network: forces, ..PngOptions::default() };
+    // A run directory's scene may name the region its pictures show (`view`), as the frames of `--png-every` do.
+    let view = if run.is_dir() { Scene::from_path(run.join(SCENE_COPY)).ok().and_then(|s| s.view) } else { None };
+    let options = PngOptions {
+        width,
+        view: view.map(|area| area.aabb()),
+        colour_by: colour_by.into(),
+        force_network: forces,
+        ..PngOptions::default()
+    };
     render_png(&world, &output, &options)
         .map_err(|e| CommandFailure::input(format!("cannot draw {}: {e}", output.display())))?;
     console::err(&format!(

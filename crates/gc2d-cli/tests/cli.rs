@@ -800,6 +800,24 @@ fn snapshot_draws_the_newest_state_of_a_killed_run() {
     gc2d().arg("snapshot").arg(out.path()).arg("-o").arg(&folder).assert().code(2).stderr(contains("cannot draw"));
 }
 
+/// `snapshot` of a run directory shows the region the scene's `view` names, as the frames of `--png-every` do (it
+/// fitted the particles and walls, whatever the scene said).
+#[test]
+fn snapshot_shows_the_scenes_view() {
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.01", "--out"]).arg(out.path()).assert().success();
+    let picture = out.path().join("fitted.png");
+    gc2d().arg("snapshot").arg(out.path()).args(["--width", "400", "-o"]).arg(&picture).assert().success();
+    assert_ne!(png_size(&picture), (400, 100));
+    let copy = out.path().join("scene.ron");
+    let text = std::fs::read_to_string(&copy).unwrap();
+    let view = "view: Some((x_range_m: (-0.2, 0.2), y_range_m: (0.0, 0.1))),";
+    std::fs::write(&copy, text.replace("view: None,", view)).unwrap();
+    let picture = out.path().join("view.png");
+    gc2d().arg("snapshot").arg(out.path()).args(["--width", "400", "-o"]).arg(&picture).assert().success();
+    assert_eq!(png_size(&picture), (400, 100));
+}
+
 #[test]
 fn check_and_run_warn_of_an_inlet_too_slow_for_its_rate() {
     let dir = tempfile::tempdir().unwrap();
