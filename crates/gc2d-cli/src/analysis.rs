@@ -118,8 +118,8 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
 pub fn mill_balls(run_dir: &Path) -> (BallIds, Option<String>) {
     // A checkpoint that cannot be read fails the analysis itself, with its own message.
     let Ok(world) = World::load_checkpoint_file(run_dir.join("final.ckpt")) else { return (BallIds::Disks, None) };
-    let scene = match run_scene(run_dir, &world, "the run's final.ckpt") {
-        Ok(scene) => scene,
+    let origins = match run_scene(run_dir, &world, "the run's final.ckpt") {
+        Ok(run) => run.body_origins,
         Err(why) => {
             let warning = format!(
                 "{why}: the balls are taken to be the disk particles (ore grains drawn as disks count as balls)"
@@ -127,7 +127,6 @@ pub fn mill_balls(run_dir: &Path) -> (BallIds, Option<String>) {
             return (BallIds::Disks, Some(warning));
         }
     };
-    let Ok(origins) = scene.body_origins() else { return (BallIds::Disks, None) };
     // A single ball is named `mill.balls`, several `mill.balls #k` (`Scene::body_origins`).
     let is_ball = |origin: &String| origin == "mill.balls" || origin.starts_with("mill.balls #");
     let balls = match (origins.iter().position(is_ball), origins.iter().rposition(is_ball)) {

@@ -18,18 +18,31 @@ pub const SCENE_COPY: &str = "scene.ron";
 /// change ([`Scene::differences_from_checkpoint`]). Otherwise why not, naming the file: missing, unreadable, not
 /// building, or the first difference (a `scene.ron` edited, or copied from another run). Analyses and exports name
 /// bodies and materials by it, so a wrong one would name them wrongly.
-pub fn run_scene(run_dir: &Path, world: &World, checkpoint: &str) -> Result<Scene, String> {
+pub fn run_scene(run_dir: &Path, world: &World, checkpoint: &str) -> Result<RunScene, String> {
     let path = run_dir.join(SCENE_COPY);
     let scene = match Scene::from_path(&path) {
         Ok(scene) => scene,
         Err(_) if !path.exists() => return Err(format!("{} has no {SCENE_COPY}", run_dir.display())),
         Err(e) => return Err(format!("{} cannot be read ({})", path.display(), e.message())),
     };
-    match scene.differences_from_checkpoint(world) {
-        Ok(differences) if differences.is_empty() => Ok(scene),
-        Ok(differences) => Err(format!("{} is not the scene of {checkpoint} ({})", path.display(), differences[0])),
+    match scene.compare_with_checkpoint(world) {
+        Ok(comparison) if comparison.differences.is_empty() => {
+            Ok(RunScene { scene, body_origins: comparison.body_origins })
+        }
+        Ok(comparison) => {
+            Err(format!("{} is not the scene of {checkpoint} ({})", path.display(), comparison.differences[0]))
+        }
         Err(e) => Err(format!("{} does not build ({})", path.display(), e.message())),
     }
+}
+
+/// A run's scene, checked against its checkpoint by [`run_scene`], with the scene entry each of its start bodies
+/// comes from ([`Scene::body_origins`], built with the check).
+pub struct RunScene {
+    /// The run's `scene.ron`.
+    pub scene: Scene,
+    /// The origin of each body the scene builds, by body id.
+    pub body_origins: Vec<String>,
 }
 
 /// Writes `scene` as the run uses it (after `--seed`) to `path`, every field spelled out: what a run directory was

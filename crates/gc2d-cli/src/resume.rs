@@ -110,12 +110,12 @@ pub fn another_scene(scene: &Scene, scene_path: &Path, run_dir: &Path) -> Option
 const LISTED_DIFFERENCES: usize = 3;
 
 /// Why `scene` (read from `scene_path`) cannot continue `point`: the World it builds differs from the checkpoint's in
-/// what a resumed run may not change ([`Scene::differences_from_checkpoint`]). This catches what [`another_scene`]
+/// what a resumed run may not change ([`Scene::compare_with_checkpoint`]). This catches what [`another_scene`]
 /// cannot: a checkpoint resumed outside its run directory, and a run directory's `scene.ron` edited by hand. A scene
 /// that does not build is refused with its own errors.
 pub fn another_checkpoint(scene: &Scene, scene_path: &Path, point: &ResumePoint) -> Result<(), String> {
     let differences =
-        scene.differences_from_checkpoint(&point.world).map_err(|e| format!("{:?}", miette::Report::new(e)))?;
+        scene.compare_with_checkpoint(&point.world).map_err(|e| format!("{:?}", miette::Report::new(e)))?.differences;
     if differences.is_empty() {
         return Ok(());
     }

@@ -28,6 +28,7 @@ pub mod spans;
 pub mod summary;
 mod validate;
 
+pub use build::CheckpointComparison;
 pub use build::blocks::MAX_INITIAL_PARTICLES;
 pub use build::fluid::{DRAG_STEPS_PER_RELAXATION_TIME, DragScale, FluidSummary};
 pub use build::safety::{AUTOMATIC_TIME_STEP_FRACTION, FALLBACK_TIME_STEP, SOURCE_SAMPLES};

@@ -1,4 +1,4 @@
-//! A checkpoint compared with the scene a run is resumed with (`Scene::differences_from_checkpoint`): the same scene
+//! A checkpoint compared with the scene a run is resumed with (`Scene::compare_with_checkpoint`): the same scene
 //! continues it whatever a resumed run may change, and an edit that the checkpoint's World would silently ignore is
 //! named by the scene's field or object.
 
@@ -21,7 +21,7 @@ fn differences_after_edit(text: &str, steps: u32, from: &str, to: &str) -> Vec<S
         world.step().unwrap();
     }
     let edited = Scene::from_str(&text.replace(from, to), "edited.ron").unwrap();
-    edited.differences_from_checkpoint(&world).unwrap()
+    edited.compare_with_checkpoint(&world).unwrap().differences
 }
 
 #[test]
@@ -89,6 +89,6 @@ fn a_mill_or_feed_pipe_edit_is_named() {
 fn another_scene_altogether_is_told_by_its_bodies() {
     let world = Scene::from_str(&bundled("pile.ron"), "pile.ron").unwrap().build().unwrap();
     let mill = Scene::from_str(&bundled("mill.ron"), "mill.ron").unwrap();
-    let differences = mill.differences_from_checkpoint(&world).unwrap();
+    let differences = mill.compare_with_checkpoint(&world).unwrap().differences;
     assert!(differences.iter().any(|d| d.starts_with("walls: ")), "{differences:?}");
 }

@@ -10,7 +10,6 @@ use crate::outputs::run_scene;
 use crate::parquet_table::{NamedColumn, write_parquet};
 use gc2d_analysis::particle_state::csv::quoted;
 use gc2d_engine::World;
-use gc2d_scene::Scene;
 use rows::{ContactRow, ParticleRow, contact_rows, particle_rows};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -136,8 +135,8 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
             None
         }
     };
-    let materials = scene.as_ref().map(Scene::material_names).unwrap_or_default();
-    let names = scene.as_ref().and_then(|s| s.body_origins().ok()).map(ObjectNames::from_origins);
+    let materials = scene.as_ref().map(|run| run.scene.material_names()).unwrap_or_default();
+    let names = scene.map(|run| ObjectNames::from_origins(run.body_origins));
     let particles = particle_rows(&world, &materials, names.as_ref());
     let contacts = contact_rows(&world);
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;

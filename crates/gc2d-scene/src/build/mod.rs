@@ -13,6 +13,7 @@ pub(crate) mod inlets;
 pub(crate) mod interactions;
 pub(crate) mod mill;
 mod resume;
+pub use resume::CheckpointComparison;
 pub(crate) mod safety;
 pub(crate) mod shapes;
 pub(crate) mod walls;

@@ -11,15 +11,26 @@ use gc2d_engine::safety::SafetyLimits;
 use gc2d_engine::{Bodies, BodyKind, GearC0, Integrator, WallMotion, World, WorldConfig};
 use gc2d_geometry::{Aabb, DVec2};
 
+/// A scene compared with a checkpoint's World ([`Scene::compare_with_checkpoint`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CheckpointComparison {
+    /// What the scene's World differs in from the checkpoint's, one line per difference naming the scene's field or
+    /// object; empty where the scene can continue the checkpoint.
+    pub differences: Vec<String>,
+    /// The scene entry each body of the scene's World comes from ([`Scene::body_origins`]), built once with the
+    /// comparison so that callers naming the bodies need not build the scene again.
+    pub body_origins: Vec<String>,
+}
+
 impl Scene {
-    /// What the World this scene builds differs in from the checkpoint's `world`, one line per difference naming the
-    /// scene's field or object (`run.time_step_s`, `walls[2]`, `blocks[0] #17`, …): the run's settings (Δt, corrector,
-    /// contact laws, mass model, gravity, heating, safety limits, domain), the walls (shape, material, pose or motion),
-    /// the particles of the start (shape, material, mass), sources, inlets, outlets and body forces (drag springs, a
-    /// fluid). What a resumed run may change is not compared: the seed (the scene is built with the checkpoint's),
-    /// the end time, output cadences, name, description and view. Empty where the scene can continue the checkpoint;
-    /// an error where the scene does not build.
-    pub fn differences_from_checkpoint(&self, world: &World) -> Result<Vec<String>, SceneError> {
+    /// Compares the World this scene builds with the checkpoint's `world`. The differences, one line each naming the
+    /// scene's field or object (`run.time_step_s`, `walls[2]`, `blocks[0] #17`, …), cover the run's settings (Δt,
+    /// corrector, contact laws, mass model, gravity, heating, safety limits, domain), the walls (shape, material, pose
+    /// or motion), the particles of the start (shape, material, mass), sources, inlets, outlets and body forces (drag
+    /// springs, a fluid). What a resumed run may change is not compared: the seed (the scene is built with the
+    /// checkpoint's), the end time, output cadences, name, description and view. An error where the scene does not
+    /// build.
+    pub fn compare_with_checkpoint(&self, world: &World) -> Result<CheckpointComparison, SceneError> {
         let mut scene = self.clone();
         scene.run.seed = world.config().seed;
         scene.validate()?;
@@ -28,7 +39,7 @@ impl Scene {
         let mut differences = config_differences(built.world.config(), world.config(), &built.summary.materials);
         differences.extend(body_differences(&built.world, world, &built.origins));
         differences.extend(feed_differences(&built.world, world));
-        Ok(differences)
+        Ok(CheckpointComparison { differences, body_origins: built.origins })
     }
 }
 
