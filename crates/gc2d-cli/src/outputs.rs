@@ -245,6 +245,32 @@ impl RunStatus {
     }
 }
 
+/// The top-level fields of `summary.json`, in order ([`Summary`]): a sweep's table takes its columns from them, so a
+/// parameter may not be named like one.
+pub const SUMMARY_FIELDS: [&str; 21] = [
+    "program_version",
+    "scene",
+    "outcome",
+    "time_s",
+    "steps",
+    "time_step_s",
+    "stable_time_step_s",
+    "wall_time_s",
+    "wall_time_all_segments_s",
+    "particles",
+    "particles_inserted",
+    "insertions_skipped",
+    "particles_removed",
+    "particles_injected",
+    "injections_postponed",
+    "particles_removed_at_outlets",
+    "inlets",
+    "outlets",
+    "contacts",
+    "energy",
+    "chatter",
+];
+
 /// The content of `summary.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {

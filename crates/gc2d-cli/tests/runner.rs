@@ -87,6 +87,11 @@ fn a_stop_request_ends_the_run_cleanly_with_a_last_row() {
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap()).unwrap();
     assert_eq!(json["outcome"]["status"], "interrupted");
     assert_eq!(json["particles"], 5);
+    // The fields a sweep's parameters may not be named like.
+    let fields: Vec<&str> = json.as_object().unwrap().keys().map(String::as_str).collect();
+    let mut listed = gc2d_cli::outputs::SUMMARY_FIELDS.to_vec();
+    listed.sort_unstable();
+    assert_eq!(fields, listed);
     // Header, the first row, and the closing row.
     assert_eq!(std::fs::read_to_string(&path).unwrap().lines().count(), 3);
 }

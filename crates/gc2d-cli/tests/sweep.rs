@@ -358,6 +358,17 @@ fn bad_sweep_files_are_located() {
         "    parameters: [(path: \"materials[0].mu\", values: List([0.5])), (path: \"run.end_time_s\", name: \"mu\", values: List([0.1]))],\n",
     );
     assert!(error.contains("a second parameter (or the seed) is named `mu`"), "{error}");
+    // Named like a column every run fills: the table had two columns of that name, and pyarrow refused its Parquet
+    // file (a time-step study, `run.time_step_s`, did so by default).
+    for (parameter, column) in [
+        ("path: \"run.time_step_s\"", "time_step_s"),
+        ("path: \"run.end_time_s\", name: \"point\"", "point"),
+        ("path: \"run.end_time_s\", name: \"energy.kinetic_j\"", "energy"),
+        ("path: \"run.end_time_s\", name: \"mill.hits\"", "mill"),
+    ] {
+        let error = sweep_error(&format!("    parameters: [({parameter}, values: List([1e-6]))],\n"));
+        assert!(error.contains(&format!("is the name of the table's column `{column}`")), "{error}");
+    }
     // One path set by two parameters: every run used the later value while the table showed both.
     let error = sweep_error(
         "    parameters: [(path: \"materials[0].mu\", values: List([0.3])), (path: \"materials[0].mu\", name: \"mu2\", values: List([0.6]))],\n",

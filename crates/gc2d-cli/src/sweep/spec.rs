@@ -2,7 +2,9 @@
 //! as the RON text put into the scene, and the points, their full grid.
 
 use super::file::{Parsed, Plot, Seeds, SweepFile, Values, render};
+use crate::analysis::AnalysisKind;
 use crate::failure::CommandFailure;
+use crate::outputs::SUMMARY_FIELDS;
 use gc2d_scene::{ErrorKind, SceneError, SourceText};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -56,6 +58,17 @@ pub struct Point {
     pub seed: u64,
 }
 
+/// The column of the sweep's table that a parameter named `name` would clash with: the fixed columns, the fields of
+/// `summary.json` and the reports of the analyses (`energy.kinetic_j`, `mill.…`), by their first part. `None` where
+/// the name is free.
+fn taken_column(name: &str) -> Option<&'static str> {
+    let first = name.split(['.', '[']).next().unwrap_or(name);
+    let fixed = ["point", "outcome"].into_iter();
+    let report_stem = |kind: AnalysisKind| Path::new(kind.report_file()).file_stem().and_then(|s| s.to_str());
+    let analyses = [AnalysisKind::Pile, AnalysisKind::Mill, AnalysisKind::Feedpipe].into_iter().filter_map(report_stem);
+    fixed.chain(SUMMARY_FIELDS).chain(analyses).find(|column| *column == first)
+}
+
 impl Sweep {
     /// Checks the parsed file read from `path`; `out` overrides its output directory.
     pub fn new(path: &Path, parsed: Parsed, out: Option<PathBuf>) -> Result<Self, CommandFailure> {
@@ -92,6 +105,16 @@ impl Sweep {
                 return Err(error(
                     field(if parameter.name.is_some() { "name" } else { "path" }),
                     format!("`{name}` cannot name a column and a directory: use letters, digits, `_` and `.`"),
+                ));
+            }
+            if let Some(column) = taken_column(&name) {
+                return Err(error(
+                    field(if parameter.name.is_some() { "name" } else { "path" }),
+                    format!(
+                        "`{name}` is the name of the table's column `{column}`, which every run fills: the table would \
+                         have two columns of that name (pandas and polars refuse such a Parquet file); give the \
+                         parameter a `name`"
+                    ),
                 ));
             }
             if !names.insert(name.clone()) {
