@@ -302,7 +302,10 @@ fn grid(start: f64, stop: f64, step: f64) -> Result<Vec<String>, String> {
     if steps >= MAX_POINTS as f64 {
         return Err(format!("the grid has more than {MAX_POINTS} values: is the step in the right unit?"));
     }
-    Ok((0..=steps as usize).map(|k| number(start + k as f64 * step)).collect())
+    // A grid through zero reaches it only to round-off (−0.3 + 3·0.1 = 5.6e-17), which the rounding to 12 digits,
+    // relative to the value itself, keeps: such a value is zero.
+    let value = |k: usize| Some(start + k as f64 * step).filter(|v| v.abs() > 1e-9 * step).unwrap_or(0.0);
+    Ok((0..=steps as usize).map(|k| number(value(k))).collect())
 }
 
 /// A grid value as RON text: integers without a decimal point (so they also fit integer fields such as a count),
@@ -360,6 +363,8 @@ mod tests {
         assert_eq!(grid(0.1, 0.3, 0.1).unwrap(), ["0.1", "0.2", "0.3"]);
         assert_eq!(grid(1.0, 1.9, 0.5).unwrap(), ["1", "1.5"]);
         assert_eq!(grid(2e-7, 2e-7, 1e-7).unwrap(), ["0.0000002"]);
+        // Through zero: the middle value was 5.55111512313e-17, in the table, the directory name and the scene.
+        assert_eq!(grid(-0.3, 0.3, 0.1).unwrap(), ["-0.3", "-0.2", "-0.1", "0", "0.1", "0.2", "0.3"]);
         assert!(grid(1.0, 0.0, 1.0).is_err());
         assert!(grid(0.0, 1.0, 0.0).is_err());
         assert!(grid(0.0, 1e9, 1e-3).is_err());
