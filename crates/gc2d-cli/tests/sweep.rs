@@ -5,6 +5,7 @@
 mod common;
 
 use assert_cmd::Command;
+use predicates::prelude::PredicateBooleanExt;
 use predicates::str::contains;
 use std::path::{Path, PathBuf};
 
@@ -216,8 +217,14 @@ fn seeds_multiply_the_points_and_slurm_tasks_take_chunks() {
         .args(["--slurm", "--points-per-task", "4", "--time", "0:10:00", "--checkpoint-every", "0.01"])
         .assert()
         .success()
-        .stderr(contains("6 points in 2 array tasks"));
+        .stderr(contains("6 points in 2 array tasks").and(contains("--out out --collect`")));
     let script = String::from_utf8(read(dir.path().join("out/slurm/sweep.sbatch"))).unwrap();
+    // The gathering command names the output folder, which `--out` may have moved from the sweep file's.
+    let gather = script.lines().find(|line| line.contains("--collect")).unwrap();
+    assert!(
+        gather.contains(&format!("--out '{}'", std::path::absolute(dir.path().join("out")).unwrap().display())),
+        "{gather}"
+    );
     for line in ["#SBATCH --array=0-1", "#SBATCH --time=0:10:00", "#SBATCH --requeue", "#SBATCH --signal=B:TERM@120"] {
         assert!(script.contains(line), "no `{line}` in\n{script}");
     }

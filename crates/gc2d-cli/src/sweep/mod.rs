@@ -221,11 +221,12 @@ fn write_slurm(
     let script = slurm::write_script(&paths, points, &options)?;
     console::err(&format!(
         "Wrote {} ({points} points in {} array tasks). Submit it with `sbatch {}`; afterwards gather the results with \
-         `gc2d-rs sweep {} --collect`.",
+         `gc2d-rs sweep {} --out {} --collect`.",
         script.display(),
         slurm::task_count(points, args.points_per_task),
         script.display(),
-        sweep.path.display()
+        sweep.path.display(),
+        sweep.out.display()
     ));
     Ok(0)
 }

@@ -95,7 +95,7 @@ pub fn script(paths: &ScriptPaths, points: usize, options: &SlurmOptions) -> Str
     format!(
         r#"#!/bin/bash
 # gc2d-rs sweep {sweep}: {points} points in {tasks} array tasks of up to {per} points each.
-# Submit with `sbatch {script}`; gather the results afterwards with `gc2d-rs sweep {sweep} --collect`.
+# Submit with `sbatch {script}`; gather the results afterwards with `gc2d-rs sweep {sweep} --out {out} --collect`.
 #SBATCH --job-name=gc2d-{name}
 #SBATCH --array=0-{last}
 #SBATCH --time={time}
