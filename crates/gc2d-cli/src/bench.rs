@@ -81,6 +81,12 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
     if let Some(zero) = args.size.iter().chain(&args.threads).find(|&&n| n == 0) {
         return Err(CommandFailure::input(format!("--size and --threads take counts of at least 1, got {zero}")));
     }
+    if let Some(size) = args.size.iter().find(|&&n| n > gc2d_scene::MAX_INITIAL_PARTICLES) {
+        return Err(CommandFailure::input(format!(
+            "--size {size}: a standard pile has at most {} particles, as a scene may start with",
+            gc2d_scene::MAX_INITIAL_PARTICLES
+        )));
+    }
     for &threads in &args.threads {
         crate::refuse_too_many_threads("--threads", threads).map_err(CommandFailure::input)?;
     }
@@ -275,7 +281,10 @@ fn settled(
     if let Some(file) = &file
         && file.exists()
     {
-        match World::load_checkpoint_file(file) {
+        match World::load_checkpoint_file(file).map_err(|e| e.to_string()).and_then(|world| {
+            cached_pile_matches(&world, pile, particles, settle_time)?;
+            Ok(world)
+        }) {
             Ok(world) => {
                 let (name, file) = (pile.name(), file.display());
                 console::err(&format!("{name} {particles}: settled state from {file}{}", bands_note(&world)));
@@ -315,6 +324,23 @@ fn settled(
         }
     }
     Ok(world)
+}
+
+/// Whether a cached `world` is the pile asked for: its particle count, its seed and its settling time, so that a
+/// checkpoint of another pile under this name (a cache copied or edited by hand) is not measured under this label.
+fn cached_pile_matches(world: &World, pile: StandardPile, particles: usize, settle_time: f64) -> Result<(), String> {
+    let count = world.bodies().particles().count();
+    if count != particles {
+        return Err(format!("it holds {count} particles, not {particles}"));
+    }
+    if world.config().seed != pile.seed() {
+        return Err(format!("its seed is {}, not the {} pile's {}", world.config().seed, pile.name(), pile.seed()));
+    }
+    // Settling runs to the first step at or after the settling time.
+    if !(world.time() >= settle_time - 1e-12 && world.time() < settle_time + world.time_step() * (1.0 + 1e-9)) {
+        return Err(format!("it was settled for {} s, not {settle_time} s", world.time()));
+    }
+    Ok(())
 }
 
 /// "; y axis in N bands" for a pile wide enough for the broadphase to split its y axis (docs/model.md, "The y axis

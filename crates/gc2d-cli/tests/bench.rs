@@ -125,6 +125,14 @@ fn bench_measures_every_pile_and_thread_count_and_a_cached_pile_measures_as_the_
             "{fresh:?} {cached:?}"
         );
     }
+
+    // A valid checkpoint of another pile under this one's name (here the disks') was measured under the dense7
+    // label; it is now settled again.
+    let dense = cache.join("dense7-60-settled-0.002s-v1.ckpt");
+    std::fs::copy(cache.join("disks-60-settled-0.002s-v1.ckpt"), &dense).unwrap();
+    let (_, stderr, again) = small_bench(&cache, &dir.path().join("again.csv"), &[]);
+    assert!(stderr.contains("its seed is 10000, not the dense7 pile's 2000; settling again"), "{stderr}");
+    assert_eq!(again[0].contacts_per_particle.to_bits(), fresh[0].contacts_per_particle.to_bits());
 }
 
 #[test]
@@ -160,6 +168,10 @@ fn bench_refuses_unknown_piles_and_zero_counts() {
     assert!(refusal(&["--threads", "1,0"]).contains("at least 1, got 0"));
     assert!(refusal(&["--settle-time=-1"]).contains("--settle-time must be a time in seconds"));
     assert!(refusal(&["--steps", "0"]).contains("--particle-steps and --steps must be at least 1"));
+    // A size beyond a scene's million particles aborted on a failed allocation of 64 GB, or panicked.
+    for size in ["1000000000", "18446744073709551615"] {
+        assert!(refusal(&["--size", size]).contains("a standard pile has at most 1000000 particles"), "{size}");
+    }
     // A table that cannot be written is refused before the measurements, not after them.
     let dir = tempfile::tempdir().unwrap();
     let folder = dir.path().to_str().unwrap();
