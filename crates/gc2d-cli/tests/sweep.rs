@@ -392,6 +392,16 @@ fn bad_sweep_files_are_located() {
         "    parameters: [(path: \"materials[0].mu\", values: List([0.5]))],\n    plots: [(x: \"m\", y: [\"time_s\"])],\n",
     );
     assert!(error.contains("`m` is not a parameter of this sweep, did you mean `mu`?"), "{error}");
+    // Values that are no numbers on x were found only after every run (exit 2, no figures).
+    let error = sweep_error(
+        "    parameters: [(path: \"run.corrector\", values: List([VelocityDependent, PositionDependent]))],\n    plots: [(x: \"corrector\", y: [\"time_s\"])],\n",
+    );
+    assert!(
+        error.contains("`corrector` has the value `VelocityDependent`, which is not a number to put on an axis"),
+        "{error}"
+    );
+    let error = sweep_error("    seeds: Count(2),\n    plots: [(x: \"seed\", y: [\"time_s\"])],\n");
+    assert!(error.contains("this sweep has no parameters, only seeds, so there is nothing to plot against"), "{error}");
     let error = sweep_error("    analysis: (kind: Mill),\n");
     assert!(error.contains("`analysis.kind`: this analysis needs a scene with a `mill`"), "{error}");
     let error = sweep_error("    analysis: (kind: Feedpipe),\n");
@@ -479,4 +489,19 @@ fn a_mill_sweep_is_analysed_before_it_is_collected() {
         assert_eq!(row[balls], "20");
     }
     assert!(header.iter().any(|h| h.starts_with("mill.power.")), "{header:?}");
+}
+
+/// A figure whose y is not a column of the collected table (an analysis that reported nothing, or a misspelt name) is
+/// skipped with a warning; the sweep succeeds and draws its other figures (it exited 2 after every run, and the
+/// figures after the missing one were not drawn).
+#[test]
+fn a_figure_of_a_missing_column_is_skipped_with_a_warning() {
+    let dir = sweep_folder(
+        "    parameters: [(path: \"run.end_time_s\", name: \"end\", values: List([0.004, 0.005]))],\n    plots: [(x: \"end\", y: [\"analysis.pile.mean_degrees\", \"steps\"])],\n",
+    );
+    sweep(dir.path())
+        .assert()
+        .success()
+        .stderr(contains("warning: the figure of `analysis.pile.mean_degrees` against `end` is not drawn"));
+    assert!(dir.path().join("out/plots/steps_vs_end.svg").is_file());
 }

@@ -180,7 +180,11 @@ fn collect_results(sweep: &Sweep, points: &[PointScene]) -> Result<u8, CommandFa
     parquet_file::write_parquet(&table, &parquet)?;
     let means = sweep.out.join(MEANS_CSV);
     seed_means::write_means_csv(&table, &seed_means::seed_groups(&table), &means)?;
-    let figures = plots::draw_plots(&table, &sweep.file.plots, &sweep.out.join("plots"))?;
+    let drawn = plots::draw_plots(&table, &sweep.file.plots, &sweep.out.join("plots"))?;
+    for skipped in &drawn.skipped {
+        console::err(&format!("warning: {skipped}"));
+    }
+    let figures = drawn.files;
     let finished = table.rows.iter().filter(|r| r.outcome.as_deref() == Some("completed")).count();
     console::err(&format!(
         "Collected {} points ({finished} completed, {} columns) into {} and {}, the means over the seeds into {}{}.",

@@ -19,24 +19,46 @@ pub struct SeriesStats {
     pub points: Vec<(f64, f64, f64, usize)>,
 }
 
-/// Draws every figure the sweep file asks for into `folder` (`<y>_vs_<x>.svg`); returns the files written.
-pub fn draw_plots(table: &Table, plots: &[Plot], folder: &Path) -> Result<Vec<PathBuf>, CommandFailure> {
-    let mut written = Vec::new();
+/// The figures of a sweep: the files drawn, and why the others were not.
+#[derive(Debug, Default)]
+pub struct DrawnPlots {
+    /// The SVG files written.
+    pub files: Vec<PathBuf>,
+    /// One line per figure left out: its y is not a column of this table (an analysis that found nothing to report,
+    /// or a misspelt name), which the sweep file cannot be checked for before the runs.
+    pub skipped: Vec<String>,
+}
+
+/// Draws every figure the sweep file asks for into `folder` (`<y>_vs_<x>.svg`); a figure whose y is not a column is
+/// skipped, with a line saying why, so that the other figures of a long sweep are still drawn.
+pub fn draw_plots(table: &Table, plots: &[Plot], folder: &Path) -> Result<DrawnPlots, CommandFailure> {
+    let mut drawn = DrawnPlots::default();
     if plots.is_empty() {
-        return Ok(written);
+        return Ok(drawn);
     }
     std::fs::create_dir_all(folder)
         .map_err(|e| CommandFailure::failed(format!("cannot create {}: {e}", folder.display())))?;
     for plot in plots {
         for y in &plot.y {
+            if table.column(y).is_none() {
+                let names: Vec<&str> = table.numbers.iter().map(String::as_str).collect();
+                let hint =
+                    gc2d_scene::error::suggest(y, &names).map_or(String::new(), |s| format!(" (did you mean `{s}`?)"));
+                drawn.skipped.push(format!(
+                    "the figure of `{y}` against `{}` is not drawn: `{y}` is not a column of the collected table{hint}; \
+                     its columns are listed in sweep.csv",
+                    plot.x
+                ));
+                continue;
+            }
             let series = series(table, &plot.x, y)?;
             let path = folder.join(format!("{}_vs_{}.svg", file_part(y), file_part(&plot.x)));
             draw(&path, &plot.x, y, &series)
                 .map_err(|e| CommandFailure::failed(format!("cannot draw {}: {e}", path.display())))?;
-            written.push(path);
+            drawn.files.push(path);
         }
     }
-    Ok(written)
+    Ok(drawn)
 }
 
 /// The series of column `y` against parameter `x`: rows grouped by the other parameters' values, then by x; the mean

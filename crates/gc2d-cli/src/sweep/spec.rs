@@ -263,9 +263,25 @@ fn lexically_tidy(path: &Path) -> PathBuf {
     if tidy.is_empty() { PathBuf::from(".") } else { tidy.iter().collect() }
 }
 
-/// The plots name a parameter on x and their outputs at all.
+/// The plots name a parameter with numbers for values on x, and their outputs at all.
 fn check_plots(plots: &[Plot], parameters: &[ParameterSpec]) -> Result<(), (String, String)> {
     for (k, plot) in plots.iter().enumerate() {
+        if parameters.is_empty() {
+            return Err((
+                format!("plots[{k}].x"),
+                "this sweep has no parameters, only seeds, so there is nothing to plot against (the means over the \
+                 seeds are in sweep_means.csv)"
+                    .into(),
+            ));
+        }
+        if let Some(parameter) = parameters.iter().find(|p| p.name == plot.x)
+            && let Some(value) = parameter.values.iter().find(|v| v.parse::<f64>().is_err())
+        {
+            return Err((
+                format!("plots[{k}].x"),
+                format!("`{}` has the value `{value}`, which is not a number to put on an axis", plot.x),
+            ));
+        }
         if !parameters.iter().any(|p| p.name == plot.x) {
             let names: Vec<&str> = parameters.iter().map(|p| p.name.as_str()).collect();
             let hint =
