@@ -505,3 +505,27 @@ fn a_figure_of_a_missing_column_is_skipped_with_a_warning() {
         .stderr(contains("warning: the figure of `analysis.pile.mean_degrees` against `end` is not drawn"));
     assert!(dir.path().join("out/plots/steps_vs_end.svg").is_file());
 }
+
+/// A mill sweep whose analysis would fail on every point after its run is refused before the runs: a warm-up not
+/// before a point's end, and runs told not to write the contact events the mill analysis reads (both ran every point,
+/// then left the table without the mill's columns, and exited 0).
+#[test]
+fn a_mill_sweep_refuses_an_analysis_that_would_fail_after_the_runs() {
+    let refusal = |rest: &str| {
+        let dir = tempfile::tempdir().unwrap();
+        let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/scenes/mill_ci.ron");
+        std::fs::copy(scene, dir.path().join("mill_ci.ron")).unwrap();
+        let text = format!(
+            "Sweep(\n    scene: \"mill_ci.ron\",\n    out: \"out\",\n    parameters: [(path: \"run.end_time_s\", name: \
+             \"end\", values: List([0.04, 0.02]))],\n{rest})\n"
+        );
+        std::fs::write(dir.path().join("sweep.ron"), text).unwrap();
+        let output = sweep(dir.path()).assert().code(2).get_output().clone();
+        assert!(!dir.path().join("out").exists(), "nothing may run for an invalid sweep");
+        String::from_utf8(output.stderr).unwrap()
+    };
+    let error = refusal("    analysis: (warm_up_s: 0.03),\n");
+    assert!(error.contains("analysis.warm_up_s") && error.contains("point `end=0.02_seed="), "{error}");
+    let error = refusal("    run: (events: false),\n");
+    assert!(error.contains("run.events") && error.contains("reads the contact events"), "{error}");
+}

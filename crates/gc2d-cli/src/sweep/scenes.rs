@@ -31,6 +31,8 @@ pub struct PointScene {
     /// The analysis its finished run gets before collecting: the sweep file's `analysis.kind`, else the mill's for a
     /// mill scene, else none.
     pub analysis: Option<AnalysisKind>,
+    /// Its scene's end time, s.
+    pub end_time_s: f64,
 }
 
 /// Makes and checks the scene of every point.
@@ -92,7 +94,42 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
         }
         return Err(CommandFailure::input(message));
     }
+    check_analysis_inputs(sweep, &scenes)?;
     Ok(scenes)
+}
+
+/// Refuses what would make every point's analysis fail after its run: a warm-up (`analysis.warm_up_s`) that is not
+/// before a point's end, and a mill analysis of runs told not to write the contact events it reads.
+fn check_analysis_inputs(sweep: &Sweep, scenes: &[PointScene]) -> Result<(), CommandFailure> {
+    let analysed = |point: &PointScene, kinds: &[AnalysisKind]| point.analysis.is_some_and(|k| kinds.contains(&k));
+    if let Some(warm_up) = sweep.file.analysis.warm_up_s {
+        if !(warm_up.is_finite() && warm_up >= 0.0) {
+            return Err(sweep.field_error("analysis.warm_up_s", format!("{warm_up}: a warm-up is a time ≥ 0 s")));
+        }
+        let windowed = [AnalysisKind::Mill, AnalysisKind::Feedpipe];
+        if let Some(point) = scenes.iter().find(|s| analysed(s, &windowed) && warm_up >= s.end_time_s) {
+            return Err(sweep.field_error(
+                "analysis.warm_up_s",
+                format!(
+                    "{warm_up} s: point `{}` ends at {} s, so the warm-up would leave nothing to average",
+                    point.name, point.end_time_s
+                ),
+            ));
+        }
+    }
+    if sweep.file.run.events == Some(false)
+        && let Some(point) = scenes.iter().find(|s| analysed(s, &[AnalysisKind::Mill]))
+    {
+        return Err(sweep.field_error(
+            "run.events",
+            format!(
+                "the mill analysis of point `{}` reads the contact events (events.csv) this turns off: leave \
+                 `events` out, and the mill's runs write them",
+                point.name
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The point's scene, loaded and built; on failure the point's name and values and the scene's error. File names a
@@ -118,7 +155,7 @@ fn point_scene(
     scene.summary().map_err(|e| fail(super::file::render(&e)))?;
     let text = scene.to_ron_string().map_err(|e| fail(format!("cannot write the scene: {e}")))?;
     let analysis = sweep.file.analysis.kind.or(scene.mill.is_some().then_some(AnalysisKind::Mill));
-    Ok(PointScene { point: point.clone(), name, dir, text, analysis })
+    Ok(PointScene { point: point.clone(), name, dir, text, analysis, end_time_s: scene.run.end_time_s })
 }
 
 /// Refuses an `analysis.kind` the base scene cannot give: a mill analysis without a `mill`, a feed pipe's without
