@@ -489,6 +489,21 @@ fn a_mill_sweep_is_analysed_before_it_is_collected() {
         assert_eq!(row[balls], "20");
     }
     assert!(header.iter().any(|h| h.starts_with("mill.power.")), "{header:?}");
+
+    // The warm-up changed in the sweep file: the reports are made again (the old ones were kept, and the table mixed
+    // two averaging windows without a word).
+    std::fs::write(dir.path().join("sweep.ron"), text.replace("warm_up_s: 0.0005", "warm_up_s: 0.001")).unwrap();
+    sweep(dir.path()).assert().success().stderr(contains(
+        "analysed again, its report was made with other settings (mill analysis, warm-up 0.0005 s; now mill \
+         analysis, warm-up 0.001 s)",
+    ));
+    for row in &rows {
+        let report: serde_json::Value =
+            serde_json::from_slice(&read(out.join(&row[0]).join("analysis/mill.json"))).unwrap();
+        assert_eq!(report["warm_up"]["start_s"], 0.001);
+    }
+    let (header, _) = csv(&out.join("sweep.csv"));
+    assert!(!header.iter().any(|h| h.contains("sweep-analysis") || h.starts_with("kind")), "{header:?}");
 }
 
 /// A figure whose y is not a column of the collected table (an analysis that reported nothing, or a misspelt name) is

@@ -55,6 +55,45 @@ impl Table {
     }
 }
 
+/// The settings a sweep analysed a point's run with, kept in its run directory (`sweep-analysis.json`, outside
+/// `analysis/`, whose reports become columns), so that
+/// a sweep file whose analysis settings have changed since (another warm-up) analyses the run again rather than
+/// mixing two averaging windows in one table.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+struct AnalysisRecord {
+    /// The analysis, as `--kind` spells it.
+    kind: String,
+    /// `analysis.warm_up_s` of the sweep file; `None` for the automatic cut.
+    warm_up_s: Option<f64>,
+}
+
+impl AnalysisRecord {
+    /// The record's file in the run directory `dir`.
+    fn path(dir: &Path) -> std::path::PathBuf {
+        dir.join("sweep-analysis.json")
+    }
+
+    /// The record of the run directory `dir`; `None` where there is none (or it cannot be read).
+    fn read(dir: &Path) -> Option<Self> {
+        serde_json::from_str(&std::fs::read_to_string(Self::path(dir)).ok()?).ok()
+    }
+
+    /// Writes the record into the run directory `dir`.
+    fn write(&self, dir: &Path) -> Result<(), String> {
+        let path = Self::path(dir);
+        let text = serde_json::to_string_pretty(self).map_err(|e| e.to_string())?;
+        std::fs::write(&path, text + "\n").map_err(|e| format!("cannot write {}: {e}", path.display()))
+    }
+
+    /// The settings in words: `mill analysis, warm-up 0.01 s`.
+    fn describe(&self) -> String {
+        match self.warm_up_s {
+            Some(warm_up) => format!("{} analysis, warm-up {warm_up} s", self.kind),
+            None => format!("{} analysis, automatic warm-up", self.kind),
+        }
+    }
+}
+
 /// Reads every point's results (running the mill analysis where a finished mill run lacks it). Problems with single
 /// points (a missing summary, an analysis that fails) are listed in the returned warnings, not fatal.
 pub fn collect(sweep: &Sweep, points: &[PointScene]) -> (Table, Vec<String>) {
@@ -77,13 +116,31 @@ pub fn collect(sweep: &Sweep, points: &[PointScene]) -> (Table, Vec<String>) {
         }
         if let Some(kind) = point.analysis
             && outcome.as_deref() == Some("completed")
-            && !dir.join(kind.report_file()).is_file()
         {
-            let settings =
-                AnalysisSettings { warm_up_s: sweep.file.analysis.warm_up_s, ..AnalysisSettings::automatic() };
-            match analyze(dir, kind, &settings) {
-                Ok(output) => warnings.extend(output.warnings.iter().map(|w| format!("{}: {w}", point.name))),
-                Err(e) => warnings.push(format!("{}: the {} analysis failed: {e}", point.name, kind.name())),
+            let asked = AnalysisRecord { kind: kind.name(), warm_up_s: sweep.file.analysis.warm_up_s };
+            let made = AnalysisRecord::read(dir);
+            let report = dir.join(kind.report_file());
+            // A report made by hand (`analyze`, no record) is kept; one the sweep made with other settings is not.
+            let stale = report.is_file() && made.as_ref().is_some_and(|made| *made != asked);
+            if stale {
+                warnings.push(format!(
+                    "{}: analysed again, its report was made with other settings ({}; now {})",
+                    point.name,
+                    made.as_ref().map_or(String::new(), AnalysisRecord::describe),
+                    asked.describe()
+                ));
+            }
+            if stale || !report.is_file() {
+                let settings = AnalysisSettings { warm_up_s: asked.warm_up_s, ..AnalysisSettings::automatic() };
+                match analyze(dir, kind, &settings) {
+                    Ok(output) => {
+                        warnings.extend(output.warnings.iter().map(|w| format!("{}: {w}", point.name)));
+                        if let Err(e) = asked.write(dir) {
+                            warnings.push(format!("{}: {e}", point.name));
+                        }
+                    }
+                    Err(e) => warnings.push(format!("{}: the {} analysis failed: {e}", point.name, kind.name())),
+                }
             }
         }
         for (kind, path) in analyses(dir) {

@@ -103,9 +103,6 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
 fn check_analysis_inputs(sweep: &Sweep, scenes: &[PointScene]) -> Result<(), CommandFailure> {
     let analysed = |point: &PointScene, kinds: &[AnalysisKind]| point.analysis.is_some_and(|k| kinds.contains(&k));
     if let Some(warm_up) = sweep.file.analysis.warm_up_s {
-        if !(warm_up.is_finite() && warm_up >= 0.0) {
-            return Err(sweep.field_error("analysis.warm_up_s", format!("{warm_up}: a warm-up is a time ≥ 0 s")));
-        }
         let windowed = [AnalysisKind::Mill, AnalysisKind::Feedpipe];
         if let Some(point) = scenes.iter().find(|s| analysed(s, &windowed) && warm_up >= s.end_time_s) {
             return Err(sweep.field_error(
