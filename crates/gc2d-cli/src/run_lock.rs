@@ -58,6 +58,25 @@ pub fn lock_run_directory(out: &Path) -> Result<RunLock, String> {
     Ok(RunLock { _file: file })
 }
 
+/// True when another process holds the lock of the run directory `out` now; false where it is free, where it has no
+/// lock file, and where the system has no flock. Takes the lock only for the moment of the test.
+pub fn is_locked(out: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsRawFd;
+        let Ok(file) = File::open(out.join(LOCK_FILE)) else { return false };
+        // SAFETY: flock(2) on a descriptor this function owns; it has no memory effects. The lock, if taken, ends
+        // when `file` is closed.
+        let taken = unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) } == 0;
+        !taken && std::io::Error::last_os_error().raw_os_error() == Some(libc::EWOULDBLOCK)
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = out;
+        false
+    }
+}
+
 #[cfg(all(test, unix))]
 mod tests {
     use super::*;
@@ -69,7 +88,10 @@ mod tests {
         let refused = lock_run_directory(out.path()).unwrap_err();
         assert!(refused.contains("is in use by another gc2d-rs process (pid "), "{refused}");
         assert!(refused.contains(&std::process::id().to_string()), "{refused}");
+        assert!(is_locked(out.path()));
         drop(held);
+        assert!(!is_locked(out.path()), "free once dropped");
         assert!(lock_run_directory(out.path()).is_ok());
+        assert!(!is_locked(&out.path().join("no such run")), "a directory without a lock file is free");
     }
 }

@@ -544,3 +544,19 @@ fn a_mill_sweep_refuses_an_analysis_that_would_fail_after_the_runs() {
     let error = refusal("    run: (events: false),\n");
     assert!(error.contains("run.events") && error.contains("reads the contact events"), "{error}");
 }
+
+/// A point another gc2d-rs process is running (a second sweep on the same `out`, a run by hand) is left to it and
+/// named as such; the sweep exits 130 (run it again to finish), not 1 (it reported such points as failed).
+#[test]
+fn a_point_another_process_runs_is_left_to_it_not_failed() {
+    let dir =
+        sweep_folder("    parameters: [(path: \"run.end_time_s\", name: \"end\", values: List([0.004, 0.005]))],\n");
+    let busy = dir.path().join("out/end=0.004_seed=3");
+    std::fs::create_dir_all(&busy).unwrap();
+    let lock = gc2d_cli::run_lock::lock_run_directory(&busy).unwrap();
+    sweep(dir.path()).assert().code(130).stderr(
+        contains("left to the other gc2d-rs process running them: end=0.004_seed=3").and(contains("failed").not()),
+    );
+    assert!(dir.path().join("out/end=0.005_seed=3/final.ckpt").is_file(), "the other point ran");
+    drop(lock);
+}

@@ -7,6 +7,7 @@ use super::scenes::PointScene;
 use super::state::{State, state, write_scene};
 use crate::failure::CommandFailure;
 use crate::outputs::SCENE_COPY;
+use crate::run_lock::is_locked;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::collections::VecDeque;
 use std::fs::OpenOptions;
@@ -50,6 +51,9 @@ pub struct Tally {
     pub interrupted: Vec<String>,
     /// Points not started because the sweep was stopped.
     pub not_started: usize,
+    /// Points another gc2d-rs process was running (another sweep on the same `out`, a run by hand), left to it (their
+    /// names).
+    pub busy: Vec<String>,
 }
 
 /// A point being run.
@@ -87,6 +91,11 @@ pub fn run_points(points: &[PointScene], settings: &RunSettings, stop: &AtomicBo
         }
         while !stopping && running.len() < settings.jobs.max(1) {
             let Some((point, resume)) = queue.pop_front() else { break };
+            if is_locked(&point.dir) {
+                tally.busy.push(point.name.clone());
+                bar.inc(1);
+                continue;
+            }
             running.push(Running { child: spawn(&exe, point, resume, settings)?, point, resumed: resume });
         }
         let mut k = 0;
@@ -104,6 +113,8 @@ pub fn run_points(points: &[PointScene], settings: &RunSettings, stop: &AtomicBo
                 Some(0) if done.resumed => tally.resumed += 1,
                 Some(0) => tally.ran += 1,
                 Some(130) | None => tally.interrupted.push(name),
+                // Refused because another process took the directory between the test above and the start.
+                Some(_) if is_locked(&done.point.dir) => tally.busy.push(name),
                 Some(_) => tally.failed.push(name),
             }
             bar.inc(1);

@@ -134,7 +134,7 @@ pub fn sweep(args: &SweepArgs) -> Result<u8, CommandFailure> {
     let _ = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed));
     let tally = run_points(selected, &settings, &stop)?;
     report(&tally, selected.len(), &sweep.out);
-    if !tally.interrupted.is_empty() || tally.not_started > 0 {
+    if !tally.interrupted.is_empty() || tally.not_started > 0 || !tally.busy.is_empty() {
         return Ok(130);
     }
     let code = if tally.failed.is_empty() { 0 } else { 1 };
@@ -155,6 +155,12 @@ fn report(tally: &Tally, total: usize, out: &Path) {
     );
     if !tally.failed.is_empty() {
         line.push_str(&format!("; failed (see run.log and summary.json in each): {}", tally.failed.join(", ")));
+    }
+    if !tally.busy.is_empty() {
+        line.push_str(&format!(
+            "; left to the other gc2d-rs process running them: {}; run the sweep again once it has ended",
+            tally.busy.join(", ")
+        ));
     }
     if !tally.interrupted.is_empty() || tally.not_started > 0 {
         line.push_str(&format!(
