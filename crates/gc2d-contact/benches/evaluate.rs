@@ -23,6 +23,7 @@ fn sliding_contacts(law: &ContactLaw, steps: usize) -> f64 {
             arm_i: DVec2::new(0.1e-3, -1e-3),
             arm_j: DVec2::new(-0.2e-3, 1e-3),
             centroid_offset: 0.0,
+            rocking: true,
         };
         let out = law.evaluate(&geometry, &body_i, &body_j, &state, 1e-6);
         sum += out.force_on_i.x + out.energy.absorbed();

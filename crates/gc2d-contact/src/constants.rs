@@ -54,7 +54,15 @@ mod tests {
     use gc2d_geometry::DVec2;
 
     fn geometry(arm_i: DVec2, arm_j: DVec2) -> ContactGeometry {
-        ContactGeometry { area: 1e-8, normal: DVec2::Y, chord_length: 1e-3, arm_i, arm_j, centroid_offset: 0.0 }
+        ContactGeometry {
+            area: 1e-8,
+            normal: DVec2::Y,
+            chord_length: 1e-3,
+            arm_i,
+            arm_j,
+            centroid_offset: 0.0,
+            rocking: true,
+        }
     }
 
     #[test]

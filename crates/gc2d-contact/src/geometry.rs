@@ -22,6 +22,11 @@ pub struct ContactGeometry {
     /// Where the overlap's centroid projects on the contact line, measured from s along the tangent, m; 0 where it is
     /// not computed. Read only by the [`Winkler`](crate::AreaFormulation::Winkler) formulation.
     pub centroid_offset: f64,
+    /// True where both outlines can present a straight edge at the contact, so that one can tilt against the other;
+    /// false where one body is a disk, whose surface at the contact turns with the normal, not with its spin (a disk
+    /// rolling on a face does not rock it). Read only by the [`Winkler`](crate::AreaFormulation::Winkler)
+    /// formulation, whose couples act only on tilting contacts.
+    pub rocking: bool,
 }
 
 impl ContactGeometry {
@@ -33,6 +38,7 @@ impl ContactGeometry {
         arm_i: DVec2::ZERO,
         arm_j: DVec2::ZERO,
         centroid_offset: 0.0,
+        rocking: false,
     };
 
     /// Unit tangent n∥: the normal turned counter-clockwise by 90°, (−n_y, n_x).

@@ -4,7 +4,7 @@
 use crate::{AreaFormulation, ContactConstants, ContactGeometry, ContactLaw};
 
 /// Couples a contact adds to the forces at the chord midpoint, and their energy over the step. Zero for the
-/// formulations that apply the force at the chord midpoint.
+/// formulations that apply the force at the chord midpoint, and for contacts that cannot rock (a disk in the pair).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct RockingMoments {
     /// Torque on body i, N·m; body j receives the opposite (both are couples: no net force).
@@ -33,7 +33,7 @@ impl RockingMoments {
         relative_spin: f64,
         dt: f64,
     ) -> Self {
-        if law.elastic.formulation != AreaFormulation::Winkler {
+        if law.elastic.formulation != AreaFormulation::Winkler || !geometry.rocking {
             return Self::default();
         }
         let elastic_torque = -geometry.centroid_offset * elastic;

@@ -75,6 +75,7 @@ fn conservative_force_and_torques_are_the_exact_gradient_of_the_potential() {
                     arm_i: g.point - pa.x,
                     arm_j: g.point - pb.x,
                     centroid_offset: 0.0,
+                    rocking: true,
                 };
                 let body = BodyMotion::free(0.3, 4e-6, DVec2::ZERO, 0.0);
                 let response = law.evaluate(&geometry, &body, &body, &ContactState::default(), 1e-6);
@@ -129,6 +130,7 @@ fn thesis_force_is_the_conservative_force_times_l_over_c() {
         arm_i: DVec2::new(0.0, -4e-3),
         arm_j: DVec2::new(1e-3, 4e-3),
         centroid_offset: 0.0,
+        rocking: true,
     };
     let body = BodyMotion::free(0.3, 4e-6, DVec2::ZERO, 0.0);
     let thesis = ContactLaw::elastic(E).evaluate(&geometry, &body, &body, &ContactState::default(), 1e-6);

@@ -63,6 +63,7 @@ fn winkler_force_and_torque_against_a_flat_face_are_the_gradient_of_its_potentia
                 arm_i: g.point - position,
                 arm_j: g.point,
                 centroid_offset: (centroid - g.point).dot(g.normal.perp()),
+                rocking: true,
             };
             let state = ContactState {
                 constants: Some(constants),
@@ -113,6 +114,7 @@ fn winkler_dashpots_resist_rocking_with_a_couple_and_book_its_dissipation() {
         arm_i: DVec2::new(0.0, -1e-3),
         arm_j: DVec2::ZERO,
         centroid_offset: 0.0,
+        rocking: true,
     };
     let constants = ContactConstants { length: 1e-3, normal_mass: 0.02, tangential_mass: 0.005 };
     let state = ContactState {

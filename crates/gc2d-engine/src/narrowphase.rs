@@ -392,6 +392,7 @@ impl PairContext<'_> {
             arm_i: g.point - position_i,
             arm_j: g.point - position_j,
             centroid_offset: g.centroid.map_or(0.0, |centroid| (centroid - g.point).dot(g.normal.perp())),
+            rocking: bodies.shape[i.index()] != ShapeKind::Disk && bodies.shape[j.index()] != ShapeKind::Disk,
         });
         let previous = contact.state.overlap_area();
         // What the pair keeps of a response. Each branch below passes its response by reference: moving the

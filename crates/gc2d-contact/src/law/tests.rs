@@ -23,6 +23,7 @@ fn plate_on_wall(h: f64) -> ContactGeometry {
         arm_i: ARM,
         arm_j: DVec2::ZERO,
         centroid_offset: 0.0,
+        rocking: true,
     }
 }
 
@@ -77,6 +78,7 @@ fn torques_are_arm_cross_force_on_both_bodies() {
         arm_i: DVec2::new(-0.3e-3, -0.9e-3),
         arm_j: DVec2::new(0.5e-3, 1.1e-3),
         centroid_offset: 0.0,
+        rocking: true,
     };
     let body_i = plate(DVec2::new(0.01, -0.02), 3.0);
     let body_j = plate(DVec2::new(-0.01, 0.0), -1.0);
