@@ -400,6 +400,13 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let slack = 0.5 * world.time_step();
     let balls = bodies.particles().filter(|id| options.balls.is_ball(bodies, id.index())).count();
     let ore_grains = bodies.particles().count() - balls;
+    // Collision classes, rates per ball and a warm-up cut of a pile or a drum look plausible and mean nothing.
+    if balls == 0 {
+        return Err(AnalysisError::NotEnoughData(
+            "the run has no balls (its scene has no `mill`, or a mill without balls): a mill analysis needs them"
+                .into(),
+        ));
+    }
 
     let events_path = run_dir.join("events.csv");
     if !events_path.exists() {

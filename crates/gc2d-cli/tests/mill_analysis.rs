@@ -144,3 +144,24 @@ fn ore_grains_drawn_as_disks_are_not_taken_for_balls() {
     let (stderr, _) = analyze_with_scene(None);
     assert!(stderr.contains("has no scene.ron") && stderr.contains("disk particles"), "{stderr}");
 }
+
+/// A run without a mill was analysed as one without a word: `balls: 0`, collision classes such as `ore–wall`, rates
+/// per ball and a warm-up cut. It is refused, as a feed-pipe analysis of a scene without an outlet is.
+#[test]
+fn a_run_without_a_mill_is_refused_by_the_mill_analysis() {
+    let out = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/incline.ron");
+    let gc2d = || Command::cargo_bin("gc2d-rs").unwrap();
+    gc2d()
+        .arg("run")
+        .arg(&scene)
+        .args(["--quiet", "--events", "--until", "0.05", "--out"])
+        .arg(out.path())
+        .assert()
+        .success();
+    let output = gc2d().arg("analyze").arg(out.path()).args(["--kind", "mill"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("the run has no balls") && stderr.contains("no `mill`"), "{stderr}");
+    assert!(!out.path().join("analysis/mill.json").exists());
+}
