@@ -271,6 +271,7 @@ fn check(path: &Path) -> Result<u8, CommandFailure> {
     let summary = scene.summary().map_err(|e| CommandFailure::input(render(e)))?;
     refuse_a_run_shorter_than_its_step(&scene, summary.time_step_s, None, || summary.limiting_entry.clone())?;
     refuse_more_steps_than_the_clock_counts(&scene, summary.time_step_s, 0.0, None)?;
+    refuse_more_frames_than_steps(&scene, summary.time_step_s)?;
     console::out(&summary.to_string()).map_err(|e| CommandFailure::stdout(&e))?;
     Ok(0)
 }
@@ -367,6 +368,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         }
     };
     refuse_cadences_below_the_step(&args, &scene, world.time_step())?;
+    refuse_more_frames_than_steps(&scene, world.time_step())?;
     refuse_more_steps_than_the_clock_counts(&scene, world.time_step(), world.time(), args.until)?;
     let out = match (&args.out, resumed_dir) {
         (Some(out), _) => out.clone(),
@@ -751,6 +753,29 @@ fn refuse_cadences_below_the_step(args: &RunArgs, scene: &Scene, dt: f64) -> Res
     }
 }
 
+/// Refuses a frame rate (`run.frames_per_second`) above 1/`dt`: it records a time-series row and a frame at every
+/// step, and 1e11 (a unit slip) made a run of seconds take hours.
+fn refuse_more_frames_than_steps(scene: &Scene, dt: f64) -> Result<(), CommandFailure> {
+    let fps = scene.run.frames_per_second;
+    if 1.0 / fps < dt {
+        return Err(CommandFailure::input(render(
+            SceneError::new(
+                ErrorKind::Value,
+                "run.frames_per_second",
+                format!(
+                    "{fps:e} frames per second is more than one per time step of {dt:.3e} s (at most {:.3e}): it would \
+                     record a row and a frame at every step",
+                    1.0 / dt
+                ),
+            )
+            .with_label("more frames than steps")
+            .with_help("frames per second of simulated time; the default is 100")
+            .located(scene.source.as_ref()),
+        )));
+    }
+    Ok(())
+}
+
 /// `snapshot`: draws a checkpoint (a run directory's final.ckpt, or the given file).
 fn snapshot(
     run: &Path,
@@ -807,6 +832,13 @@ fn analyze(
     bins: usize,
 ) -> Result<u8, CommandFailure> {
     let settings = AnalysisSettings { window_half_width_m: window, grid_cell_m: grid, warm_up_s: warm_up, bins };
+    // A run in progress has no final state yet; it is not one stopped without warning, and not to be resumed.
+    if gc2d_cli::run_lock::is_locked(run) {
+        return Err(CommandFailure::input(format!(
+            "cannot analyse {}: a gc2d-rs run is still writing it; analyse it once the run has finished",
+            run.display()
+        )));
+    }
     // A run killed without warning has periodic checkpoints and no final.ckpt, which the analyses read.
     let killed = !run.join("final.ckpt").exists() && run.join("checkpoints").is_dir();
     let hint = if killed {

@@ -701,6 +701,29 @@ fn a_cadence_that_is_not_a_positive_time_is_refused() {
     }
 }
 
+/// A frame rate above one frame per step (1e11, a unit slip) was accepted by `check` and recorded a row at every
+/// step, making a run of seconds take hours; `check` and `run` refuse it at the scene's field, as the other cadences.
+#[test]
+fn more_frames_per_second_than_steps_are_refused_at_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("fast_frames.ron");
+    std::fs::write(
+        &scene,
+        "Scene(\n    run: (time_step_s: 1e-5, end_time_s: 0.01, frames_per_second: 1e11),\n    \
+         particles: [(shape: Regular(corners: 6, radius_m: 0.002), position_m: (0, 0))],\n)\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    for args in [vec!["check"], vec!["run", "--out", out.to_str().unwrap()]] {
+        gc2d()
+            .args(&args)
+            .arg(&scene)
+            .assert()
+            .code(2)
+            .stderr(contains("fast_frames.ron:2:67").and(contains("more than one per time step of 1.000e-5 s")));
+    }
+}
+
 #[test]
 fn record_pictures_snapshot_and_analysis_of_a_run() {
     let out = tempfile::tempdir().unwrap();

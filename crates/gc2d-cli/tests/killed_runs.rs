@@ -89,3 +89,29 @@ fn resuming_into_the_recording_of_the_run_before_is_refused_and_its_frames_kept(
     assert_eq!(resumed.status.code(), Some(0), "{}", String::from_utf8_lossy(&resumed.stderr));
     assert!(std::fs::metadata(dir.path().join("run.resumed.mcap")).unwrap().len() > 0);
 }
+
+/// `analyze` on a run still in progress (its directory locked, periodic checkpoints and no final.ckpt yet) said the
+/// run "was stopped without warning" and suggested `--resume` against the live run; it now says the run is still
+/// being written. Once the lock is free, the same directory is a killed run and gets that hint.
+#[test]
+fn analysing_a_run_in_progress_says_so_instead_of_calling_it_killed() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/tiny_pile.ron");
+    std::fs::copy(&scene, dir.path().join("tiny_pile.ron")).unwrap();
+    let run = gc2d(
+        dir.path(),
+        &["run", "tiny_pile.ron", "--quiet", "--out", "out", "--until", "0.02", "--checkpoint-every", "0.01"],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", String::from_utf8_lossy(&run.stderr));
+    let out = dir.path().join("out");
+    std::fs::remove_file(out.join("final.ckpt")).unwrap();
+    let lock = gc2d_cli::run_lock::lock_run_directory(&out).unwrap();
+    let live = gc2d(dir.path(), &["analyze", "out"]);
+    let stderr = String::from_utf8_lossy(&live.stderr);
+    assert_eq!(live.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("a gc2d-rs run is still writing it") && !stderr.contains("--resume"), "{stderr}");
+    drop(lock);
+    let killed = gc2d(dir.path(), &["analyze", "out"]);
+    let stderr = String::from_utf8_lossy(&killed.stderr);
+    assert!(stderr.contains("stopped without warning") && stderr.contains("--resume"), "{stderr}");
+}
