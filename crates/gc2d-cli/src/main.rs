@@ -164,7 +164,7 @@ struct RunArgs {
     /// The scene file (.ron).
     scene: PathBuf,
     /// Output directory [default: the run directory --resume continues (the directory given, or the one that holds
-    /// the checkpoint given), else out/<scene name>].
+    /// the checkpoint given), else out/<scene file name without .ron>].
     #[arg(long)]
     out: Option<PathBuf>,
     /// Worker threads [default: all cores]. Results are identical for any count.

@@ -97,9 +97,9 @@ pub struct Scene {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Run {
-    /// Δt in s. Default (omitted): 0.15 of the stable bound of the particles (each against the stiffest contact law
-    /// its material meets: (π/10)·sqrt(m/E) for the overlap-area law), rounded down to two significant digits, or
-    /// 1e-4 s when the scene has no particles.
+    /// Δt in s. Default (omitted): the smaller of 0.15 of the §3.6 bound of the particles (each against the stiffest
+    /// contact law its material meets: (π/10)·sqrt(m/E) for the overlap-area law) and their stable bound, rounded down
+    /// to two significant digits, or 1e-4 s when the scene has no particles.
     #[serde(default)]
     pub time_step_s: Option<f64>,
     /// Simulated time at which the run ends, s. Default 1.
