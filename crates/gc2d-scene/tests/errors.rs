@@ -231,6 +231,17 @@ fn particles_the_first_step_would_lose_are_refused_at_their_entry() {
     assert!(error.message().contains("it starts at 1000 m/s and would move"), "{}", error.message());
     let slower = text.replace("(1000, 0)", "(10, 0)");
     assert!(Scene::from_str(&slower, "ok.ron").unwrap().build().is_ok());
+    // A spin alone: the message said "starts at 0 m/s and would move 1.4e7 m" without a word of the spin.
+    let spinning = "Scene(\n    particles: [(shape: Disk(radius_m: 0.005), angular_velocity_rad_s: 1e15)],\n)";
+    let error = error_of(spinning);
+    assert!(
+        error.message().contains(
+            "it starts at 0 m/s spinning at 1e15 rad/s (`angular_velocity_rad_s`; its outermost \
+             point at 5.000e12 m/s)"
+        ),
+        "{}",
+        error.message()
+    );
 }
 
 /// A particle that starts outside `run.domain` was removed at the first step without a word: the run had one particle

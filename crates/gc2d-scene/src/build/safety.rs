@@ -247,10 +247,11 @@ pub(crate) fn too_fast_at_start(
             SceneError::value(
                 &p.path,
                 format!(
-                    "it starts at {} m/s and would move {:.3e} m in its first step of {:.3e} s, more than its \
+                    "it starts at {} m/s{} and would move {:.3e} m in its first step of {:.3e} s, more than its \
                      inscribed radius of {:.3e} m: it could pass through a wall or a particle unseen, and the run would \
                      stop at that step",
                     crate::checks::number(p.velocity.length()),
+                    spin_words(p.angular_velocity, Some(p.shape.reach())),
                     travel,
                     time_step,
                     p.shape.inscribed_radius()
@@ -259,6 +260,21 @@ pub(crate) fn too_fast_at_start(
             .with_help(format!("start it slower, or use a time step below {:.3e} s", time_step * limit / travel))
         })
     })
+}
+
+/// " spinning at ω rad/s" (with the surface speed ω·`reach` where the reach is known) for a spinning body, else
+/// nothing: a spin alone moves the body's outermost points, and a message that named only the speed blamed a
+/// particle at rest for the travel of its spin.
+fn spin_words(angular_velocity: f64, reach: Option<f64>) -> String {
+    match (angular_velocity, reach) {
+        (0.0, _) => String::new(),
+        (omega, Some(reach)) => format!(
+            " spinning at {} rad/s (`angular_velocity_rad_s`; its outermost point at {:.3e} m/s)",
+            crate::checks::number(omega),
+            omega.abs() * reach
+        ),
+        (omega, None) => format!(" spinning at {} rad/s", crate::checks::number(omega)),
+    }
 }
 
 /// Inlets whose particles enter so fast that their first step of `time_step` would move a point of them further than
@@ -291,11 +307,7 @@ pub(crate) fn inlets_too_fast(
                          {time_step:.3e} s, more than the inscribed radius of the smallest ({limit:.3e} m): they could \
                          pass through a wall or a particle unseen, and the run would stop at the first insertion",
                         crate::checks::number(inlet.velocity.length()),
-                        if inlet.angular_velocity == 0.0 {
-                            String::new()
-                        } else {
-                            format!(" spinning at {} rad/s", crate::checks::number(inlet.angular_velocity))
-                        },
+                        spin_words(inlet.angular_velocity, None),
                     ),
                 )
                 .with_label("too fast")
