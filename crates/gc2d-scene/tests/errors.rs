@@ -567,3 +567,15 @@ fn check_prints_extreme_numbers_short() {
     assert!(summary.contains("end time: 1e300 s ("), "{summary}");
     assert!(summary.len() < 1_000, "{summary}");
 }
+
+/// An overlap with a wall builder's piece or a block's particle named only the entries (`walls[0]`, `blocks[0]`), while
+/// events.csv and `export` name the bodies (`walls[0] #1`, `blocks[0] #3`): a Silo makes a floor and two side walls.
+#[test]
+fn start_overlaps_name_the_piece_and_the_particle_as_the_outputs_do() {
+    let text = "Scene(\n    walls: [Silo(x_range_m: (-0.05, 0.05), y_range_m: (0.0, 0.2), thickness_m: 0.005)],\n    \
+                blocks: [(x_range_m: (-0.06, -0.02), y_range_m: (0.02, 0.03), grid_spacing_m: (0.008, 0.008), \
+                shape: (semi_axes_m: (0.002, 0.002), corners: 6))],\n)";
+    let error = error_of(text);
+    assert_eq!((error.kind(), error.path()), (ErrorKind::Overlap, "blocks[0]"), "{}", error.render_plain());
+    assert!(error.message().contains("`blocks[0] #1` and `walls[0] #1`"), "{}", error.message());
+}

@@ -362,6 +362,9 @@ const MAX_REPORTED_OVERLAPS: usize = 8;
 /// lie exactly on each other. Sweeps the bodies sorted by their lower x bound, so the cost is O(N log N) plus the
 /// pairs whose boxes overlap.
 pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneError> {
+    // Each body's name as the run's outputs give it (`walls[0] #1`, `blocks[0] #17`): made only for an error.
+    let names = std::cell::OnceCell::new();
+    let name = |k: usize| -> String { names.get_or_init(|| super::numbered(bodies.iter().map(|b| b.path)))[k].clone() };
     let world: Vec<Vec<DVec2>> =
         bodies.iter().map(|b| b.shape.body_points().iter().map(|v| b.pose.apply(*v)).collect()).collect();
     let view =
@@ -377,7 +380,7 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
             let (a, b) = (i.min(j), i.max(j));
             if bodies[a].is_wall && bodies[b].is_wall {
                 if coincide(&bodies[a], &world[a], &bodies[b], &world[b]) {
-                    errors.push(coinciding_walls_error(&bodies[a], &bodies[b]));
+                    errors.push(coinciding_walls_error(&bodies[b], [name(a), name(b)]));
                     if errors.len() == MAX_REPORTED_OVERLAPS {
                         return errors;
                     }
@@ -393,7 +396,13 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
             let smaller = particle_areas.fold(f64::INFINITY, f64::min);
             let fraction = contact.area / smaller;
             if fraction > max_fraction {
-                errors.push(overlap_error(&bodies[a], &bodies[b], contact.point, fraction, max_fraction));
+                errors.push(overlap_error(
+                    [&bodies[a], &bodies[b]],
+                    [name(a), name(b)],
+                    contact.point,
+                    fraction,
+                    max_fraction,
+                ));
                 if errors.len() == MAX_REPORTED_OVERLAPS {
                     return errors;
                 }
@@ -410,7 +419,8 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
     for chamber in chambers {
         for particle in (0..bodies.len()).filter(|&k| !bodies[k].is_wall && !boxes[k].overlaps(&boxes[chamber])) {
             let (a, b) = (chamber.min(particle), chamber.max(particle));
-            errors.push(overlap_error(&bodies[a], &bodies[b], bodies[particle].pose.position, 1.0, max_fraction));
+            let at = bodies[particle].pose.position;
+            errors.push(overlap_error([&bodies[a], &bodies[b]], [name(a), name(b)], at, 1.0, max_fraction));
             if errors.len() == MAX_REPORTED_OVERLAPS {
                 return errors;
             }
@@ -430,13 +440,14 @@ fn coincide(a: &PlacedBody, points_a: &[DVec2], b: &PlacedBody, points_b: &[DVec
         && points_a.iter().all(|&p| points_b.iter().any(|&q| close(p, q)))
 }
 
-fn coinciding_walls_error(a: &PlacedBody, b: &PlacedBody) -> SceneError {
-    let other = if a.path == b.path { "another wall of the same entry".to_owned() } else { format!("`{}`", a.path) };
+/// The error at wall `b`'s entry where it lies exactly on wall `a`; `names` are the two walls' names, a's first.
+fn coinciding_walls_error(b: &PlacedBody, names: [String; 2]) -> SceneError {
+    let [a_name, b_name] = names;
     SceneError::value(
         b.path,
         format!(
-            "this wall lies exactly on {other}: a particle touching one touches both, and feels twice the contact \
-             stiffness and damping"
+            "this wall (`{b_name}`) lies exactly on `{a_name}`: a particle touching one touches both, and feels twice \
+             the contact stiffness and damping"
         ),
     )
     .with_help("give each wall once (a mill's `rotor.arms_rad` lists each blade's angle once)")
@@ -448,14 +459,17 @@ fn percent(p: f64) -> String {
     if p >= 0.01 { format!("{p:.2}") } else { format!("{p:.2e}") }
 }
 
-fn overlap_error(a: &PlacedBody, b: &PlacedBody, at: DVec2, fraction: f64, limit: f64) -> SceneError {
+/// The error at the entry of body b of `pair` (a, b) where the two overlap by `fraction` of the smaller particle's
+/// area, more than `limit`; `names` are their names as the run's outputs give them, a's first.
+fn overlap_error(pair: [&PlacedBody; 2], names: [String; 2], at: DVec2, fraction: f64, limit: f64) -> SceneError {
+    let [a, b] = pair;
+    let [a_name, b_name] = names;
     let what = if a.is_wall || b.is_wall { "a particle and a wall" } else { "two particles" };
-    let other = if a.path == b.path { "another body of the same entry".to_owned() } else { format!("`{}`", a.path) };
     SceneError::new(
         ErrorKind::Overlap,
         b.path,
         format!(
-            "{what} overlap by {} % of the smaller particle's area at ({:.4}, {:.4}) m; the other body is {other}. \
+            "{what} overlap by {} % of the smaller particle's area at ({:.4}, {:.4}) m: `{b_name}` and `{a_name}`. \
              Bodies must not overlap at the start beyond round-off ({} of the smaller area): the run would refuse \
              them before its first step, since an overlap at the start has no place in the energy ledger and its \
              damping would kick the bodies apart",
