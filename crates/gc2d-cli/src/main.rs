@@ -803,7 +803,23 @@ fn snapshot(
         if run.is_dir() { run.join("snapshot.png") } else { checkpoint.with_file_name("snapshot.png") }
     });
     // A run directory's scene may name the region its pictures show (`view`), as the frames of `--png-every` do.
-    let view = if run.is_dir() { Scene::from_path(run.join(SCENE_COPY)).ok().and_then(|s| s.view) } else { None };
+    let scene = if run.is_dir() { Scene::from_path(run.join(SCENE_COPY)).ok() } else { None };
+    let view = scene.as_ref().and_then(|s| s.view);
+    if run.is_dir() && checkpoint != run.join("final.ckpt") && run.join("final.ckpt").is_file() {
+        console::err(&format!(
+            "note: drawing {}, the run's newest state, later than its final.ckpt",
+            checkpoint.display()
+        ));
+    }
+    // A checkpoint of another run (copied in) was drawn without a word, as if it were this run's.
+    if let Some(comparison) = scene.as_ref().and_then(|scene| scene.compare_with_checkpoint(&world).ok())
+        && let Some(difference) = comparison.differences.first()
+    {
+        console::err(&format!(
+            "warning: {} is not a state of the run's {SCENE_COPY} ({difference}): is it another run's?",
+            checkpoint.display()
+        ));
+    }
     let options = PngOptions {
         width,
         view: view.map(|area| area.aabb()),

@@ -280,3 +280,42 @@ fn an_export_names_no_particle_from_a_scene_that_is_not_the_runs() {
     assert!(stderr.contains("has no scene.ron"), "{stderr}");
     assert_eq!((origin.as_str(), material.as_str()), ("", ""));
 }
+
+/// A damaged final.ckpt made `export --at T` fail although T's periodic checkpoint was intact (the final one only
+/// gives the time step); it is left out with a warning. And `snapshot` drew a checkpoint of another run, copied into
+/// the run's `checkpoints/` with a higher step, without a word; it now warns that it is not a state of the run.
+#[test]
+fn a_damaged_final_checkpoint_or_a_foreign_one_is_named_not_silently_used() {
+    let (_keep, run_dir) = run();
+    let gc2d = || Command::cargo_bin("gc2d-rs").unwrap();
+    let final_checkpoint = run_dir.join("final.ckpt");
+    let intact = std::fs::read(&final_checkpoint).unwrap();
+    std::fs::write(&final_checkpoint, &intact[..100]).unwrap();
+    let exported = gc2d().arg("export").arg(&run_dir).args(["--at", "0.05", "--format", "csv"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&exported.stderr);
+    assert!(exported.status.success(), "{stderr}");
+    assert!(stderr.contains("warning: cannot read") && stderr.contains("it is left out"), "{stderr}");
+    assert!(stderr.contains("Exported t = 0.05") && stderr.contains("checkpoint-0000010417.ckpt"), "{stderr}");
+    std::fs::write(&final_checkpoint, &intact).unwrap();
+
+    let other_dir = tempfile::tempdir().unwrap();
+    let other_scene = other_dir.path().join("other.ron");
+    std::fs::write(&other_scene, SCENE.replace("density_kg_m2: 2500", "density_kg_m2: 3000")).unwrap();
+    let other_run = other_dir.path().join("run");
+    gc2d()
+        .arg("run")
+        .arg(&other_scene)
+        .args(["--quiet", "--until", "0.01", "--out"])
+        .arg(&other_run)
+        .assert()
+        .success();
+    let foreign = run_dir.join("checkpoints/checkpoint-9999999999.ckpt");
+    std::fs::copy(other_run.join("final.ckpt"), &foreign).unwrap();
+    let drawn = gc2d().arg("snapshot").arg(&run_dir).output().unwrap();
+    let stderr = String::from_utf8_lossy(&drawn.stderr);
+    assert!(drawn.status.success(), "{stderr}");
+    assert!(stderr.contains("later than its final.ckpt") && stderr.contains("is not a state of the run's"), "{stderr}");
+    std::fs::remove_file(&foreign).unwrap();
+    let drawn = gc2d().arg("snapshot").arg(&run_dir).output().unwrap();
+    assert!(drawn.stderr.is_empty() || !String::from_utf8_lossy(&drawn.stderr).contains("warning"));
+}

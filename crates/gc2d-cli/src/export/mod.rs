@@ -64,13 +64,20 @@ fn numbered_checkpoints(run: &Path) -> Vec<(u64, PathBuf)> {
 }
 
 /// The checkpoint to export and its World: the last at or before `at` (within half a step), or the latest without
-/// `at`. Loads final.ckpt (or, without it, the newest numbered checkpoint) for the time step, and then only the
-/// chosen file: a numbered checkpoint's time is its step times Δt.
-fn choose(run: &Path, at: Option<f64>) -> Result<(PathBuf, World), String> {
+/// `at`. Loads final.ckpt (or, without it or where it is damaged, the newest numbered checkpoint, with a warning in
+/// `warnings`) for the time step, and then only the chosen file: a numbered checkpoint's time is its step times Δt.
+fn choose(run: &Path, at: Option<f64>, warnings: &mut Vec<String>) -> Result<(PathBuf, World), String> {
     let numbered = numbered_checkpoints(run);
     let final_path = run.join("final.ckpt");
-    let (reference_path, reference) = if final_path.is_file() {
-        let world = load(&final_path)?;
+    // A damaged final.ckpt leaves the periodic checkpoints intact: the newest of them gives the time step.
+    let final_state = match final_path.is_file().then(|| load(&final_path)) {
+        Some(Err(why)) if !numbered.is_empty() => {
+            warnings.push(format!("{why}: it is left out; the periodic checkpoints give the time step and the states"));
+            None
+        }
+        other => other.transpose()?,
+    };
+    let (reference_path, reference) = if let Some(world) = final_state {
         (final_path, world)
     } else if let Some((_, path)) = numbered.last() {
         (path.clone(), load(path)?)
@@ -114,7 +121,8 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     if !run.is_dir() {
         return Err(format!("{} is not a run directory", run.display()));
     }
-    let (checkpoint, world) = choose(run, at)?;
+    let mut warnings = Vec::new();
+    let (checkpoint, world) = choose(run, at, &mut warnings)?;
     let time_s = world.time();
     // Each format once, in the order given (`csv,parquet,csv` listed the CSV files twice in the manifest).
     let mut once: Vec<ExportFormat> = Vec::new();
@@ -127,7 +135,6 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     refuse_to_replace_other_files(out, &planned_files(&formats, world.steps()))?;
     // The scene as run names the materials and the bodies' origins; without it, or where it is not the scene of the
     // checkpoint (edited, or copied from another run), the names are left empty rather than made up.
-    let mut warnings = Vec::new();
     let scene = match run_scene(run, &world, &checkpoint.display().to_string()) {
         Ok(scene) => Some(scene),
         Err(why) => {
