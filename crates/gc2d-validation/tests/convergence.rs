@@ -70,6 +70,21 @@ fn order_fit_recovers_a_power_law_inside_the_asymptotic_range() {
     let expected: Vec<f64> = runs.iter().filter(|r| r.fraction <= 1.0).map(|r| r.errors.as_ref().unwrap()[0]).collect();
     let used = expected.iter().filter(|&&e| e > 1e-9 && e < 0.1).count();
     assert_eq!(fit.points, used);
+    assert!((fit.r_squared - 1.0).abs() < 1e-12, "a power law lies on its line: R² {}", fit.r_squared);
+    // Verlet's bounded energy swing in the study (its energy-drift metric): a slope of 3.4 through scatter, which the
+    // tables marked as an order; its R² (0.87) puts it below the mark of a clean power law.
+    let verlet_drift = [3.4e-9, 1.1e-11, 2.6e-10, 1.8e-9, 2.2e-7, 5.9e-7, 6.4e-8, 1.3e-6, 6.5e-6, 1.4e-5, 3.0e-5];
+    let scattered: Vec<RunRecord> = verlet_drift
+        .iter()
+        .enumerate()
+        .map(|(k, &error)| {
+            let fraction = 0.01 * 2f64.sqrt().powi(k as i32);
+            let dt = fraction * 1e-5;
+            RunRecord { dt, fraction, steps: 1, wall_seconds: 0.0, errors: Some(vec![error]), failure: None }
+        })
+        .collect();
+    let fit = sweep::fit_order(&scattered, 0, 0.0).unwrap();
+    assert!(fit.r_squared < gc2d_validation::convergence::tables::SCATTERED_BELOW_R_SQUARED, "{fit:?}");
     // An unstable run ends the fit range.
     let mut broken = runs.clone();
     broken[3].failure = Some("unstable".into());

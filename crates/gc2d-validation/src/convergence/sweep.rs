@@ -54,6 +54,8 @@ pub struct OrderFit {
     pub fraction_range: (f64, f64),
     /// Number of points used.
     pub points: usize,
+    /// The coefficient of determination R² of the log-log fit: near 1 where the error falls as a power of Δt.
+    pub r_squared: f64,
 }
 
 /// Where an integrator stopped being stable, as fractions of the bound; `None` when the sweep did not find it.
@@ -194,7 +196,19 @@ pub fn fit_order(runs: &[RunRecord], metric: usize, reference_uncertainty: f64) 
     let ys: Vec<f64> = points.iter().map(|p| p.1).collect();
     let fractions = points.iter().map(|p| p.2);
     let range = fractions.clone().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), f| (lo.min(f), hi.max(f)));
-    Some(OrderFit { order: least_squares_slope(&xs, &ys), fraction_range: range, points: points.len() })
+    let order = least_squares_slope(&xs, &ys);
+    let r_squared = coefficient_of_determination(&xs, &ys, order);
+    Some(OrderFit { order, fraction_range: range, points: points.len(), r_squared })
+}
+
+/// R² of the least-squares line of slope `slope` through the means of `xs` and `ys`: 1 − residual/total sum of
+/// squares; 1 where `ys` is constant (nothing to explain).
+fn coefficient_of_determination(xs: &[f64], ys: &[f64], slope: f64) -> f64 {
+    let n = xs.len() as f64;
+    let (mean_x, mean_y) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
+    let total: f64 = ys.iter().map(|y| (y - mean_y).powi(2)).sum();
+    let residual: f64 = xs.iter().zip(ys).map(|(x, y)| (y - mean_y - slope * (x - mean_x)).powi(2)).sum();
+    if total > 0.0 { 1.0 - residual / total } else { 1.0 }
 }
 
 /// The least-squares slope of `ys` against `xs` (same length, at least two distinct xs).
