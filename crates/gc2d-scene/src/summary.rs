@@ -60,7 +60,9 @@ fn describe(model: &ContactModel) -> String {
         ContactModel::Penetration(law) => {
             let mut text = match law.normal {
                 NormalSpring::Linear { stiffness_n_m } => format!("linear spring, k = {stiffness_n_m:e} N/m"),
-                NormalSpring::Hertz { effective_modulus_pa } => format!("Hertz, E* = {effective_modulus_pa:e} Pa"),
+                NormalSpring::Hertz { effective_modulus_pa } => {
+                    format!("Hertz, E* = {} Pa", six_digits(effective_modulus_pa))
+                }
             };
             text += &match law.damping {
                 None => ", undamped".to_owned(),
@@ -343,10 +345,24 @@ impl fmt::Display for Summary {
     }
 }
 
+/// A derived number (E* from E and ν) to six significant digits, written as [`number`] writes it: 1.07802e11, not
+/// the 1.0780219780219778e11 of its last bit.
+fn six_digits(x: f64) -> String {
+    number(format!("{x:.5e}").parse().unwrap_or(x))
+}
+
 #[cfg(test)]
 mod tests {
-    use super::clipping;
+    use super::{clipping, six_digits};
     use gc2d_contact::ImpactLaw;
+
+    /// Steel's E* = E/(2(1 − ν²)) was printed with all 17 digits of its last bit.
+    #[test]
+    fn derived_moduli_are_printed_to_six_digits() {
+        assert_eq!(six_digits(1.0780219780219778e11), "1.07802e11");
+        assert_eq!(six_digits(1e5), "100000");
+        assert_eq!(six_digits(2.5e-3), "0.0025");
+    }
 
     /// The summary says where a fitted e(v) exceeds 1, at the speed where the engine's clipped law reaches 1.
     #[test]
