@@ -99,9 +99,9 @@ enum Command {
         /// median-speed series by its stationarity test; the feed pipe's first removal at an outlet; docs/analysis.md].
         #[arg(long)]
         warm_up: Option<f64>,
-        /// Feed pipe: bins across the pipe's section for the profiles.
-        #[arg(long, default_value_t = DEFAULT_BINS)]
-        bins: usize,
+        /// Feed pipe: bins across the pipe's section for the profiles [default: 12].
+        #[arg(long)]
+        bins: Option<usize>,
     },
     /// Convert a legacy gc2d input file (.gsi) into a RON scene; prints its `$` comments and every warning.
     ImportGsi {
@@ -845,8 +845,22 @@ fn analyze(
     window: Option<f64>,
     grid: Option<f64>,
     warm_up: Option<f64>,
-    bins: usize,
+    bins: Option<usize>,
 ) -> Result<u8, CommandFailure> {
+    let given = [
+        ("--window", window.is_some()),
+        ("--grid", grid.is_some()),
+        ("--warm-up", warm_up.is_some()),
+        ("--bins", bins.is_some()),
+    ];
+    refuse_options_of_other_kinds(kind, given)?;
+    if run.is_file() {
+        return Err(CommandFailure::input(format!(
+            "{} is a file: give the run directory `gc2d-rs run` wrote (out/<scene> by default)",
+            run.display()
+        )));
+    }
+    let bins = bins.unwrap_or(DEFAULT_BINS);
     let settings = AnalysisSettings { window_half_width_m: window, grid_cell_m: grid, warm_up_s: warm_up, bins };
     // A run in progress has no final state yet; it is not one stopped without warning, and not to be resumed.
     if gc2d_cli::run_lock::is_locked(run) {
@@ -874,6 +888,25 @@ fn analyze(
     }
     console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
     Ok(0)
+}
+
+/// Refuses an `analyze` option the analysis of `kind` does not read (it was ignored without a word); `given` lists
+/// each option's flag and whether it was given.
+fn refuse_options_of_other_kinds(kind: AnalysisKind, given: [(&str, bool); 4]) -> Result<(), CommandFailure> {
+    use AnalysisKind::{Auto, Feedpipe, Mill, Pile, Silo};
+    let readers = |flag: &str| match flag {
+        "--window" | "--grid" => (&[Auto, Pile, Silo][..], "the pile and silo analyses (--kind auto, pile or silo)"),
+        "--warm-up" => (&[Mill, Feedpipe][..], "the mill and feed-pipe analyses (--kind mill or feedpipe)"),
+        _ => (&[Feedpipe][..], "the feed-pipe analysis (--kind feedpipe)"),
+    };
+    match given.iter().find(|(flag, given)| *given && !readers(flag).0.contains(&kind)) {
+        Some((flag, _)) => Err(CommandFailure::input(format!(
+            "{flag} is read only by {}, not by --kind {}",
+            readers(flag).1,
+            kind.name()
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// `export`: a run's state at a checkpoint as tables and VTK.

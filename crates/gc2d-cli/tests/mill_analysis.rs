@@ -165,3 +165,26 @@ fn a_run_without_a_mill_is_refused_by_the_mill_analysis() {
     assert!(stderr.contains("the run has no balls") && stderr.contains("no `mill`"), "{stderr}");
     assert!(!out.path().join("analysis/mill.json").exists());
 }
+
+/// `--warm-up` and `--bins` were ignored without a word by the pile and silo analyses, `--window` and `--grid` by the
+/// mill's; and a scene file given for the run directory gave "…/final.ckpt: Not a directory".
+#[test]
+fn analyze_refuses_options_its_kind_does_not_read_and_a_file_for_the_run() {
+    let gc2d = || Command::cargo_bin("gc2d-rs").unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    for (args, message) in [
+        (&["--warm-up", "0.1"][..], "--warm-up is read only by the mill and feed-pipe analyses"),
+        (&["--kind", "pile", "--bins", "10"][..], "--bins is read only by the feed-pipe analysis"),
+        (&["--kind", "mill", "--bins", "10"][..], "not by --kind mill"),
+        (&["--kind", "feedpipe", "--grid", "0.01"][..], "--grid is read only by the pile and silo analyses"),
+    ] {
+        gc2d().arg("analyze").arg(dir.path()).args(args).assert().code(2).stderr(predicates::str::contains(message));
+    }
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/incline.ron");
+    gc2d()
+        .arg("analyze")
+        .arg(&scene)
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("is a file: give the run directory"));
+}
