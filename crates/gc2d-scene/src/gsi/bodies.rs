@@ -92,10 +92,22 @@ pub(super) fn read_wall(reader: &mut ObjectReader<'_, '_>) -> Option<GsiWall> {
 fn read_wall_motion(reader: &mut ObjectReader<'_, '_>) -> Option<GsiWallMotion> {
     let piston_line = reader.first_line_of(&PISTON_COMMANDS);
     let vibration_line = reader.first_line_of(&VIBRATION_COMMANDS);
-    let piston = piston_line.map(|_| GsiPiston {
-        direction_angle: reader.float("PISTON_ANGLE", 0.0),
-        force: reader.float("PISTON_FORCE", 0.0),
-        v_max: reader.float("PISTON_V_MAX", 1.0),
+    let piston = piston_line.map(|_| {
+        let force = reader.float("PISTON_FORCE", 0.0);
+        if !force.origin.is_written() {
+            let kind = GsiWarningKind::DefaultUsed {
+                keyword: "PISTON_FORCE",
+                object: "WALL",
+                default: "0 (N)",
+                consequence: "the piston exerts no force",
+            };
+            reader.diagnostics.warn(force.line(), kind);
+        }
+        GsiPiston {
+            direction_angle: reader.float("PISTON_ANGLE", 0.0),
+            force,
+            v_max: reader.float("PISTON_V_MAX", 1.0),
+        }
     });
     let vibration = vibration_line.map(|_| GsiVibration {
         direction_angle: reader.float("VIB_ANGLE", FRAC_PI_2),

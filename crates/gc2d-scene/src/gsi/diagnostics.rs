@@ -92,6 +92,21 @@ pub enum GsiErrorKind {
         /// What it expects.
         expected: &'static str,
     },
+    /// A command with fewer or more numbers than it takes. gc2d set a missing second number to 0 and ignored extra
+    /// ones (§9.2 rules 2 and 3); either silently changes the experiment, so gc2d-rs refuses both.
+    #[error("{keyword}: {}", value_count_text(expected, values, found, not_a_number))]
+    ValueCount {
+        /// The command.
+        keyword: &'static str,
+        /// How many it takes: `(least, most)`.
+        expected: (usize, usize),
+        /// What its values are, e.g. `x y, m` (empty for one value).
+        values: &'static str,
+        /// The numbers written.
+        found: Vec<String>,
+        /// The word where a number was still needed, if there was one.
+        not_a_number: Option<String>,
+    },
     /// An option word that names no known choice.
     #[error("{keyword}: {message}")]
     BadOption {
@@ -170,6 +185,23 @@ pub enum GsiErrorKind {
     },
 }
 
+/// "expected 2 values (x y, m), found 1: `0.11`" and the like.
+fn value_count_text(
+    expected: &(usize, usize),
+    values: &str,
+    found: &[String],
+    not_a_number: &Option<String>,
+) -> String {
+    let (least, most) = *expected;
+    let count = if least == most { least.to_string() } else { format!("{least} or {most}") };
+    let plural = if most == 1 { "" } else { "s" };
+    let what = if values.is_empty() { String::new() } else { format!(" ({values})") };
+    let found_text =
+        if found.is_empty() { "none".to_owned() } else { format!("{}: `{}`", found.len(), found.join(" ")) };
+    let word = not_a_number.as_ref().map_or(String::new(), |word| format!(" (`{word}` is not a number)"));
+    format!("expected {count} value{plural}{what}, found {found_text}{word}")
+}
+
 fn suggestion_text(suggestion: &Option<&'static str>) -> String {
     suggestion.map(|s| format!("; did you mean `{s}`?")).unwrap_or_default()
 }
@@ -232,14 +264,29 @@ pub enum GsiWarningKind {
         /// Line of the DISPLAY that is used.
         used: usize,
     },
-    /// A two-parameter command whose second word is not a number: as in gc2d the second parameter is 0 and the word
-    /// is taken as a comment.
-    #[error("{keyword}: `{token}` is not a number, so it is read as a comment and the second parameter is 0")]
-    SecondParameterNotANumber {
+    /// Words after a command's values: gc2d ignores them (§9.2 rule 3, an inline comment without `#`), and so does
+    /// gc2d-rs, but says so in case they are a typo.
+    #[error(
+        "{keyword}: the text after the parameters, `{text}`, is ignored (gc2d reads it as a comment; start comments with \
+         `#` to silence this)"
+    )]
+    TrailingText {
         /// The command.
         keyword: &'static str,
-        /// The word read as a comment.
-        token: String,
+        /// The ignored words, joined by single spaces.
+        text: String,
+    },
+    /// A command that decides the experiment is not written, so gc2d's documented default is used.
+    #[error("{object} has no {keyword}: gc2d's default {default} is used, so {consequence}")]
+    DefaultUsed {
+        /// The command.
+        keyword: &'static str,
+        /// The object that lacks it.
+        object: &'static str,
+        /// The default, as written in a gsi file, with its unit.
+        default: &'static str,
+        /// What the default means for the run.
+        consequence: &'static str,
     },
     /// A corner list in clockwise order, re-oriented.
     #[error("CORNERS are clockwise; gc2d requires counter-clockwise, so the order is reversed")]

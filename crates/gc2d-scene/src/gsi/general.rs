@@ -21,9 +21,19 @@ pub(super) fn read_general(reader: &mut ObjectReader<'_, '_>) -> GsiGeneral {
         reader.diagnostics.warn(line, GsiWarningKind::EmailIgnored);
     }
     let heating = reader.first_line_of(&HEATING_COMMANDS).map(|_| read_heating(reader));
+    let time = reader.window("TIME", [0.0, 1.0]);
+    if !time.origin.is_written() {
+        let kind = GsiWarningKind::DefaultUsed {
+            keyword: "TIME",
+            object: "GENERAL",
+            default: "0 1 (s)",
+            consequence: "the run ends at t = 1 s",
+        };
+        reader.diagnostics.warn(time.line(), kind);
+    }
     GsiGeneral {
         time_step: reader.float("DELTA_T", 1e-4),
-        time: reader.window("TIME", [0.0, 1.0]),
+        time,
         friction: reader.float("MUE_STATISCH", 0.6),
         dynamic_friction,
         youngs_modulus: reader.float("E_MODUL", 1e7),

@@ -6,25 +6,51 @@ use std::f64::consts::TAU;
 use gc2d_engine::DropHeight;
 use gc2d_geometry::{AngleMode, Randomization};
 
-use super::diagnostics::GsiErrorKind;
+use super::diagnostics::{GsiErrorKind, GsiWarningKind};
 use super::reader::ObjectReader;
 use super::scene::{GridType, GsiBlock, GsiDropSource, GsiShape, PartSizeReading, Sourced};
 
-/// The shape defaults that differ between GENERATE_BLOCK and DROPSOURCE.
+/// The shape defaults that differ between GENERATE_BLOCK and DROPSOURCE, with the object's name and the default
+/// PART_SIZE as the warning about a missing one shows it.
 struct ShapeDefaults {
+    object: &'static str,
     part_size: [f64; 2],
+    part_size_text: &'static str,
     size_variation: f64,
     corners: u64,
 }
 
-const BLOCK_SHAPE: ShapeDefaults = ShapeDefaults { part_size: [1.0, 1.0], size_variation: 0.5, corners: 6 };
-const DROP_SHAPE: ShapeDefaults = ShapeDefaults { part_size: [0.01, 0.01], size_variation: 0.1, corners: 8 };
+const BLOCK_SHAPE: ShapeDefaults = ShapeDefaults {
+    object: "GENERATE_BLOCK",
+    part_size: [1.0, 1.0],
+    part_size_text: "1 1 (m)",
+    size_variation: 0.5,
+    corners: 6,
+};
+const DROP_SHAPE: ShapeDefaults = ShapeDefaults {
+    object: "DROPSOURCE",
+    part_size: [0.01, 0.01],
+    part_size_text: "0.01 0.01 (m)",
+    size_variation: 0.1,
+    corners: 8,
+};
 
 /// Reads the shape commands. PART_SIZE is provisionally read as semi-axes; the file-wide reading is settled once all
-/// objects are read (see `part_size`).
+/// objects are read (see `part_size`). A missing PART_SIZE warns: the default sets the size of every particle.
 fn read_shape(reader: &mut ObjectReader<'_, '_>, defaults: &ShapeDefaults) -> GsiShape {
+    let part_size = reader.vector("PART_SIZE", defaults.part_size);
+    if !part_size.origin.is_written() {
+        let kind = GsiWarningKind::DefaultUsed {
+            keyword: "PART_SIZE",
+            object: defaults.object,
+            default: defaults.part_size_text,
+            consequence: "every particle's size is this default (semi-axes or full axes as the file's PART_SIZE \
+                          reading says)",
+        };
+        reader.diagnostics.warn(part_size.line(), kind);
+    }
     GsiShape {
-        part_size: reader.vector("PART_SIZE", defaults.part_size),
+        part_size,
         reading: PartSizeReading::SemiAxes,
         size_variation: reader.float("PART_VAR_SIZE", defaults.size_variation),
         size_randomization: reader.option("RANDOM_SIZE", Randomization::Const),

@@ -68,12 +68,16 @@ impl ObjectKind {
 pub(super) enum Arity {
     /// One float.
     Float,
-    /// Two floats; a missing second one is 0 (§9.2 rule 2).
+    /// Two floats. gc2d set a missing second one to 0 (§9.2 rule 2); gc2d-rs refuses it, as a dropped number
+    /// silently changes the experiment.
     FloatPair,
+    /// One or two floats, for the commands documented with one (`G`, `SEED`, `DRAG_VELOCITY`): a missing second
+    /// one keeps its documented meaning.
+    FloatOneOrTwo,
     /// One non-negative integer.
     Whole,
-    /// Two integers of either sign; a missing second one is 0.
-    IntegerPair,
+    /// One or two integers of either sign (`SCREEN`, whose missing or zero height means "keep the aspect ratio").
+    IntegerOneOrTwo,
     /// One word (an option name or a file name).
     Word,
     /// No parameter.
@@ -85,22 +89,35 @@ impl Arity {
     pub fn describe(self) -> &'static str {
         match self {
             Arity::Float => "a number",
-            Arity::FloatPair => "one or two numbers",
+            Arity::FloatPair => "two numbers",
+            Arity::FloatOneOrTwo => "one or two numbers",
             Arity::Whole => "a non-negative whole number",
-            Arity::IntegerPair => "one or two whole numbers",
+            Arity::IntegerOneOrTwo => "one or two whole numbers",
             Arity::Word => "a word",
             Arity::Flag => "nothing",
         }
     }
+
+    /// The least and the most values a command of this arity takes.
+    pub fn counts(self) -> (usize, usize) {
+        match self {
+            Arity::Float | Arity::Whole | Arity::Word => (1, 1),
+            Arity::FloatPair => (2, 2),
+            Arity::FloatOneOrTwo | Arity::IntegerOneOrTwo => (1, 2),
+            Arity::Flag => (0, 0),
+        }
+    }
 }
 
-/// One command: its canonical name, the other spellings gc2d's documentation uses, its parameters, and whether it
-/// is one of gc2d's System commands (checkpoint state, not for users).
+/// One command: its canonical name, the other spellings gc2d's documentation uses, its parameters, what its values
+/// are (for messages; empty for one value), and whether it is one of gc2d's System commands (checkpoint state, not
+/// for users).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Command {
     pub name: &'static str,
     pub aliases: &'static [&'static str],
     pub arity: Arity,
+    pub values: &'static str,
     pub system: bool,
 }
 
@@ -112,18 +129,24 @@ impl Command {
     fn spellings(&self) -> impl Iterator<Item = &'static str> {
         std::iter::once(self.name).chain(self.aliases.iter().copied())
     }
+
+    /// The command with its values named `values` (e.g. `"x y, m"`).
+    const fn of(mut self, values: &'static str) -> Command {
+        self.values = values;
+        self
+    }
 }
 
 const fn user(name: &'static str, arity: Arity) -> Command {
-    Command { name, aliases: &[], arity, system: false }
+    Command { name, aliases: &[], arity, values: "", system: false }
 }
 
 const fn alias(name: &'static str, aliases: &'static [&'static str], arity: Arity) -> Command {
-    Command { name, aliases, arity, system: false }
+    Command { name, aliases, arity, values: "", system: false }
 }
 
 const fn system(name: &'static str, arity: Arity) -> Command {
-    Command { name, aliases: &[], arity, system: true }
+    Command { name, aliases: &[], arity, values: "", system: true }
 }
 
 /// The keyword that opens a corner list in PARTICLE and WALL.
@@ -135,7 +158,7 @@ pub(super) const END_OF_FILE: &str = "END_OF_FILE";
 
 const GENERAL: &[Command] = &[
     user("DELTA_T", Arity::Float),
-    user("TIME", Arity::FloatPair),
+    user("TIME", Arity::FloatPair).of("start end, s"),
     user("MUE_STATISCH", Arity::Float),
     user("MUE_DYNAMISCH", Arity::Float),
     user("E_MODUL", Arity::Float),
@@ -145,37 +168,37 @@ const GENERAL: &[Command] = &[
     user("STEPS_CHECKPOINT", Arity::Whole),
     user("STEPS_SETUP", Arity::Whole),
     user("STEPS_DUMPLINE", Arity::Whole),
-    user("SEED", Arity::FloatPair),
+    user("SEED", Arity::FloatOneOrTwo).of("s1 s2"),
     user("BASENAME", Arity::Word),
     user("EMAIL", Arity::Word),
     system("NEXT_DATA_FILENUMBER", Arity::Whole),
     system("NEXT_SETUP_FILENUMBER", Arity::Whole),
-    user("G", Arity::FloatPair),
-    user("G_TIME", Arity::FloatPair),
-    user("G_PARAMETER", Arity::FloatPair),
+    user("G", Arity::FloatOneOrTwo).of("g1 g2, m/s²"),
+    user("G_TIME", Arity::FloatPair).of("t1 t2, s"),
+    user("G_PARAMETER", Arity::FloatPair).of("p1 p2"),
     user("G_TYPE", Arity::Word),
-    user("HEAT_TIME", Arity::FloatPair),
+    user("HEAT_TIME", Arity::FloatPair).of("t1 t2, s"),
     user("HEAT_AMPLITUDE", Arity::Float),
     alias("HEAT_FREQUENCE", &["HEAT_FREQUENCY"], Arity::Float),
     user("HEAT_SLOPE", Arity::Float),
 ];
 
 const DISPLAY: &[Command] = &[
-    user("X_RANGE", Arity::FloatPair),
-    user("Y_RANGE", Arity::FloatPair),
-    user("SCREEN", Arity::IntegerPair),
+    user("X_RANGE", Arity::FloatPair).of("min max, m"),
+    user("Y_RANGE", Arity::FloatPair).of("min max, m"),
+    user("SCREEN", Arity::IntegerOneOrTwo).of("width height, pixels"),
     user("INTERVAL", Arity::Whole),
     user("MODUS", Arity::Whole),
 ];
 
 const PARTICLE: &[Command] = &[
-    user("COM", Arity::FloatPair),
+    user("COM", Arity::FloatPair).of("x y, m"),
     user("POSITION_ABSOLUT", Arity::Flag),
-    user("VELOCITY", Arity::FloatPair),
-    alias("ACCELERATION", &["VELOCITY_DOT"], Arity::FloatPair),
-    system("PC_TRANS3", Arity::FloatPair),
-    system("PC_TRANS4", Arity::FloatPair),
-    system("PC_TRANS5", Arity::FloatPair),
+    user("VELOCITY", Arity::FloatPair).of("x y, m/s"),
+    alias("ACCELERATION", &["VELOCITY_DOT"], Arity::FloatPair).of("x y, m/s²"),
+    system("PC_TRANS3", Arity::FloatPair).of("x y, m/s³"),
+    system("PC_TRANS4", Arity::FloatPair).of("x y, m/s⁴"),
+    system("PC_TRANS5", Arity::FloatPair).of("x y, m/s⁵"),
     user("ANGLE", Arity::Float),
     user("OMEGA", Arity::Float),
     user("OMEGA_DOT", Arity::Float),
@@ -184,23 +207,23 @@ const PARTICLE: &[Command] = &[
     system("PC_ROT5", Arity::Float),
     system("ID", Arity::Whole),
     user("DRAG_ANGLE", Arity::Float),
-    user("DRAG_VELOCITY", Arity::FloatPair),
+    user("DRAG_VELOCITY", Arity::FloatOneOrTwo).of("speed and an unused second value, m/s"),
     user("DRAG_K", Arity::Float),
-    user("DRAG_TIME", Arity::FloatPair),
-    user("DRAG_FIXING_POINT", Arity::FloatPair),
-    user("DRAG_PULLING_POINT", Arity::FloatPair),
+    user("DRAG_TIME", Arity::FloatPair).of("start end, s"),
+    user("DRAG_FIXING_POINT", Arity::FloatPair).of("x y, m"),
+    user("DRAG_PULLING_POINT", Arity::FloatPair).of("x y, m"),
 ];
 
 const WALL: &[Command] = &[
-    user("OFFSET", Arity::FloatPair),
+    user("OFFSET", Arity::FloatPair).of("x y, m"),
     user("ANGLE", Arity::Float),
-    user("VELOCITY", Arity::FloatPair),
+    user("VELOCITY", Arity::FloatPair).of("x y, m/s"),
     system("ID", Arity::Whole),
     user("PISTON_ANGLE", Arity::Float),
     user("PISTON_FORCE", Arity::Float),
     user("PISTON_V_MAX", Arity::Float),
     user("VIB_ANGLE", Arity::Float),
-    user("VIB_TIME", Arity::FloatPair),
+    user("VIB_TIME", Arity::FloatPair).of("start end, s"),
     user("VIB_WIDTH", Arity::Float),
     alias("VIB_FREQUENCE", &["VIB_FREQUENCY"], Arity::Float),
     user("VIB_TYPE", Arity::Word),
@@ -211,7 +234,7 @@ const WALL: &[Command] = &[
 macro_rules! shape_commands {
     () => {
         [
-            user("PART_SIZE", Arity::FloatPair),
+            user("PART_SIZE", Arity::FloatPair).of("l_x l_y, m"),
             user("PART_VAR_SIZE", Arity::Float),
             alias("RANDOM_SIZE", &["PART_RANDOM_SIZE"], Arity::Word),
             user("PART_NUM_CORNERS", Arity::Whole),
@@ -227,12 +250,12 @@ macro_rules! shape_commands {
 const GENERATE_BLOCK: &[Command] = &{
     let shape = shape_commands!();
     [
-        user("X_RANGE", Arity::FloatPair),
-        user("Y_RANGE", Arity::FloatPair),
-        user("GRID_DISTANCE", Arity::FloatPair),
+        user("X_RANGE", Arity::FloatPair).of("min max, m"),
+        user("Y_RANGE", Arity::FloatPair).of("min max, m"),
+        user("GRID_DISTANCE", Arity::FloatPair).of("Δx Δy, m"),
         user("GRID_TYPE", Arity::Word),
-        user("ANGLE_RANGE", Arity::FloatPair),
-        user("VELOCITY_RANGE", Arity::FloatPair),
+        user("ANGLE_RANGE", Arity::FloatPair).of("min max, rad"),
+        user("VELOCITY_RANGE", Arity::FloatPair).of("min max, m/s"),
         shape[0],
         shape[1],
         shape[2],
@@ -248,10 +271,10 @@ const GENERATE_BLOCK: &[Command] = &{
 const DROPSOURCE: &[Command] = &{
     let shape = shape_commands!();
     [
-        user("POS", Arity::FloatPair),
+        user("POS", Arity::FloatPair).of("x y, m"),
         user("WIDTH", Arity::Float),
         user("TYPE", Arity::Word),
-        user("TIME", Arity::FloatPair),
+        user("TIME", Arity::FloatPair).of("start end, s"),
         user("DELTA_T", Arity::Float),
         shape[0],
         shape[1],

@@ -10,11 +10,11 @@ use super::lexer::Statement;
 /// The parameters of one command, parsed according to its [`Arity`].
 #[derive(Debug, Clone, PartialEq)]
 pub(super) enum Args<'a> {
-    /// One or two floats; `given` says how many were written (a missing second one is 0).
+    /// One or two floats; `given` says how many were written (a second one not written is 0).
     Numbers { values: [f64; 2], given: usize },
     /// A non-negative integer.
     Whole(u64),
-    /// Two integers (a missing second one is 0).
+    /// One or two integers (a second one not written is 0).
     Integers([i64; 2]),
     /// One word, case preserved.
     Word(&'a str),
@@ -198,76 +198,102 @@ fn parse_integer(word: &str) -> Result<i64, NumberError> {
     word.parse::<i64>().map_err(|_| NumberError::NotANumber)
 }
 
-/// Parses the parameters of `command` from `statement`'s words after the first. Words after the parameters are a
-/// comment (§9.2 rule 3). Returns `None` after recording an error.
+/// Parses the parameters of `command` from `statement`'s words after the first. A command takes a fixed number
+/// of values (one or two for the few documented with one); fewer or more numbers are an error naming the values
+/// found. Words after the values are a comment (§9.2 rule 3), accepted with a warning. Returns `None` after
+/// recording an error.
 fn parse_args<'a>(command: &Command, statement: &Statement<'a>, diagnostics: &mut Diagnostics) -> Option<Args<'a>> {
     let keyword = command.name;
     let line = statement.line;
     let parameters = &statement.words[1..];
-    if command.arity == Arity::Flag {
-        return Some(Args::Flag);
-    }
-    let Some(&first) = parameters.first() else {
-        diagnostics.error(line, GsiErrorKind::MissingParameter { keyword, expected: command.arity.describe() });
-        return None;
+    let (least, most) = command.arity.counts();
+    let taken = match command.arity {
+        Arity::Flag => 0,
+        Arity::Word => {
+            if parameters.is_empty() {
+                let expected = command.arity.describe();
+                diagnostics.error(line, GsiErrorKind::MissingParameter { keyword, expected });
+                return None;
+            }
+            1
+        }
+        _ => {
+            // Numbers in any notation count, so that `inf` or `1.5` for a whole number is named as such below.
+            let numbers = parameters.iter().take_while(|word| word.parse::<f64>().is_ok()).count();
+            if let (0, Some(&first)) = (numbers, parameters.first()) {
+                let token = first.to_string();
+                let kind = if command.arity == Arity::Whole {
+                    GsiErrorKind::BadWholeNumber { keyword, token }
+                } else {
+                    GsiErrorKind::BadNumber { keyword, token }
+                };
+                diagnostics.error(line, kind);
+                return None;
+            }
+            if numbers < least || numbers > most {
+                let found = parameters[..numbers].iter().map(|word| word.to_string()).collect();
+                let not_a_number = (numbers < least).then(|| parameters.get(numbers)).flatten().map(|w| w.to_string());
+                let kind = GsiErrorKind::ValueCount {
+                    keyword,
+                    expected: (least, most),
+                    values: command.values,
+                    found,
+                    not_a_number,
+                };
+                diagnostics.error(line, kind);
+                return None;
+            }
+            numbers
+        }
     };
-    let bad_number = |token: &str| GsiErrorKind::BadNumber { keyword, token: token.to_string() };
-    match command.arity {
-        Arity::Float => match parse_number(first) {
-            Ok(value) => Some(Args::Numbers { values: [value, 0.0], given: 1 }),
-            Err(_) => {
-                diagnostics.error(line, bad_number(first));
-                None
-            }
-        },
-        Arity::FloatPair => {
-            let Ok(value) = parse_number(first) else {
-                diagnostics.error(line, bad_number(first));
-                return None;
-            };
-            let (second, given) = second_parameter(keyword, parameters.get(1), line, parse_number, diagnostics)?;
-            Some(Args::Numbers { values: [value, second], given })
-        }
-        Arity::Whole => match first.parse::<u64>() {
-            Ok(value) => Some(Args::Whole(value)),
-            Err(_) => {
-                diagnostics.error(line, GsiErrorKind::BadWholeNumber { keyword, token: first.to_string() });
-                None
-            }
-        },
-        Arity::IntegerPair => {
-            let Ok(value) = parse_integer(first) else {
-                diagnostics.error(line, bad_number(first));
-                return None;
-            };
-            let (second, _) = second_parameter(keyword, parameters.get(1), line, parse_integer, diagnostics)?;
-            Some(Args::Integers([value, second]))
-        }
-        Arity::Word => Some(Args::Word(first)),
-        Arity::Flag => Some(Args::Flag),
+    let args = typed_args(command, &parameters[..taken], line, diagnostics)?;
+    if let Some(rest) = parameters.get(taken..).filter(|rest| !rest.is_empty()) {
+        diagnostics.warn(line, GsiWarningKind::TrailingText { keyword, text: rest.join(" ") });
     }
+    Some(args)
 }
 
-/// The second parameter of a two-parameter command and how many parameters were given. Missing, it is 0 (§9.2
-/// rule 2); a word that is not a number is taken as the start of a comment, with a warning, and the value is 0. A
-/// number that is not finite is an error (`None`).
-fn second_parameter<T: Default>(
-    keyword: &'static str,
-    word: Option<&&str>,
+/// The typed value of `values`, which has as many words as `command` takes (numbers for numeric commands).
+fn typed_args<'a>(
+    command: &Command,
+    values: &[&'a str],
     line: usize,
-    parse: impl Fn(&str) -> Result<T, NumberError>,
     diagnostics: &mut Diagnostics,
-) -> Option<(T, usize)> {
-    let Some(word) = word else { return Some((T::default(), 1)) };
-    match parse(word) {
-        Ok(value) => Some((value, 2)),
-        Err(NumberError::NotANumber) => {
-            diagnostics.warn(line, GsiWarningKind::SecondParameterNotANumber { keyword, token: word.to_string() });
-            Some((T::default(), 1))
+) -> Option<Args<'a>> {
+    let keyword = command.name;
+    let mut bad = |kind: GsiErrorKind| {
+        diagnostics.error(line, kind);
+        None
+    };
+    match command.arity {
+        Arity::Flag => Some(Args::Flag),
+        Arity::Word => values.first().map(|&word| Args::Word(word)),
+        Arity::Float | Arity::FloatPair | Arity::FloatOneOrTwo => {
+            let mut numbers = [0.0; 2];
+            for (slot, &word) in numbers.iter_mut().zip(values) {
+                match parse_number(word) {
+                    Ok(value) => *slot = value,
+                    Err(_) => return bad(GsiErrorKind::BadNumber { keyword, token: word.to_string() }),
+                }
+            }
+            Some(Args::Numbers { values: numbers, given: values.len() })
         }
-        Err(NumberError::NotFinite) => {
-            diagnostics.error(line, GsiErrorKind::BadNumber { keyword, token: word.to_string() });
-            None
+        Arity::Whole => {
+            let word = values.first().copied().unwrap_or("");
+            match word.parse::<u64>() {
+                Ok(value) => Some(Args::Whole(value)),
+                Err(_) => bad(GsiErrorKind::BadWholeNumber { keyword, token: word.to_string() }),
+            }
+        }
+        Arity::IntegerOneOrTwo => {
+            let mut integers = [0; 2];
+            for (slot, &word) in integers.iter_mut().zip(values) {
+                match parse_integer(word) {
+                    Ok(value) => *slot = value,
+                    Err(_) => return bad(GsiErrorKind::BadNumber { keyword, token: word.to_string() }),
+                }
+            }
+            Some(Args::Integers(integers))
         }
     }
 }

@@ -18,9 +18,9 @@ fn parameters(name: &str, arity: Arity) -> &'static str {
         (_, Arity::Word) if name.contains("RANDOM") => "EQUAL",
         (_, Arity::Word) => "word",
         (_, Arity::Float) => "0.5",
-        (_, Arity::FloatPair) => "0.5 0.75",
+        (_, Arity::FloatPair | Arity::FloatOneOrTwo) => "0.5 0.75",
         (_, Arity::Whole) => "7",
-        (_, Arity::IntegerPair) => "3 4",
+        (_, Arity::IntegerOneOrTwo) => "3 4",
         (_, Arity::Flag) => "",
     }
 }

@@ -72,7 +72,7 @@ fn bad_numbers_are_named_with_the_word() {
     let (_, _, message) = only_error(&file("Steps_Data -3"));
     assert!(message.contains("not a non-negative whole number"), "{message}");
     let (_, _, message) = only_error(&file("Delta_T"));
-    assert_eq!(message, "line 3: DELTA_T needs a parameter (a number)");
+    assert_eq!(message, "line 3: DELTA_T: expected 1 value, found none");
     let (line, _, message) = only_error(&file("WALL\nCorners\n0 0\n1 x\n0 1\nEND"));
     assert_eq!(line, 6);
     assert!(message.contains("each line must be a corner `x y`; found `1 x`"), "{message}");

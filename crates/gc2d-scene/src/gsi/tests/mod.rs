@@ -8,6 +8,7 @@ mod errors;
 mod language;
 mod mutations;
 mod piston;
+mod values;
 
 use super::{GsiErrors, GsiImport, GsiWarningKind, ImportOptions, parse_gsi};
 
