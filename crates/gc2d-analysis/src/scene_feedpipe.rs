@@ -343,6 +343,9 @@ pub fn feedpipe_report(
         )));
     }
     let in_window = |t: f64| t >= start && t <= end;
+    // Where the first removal opens the window, it marks the window's start and is not one of its counts: N removals
+    // at and after it span N − 1 intervals, and N/T overestimated the rate of a short window.
+    let counted = |t: f64| in_window(t) && (options.warm_up_s.is_some() || t > start);
     let duration = end - start;
 
     let mut outlets = Vec::new();
@@ -350,7 +353,7 @@ pub fn feedpipe_report(
     for state in world.outlets() {
         let name = &state.outlet().name;
         let mine: Vec<&Passage> = passages.iter().filter(|p| &p.outlet == name).collect();
-        let windowed: Vec<&&Passage> = mine.iter().filter(|p| in_window(p.left_s)).collect();
+        let windowed: Vec<&&Passage> = mine.iter().filter(|p| counted(p.left_s)).collect();
         outlets.push(OutletThroughput {
             outlet: name.clone(),
             removed: mine.len(),
