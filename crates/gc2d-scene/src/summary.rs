@@ -339,14 +339,14 @@ impl fmt::Display for Summary {
             f,
             "  run time (rough estimate for one core): {} ({} particle-steps at {} M/s, docs/performance.md)",
             human_duration(self.run_time_estimate_s()),
-            number(self.particle_steps()),
+            six_digits(self.particle_steps()),
             PARTICLE_STEPS_PER_SECOND / 1e6
         )
     }
 }
 
-/// A derived number (E* from E and ν) to six significant digits, written as [`number`] writes it: 1.07802e11, not
-/// the 1.0780219780219778e11 of its last bit.
+/// A derived number (E* from E and ν, an estimate of particle-steps) to six significant digits, written as [`number`]
+/// writes it: 1.07802e11, not the 1.0780219780219778e11 of its last bit.
 fn six_digits(x: f64) -> String {
     number(format!("{x:.5e}").parse().unwrap_or(x))
 }
