@@ -276,6 +276,19 @@ pub enum GsiWarningKind {
         /// The ignored words, joined by single spaces.
         text: String,
     },
+    /// The file is not UTF-8, so it is read as Latin-1; the warning is at the line of the first byte that is not
+    /// UTF-8.
+    #[error(
+        "the file is not UTF-8 (byte {byte:#04x} at column {column} is not valid UTF-8), so it is read as Latin-1 \
+         (ISO 8859-1), the encoding of old gc2d files: that byte is `{}`; check the file's non-ASCII characters",
+        char::from(*byte)
+    )]
+    NotUtf8 {
+        /// The first byte that is not UTF-8.
+        byte: u8,
+        /// Its column in the line, in characters from 1.
+        column: usize,
+    },
     /// A command that decides the experiment is not written, so gc2d's documented default is used.
     #[error("{object} has no {keyword}: gc2d's default {default} is used, so {consequence}")]
     DefaultUsed {

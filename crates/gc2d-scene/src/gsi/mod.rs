@@ -19,6 +19,7 @@
 mod bodies;
 mod convert;
 mod diagnostics;
+mod encoding;
 mod general;
 mod generators;
 mod keywords;
@@ -34,6 +35,7 @@ mod tests;
 
 pub use convert::{GsiConversion, IMPORTED_MATERIAL, to_scene};
 pub use diagnostics::{GsiError, GsiErrorKind, GsiErrors, GsiWarning, GsiWarningKind, Note};
+pub use encoding::decode_gsi;
 pub use lattice::MAX_GRID_SITES;
 pub use lexer::MAX_LINE_LENGTH;
 pub use part_size::{ImportOptions, PartSizeConvention};
@@ -55,6 +57,18 @@ pub struct GsiImport {
     pub notes: Vec<Note>,
     /// Things read differently from what the file may intend, or ignored, in line order.
     pub warnings: Vec<GsiWarning>,
+}
+
+/// Reads a gsi file from its bytes: UTF-8, or Latin-1 with a warning (see [`decode_gsi`]), then as [`parse_gsi`]
+/// does.
+pub fn parse_gsi_bytes(bytes: &[u8], options: &ImportOptions) -> Result<GsiImport, GsiErrors> {
+    let (text, encoding_warning) = decode_gsi(bytes);
+    let mut import = parse_gsi(&text, options)?;
+    if let Some(warning) = encoding_warning {
+        import.warnings.push(warning);
+        import.warnings.sort_by_key(|warning| warning.line);
+    }
+    Ok(import)
 }
 
 /// Reads a gsi file. On failure every error found is returned, in line order.

@@ -4,6 +4,7 @@
 mod completeness;
 mod conventions;
 mod convert;
+mod encoding;
 mod errors;
 mod language;
 mod mutations;
