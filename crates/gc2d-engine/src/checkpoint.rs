@@ -68,7 +68,7 @@ pub enum CheckpointError {
         expected: String,
     },
     /// The file ends before the header or the payload is complete.
-    #[error("checkpoint is truncated: {what} needs {expected} bytes, the file has {found}")]
+    #[error("checkpoint is truncated: {what} needs {expected} bytes, only {found} are left in the file")]
     Truncated {
         /// The part that is incomplete.
         what: &'static str,
@@ -116,7 +116,7 @@ impl World {
     /// uncorrupted checkpoint of this format and program version; never panics on bad input.
     pub fn load_checkpoint<R: Read>(mut reader: R) -> Result<World, CheckpointError> {
         let mut magic = [0; 8];
-        read_header_field(&mut reader, &mut magic, "the magic bytes")?;
+        read_header_field(&mut reader, &mut magic, "the magic number (GC2DCKPT)")?;
         if magic != CHECKPOINT_MAGIC {
             return Err(CheckpointError::NotACheckpoint);
         }
