@@ -105,6 +105,7 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
             };
             let report = analyze_run(run_dir, &options).map_err(failed)?;
             warnings.extend(pile_not_formed(&report));
+            warnings.extend(report.silo.as_ref().and_then(|silo| not_a_silo(silo.k)));
             warnings.extend(settings.grid_cell_m.and_then(|cell| coarser_grid(&report, cell)));
             serde_json::to_string_pretty(&report)
         }
@@ -180,9 +181,27 @@ fn pile_not_formed(report: &Report) -> Option<String> {
     })
 }
 
+/// A warning where the silo analysis's k = Σσ_xx/Σσ_zz is negative: the grains are not pressed against the walls
+/// under their weight, as in a silo (a pile analysed as one gave k = −0.59), so k and the fits mean nothing.
+fn not_a_silo(k: f64) -> Option<String> {
+    (k < 0.0).then(|| {
+        format!(
+            "k = Σσ_xx/Σσ_zz is {}: the grains are not pressed sideways under their weight as in a silo, so k and \
+             the Janssen fits mean nothing (is it a silo? --kind pile analyses a heap)",
+            crate::console::rounded(k)
+        )
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_negative_stress_ratio_is_no_silo() {
+        assert_eq!(not_a_silo(0.4), None);
+        assert!(not_a_silo(-0.59).is_some_and(|w| w.contains("is -0.59") && w.contains("is it a silo?")));
+    }
 
     #[test]
     fn kinds_are_named_as_on_the_command_line() {
