@@ -7,10 +7,12 @@ use gc2d_engine::schedules::GravityProfile as EngineGravityProfile;
 use gc2d_engine::{DropHeight as EngineDropHeight, MassModel, TimeWindow};
 use gc2d_geometry::{AngleMode, DVec2, Randomization};
 
+use super::locate;
 use super::{
     GridType as GsiGridType, GsiBlock, GsiDisplay, GsiDropSource, GsiError, GsiErrorKind, GsiErrors, GsiGeneral,
-    GsiImport, GsiParticle, GsiShape, GsiWall, GsiWallMotion, GsiWarning, GsiWarningKind, Sourced,
+    GsiImport, GsiParticle, GsiScene, GsiShape, GsiWall, GsiWallMotion, GsiWarning, GsiWarningKind, Sourced,
 };
+use crate::SceneError;
 use crate::schema::{
     Area, Block, CornerPositions, CountSpread, DragSpring, DropHeight, Gravity, GravityProfile, GridType, Heating,
     Material, Motion, Orientation, Particle, Recipe, Run, Scene, Shape, SizeSpread, Source, WallItem, Waveform, Window,
@@ -70,12 +72,39 @@ pub fn to_scene(import: &GsiImport, name: &str) -> Result<GsiConversion, GsiErro
         converter.errors.sort_by_key(|error| error.line);
         return Err(GsiErrors(converter.errors));
     }
+    if let Err(error) = scene.validate() {
+        let errors = invalid_values(&error, source);
+        // Errors in fields the file does not set are left to the written scene's own check.
+        if !errors.is_empty() {
+            return Err(GsiErrors(errors));
+        }
+    }
     let mut scene = scene;
     converter.fit_time_step(&mut scene, &general.time_step);
     let mut warnings = import.warnings.clone();
     warnings.extend(converter.warnings);
     warnings.sort_by_key(|warning| warning.line);
     Ok(GsiConversion { scene, warnings })
+}
+
+/// The scene's validation errors (`error` and its related ones) at the gsi lines and commands that set the refused
+/// values, in line order; those in fields no command sets are left out.
+fn invalid_values(error: &SceneError, source: &GsiScene) -> Vec<GsiError> {
+    let mut errors: Vec<GsiError> = std::iter::once(error)
+        .chain(error.related_errors())
+        .filter_map(|error| {
+            let blame = locate::blame(error.path(), source)?;
+            let kind = GsiErrorKind::InvalidValue {
+                keyword: blame.keyword,
+                written: blame.written,
+                message: error.message().to_owned(),
+                field: error.path().to_owned(),
+            };
+            Some(GsiError { line: blame.line, kind })
+        })
+        .collect();
+    errors.sort_by_key(|error| error.line);
+    errors
 }
 
 /// The conversion's own errors and warnings.
@@ -107,6 +136,17 @@ impl Converter {
             let kind = GsiWarningKind::NotConverted { keyword: "TIME", consequence };
             self.warnings.push(GsiWarning { line: general.time.line(), kind });
         }
+        if general.steps_data.value == 0 {
+            self.errors.push(GsiError {
+                line: general.steps_data.line(),
+                kind: GsiErrorKind::NotConvertible {
+                    keyword: "STEPS_DATA",
+                    reason: "0 steps between data outputs; it must be at least 1 (a frame is written every \
+                             STEPS_DATA × DELTA_T)"
+                        .to_owned(),
+                },
+            });
+        }
         let seed = self.seed(&general.seed);
         self.not_converted(
             &general.basename,
@@ -126,7 +166,7 @@ impl Converter {
         Run {
             time_step_s: Some(time_step),
             end_time_s: time.end,
-            frames_per_second: 1.0 / (time_step * general.steps_data.value as f64),
+            frames_per_second: 1.0 / (time_step * general.steps_data.value.max(1) as f64),
             checkpoint_interval_s: general
                 .steps_setup
                 .origin

@@ -175,6 +175,23 @@ pub enum GsiErrorKind {
         /// What is wrong with the grid.
         reason: String,
     },
+    /// A value the scene refuses (out of range, say), found by validating the converted scene and reported at the
+    /// command that set it.
+    #[error(
+        "{keyword}{}: {message} (scene field `{field}`)",
+        if *written { "" } else { " (not written, so gc2d's default)" }
+    )]
+    InvalidValue {
+        /// The command that set the value, or the object where no single command did.
+        keyword: &'static str,
+        /// Whether the command is written (false: gc2d's default was used).
+        written: bool,
+        /// The scene's message, with the value as the scene holds it (SI units, counter-clockwise angles,
+        /// semi-axes).
+        message: String,
+        /// The scene field, e.g. `materials[0].gamma`.
+        field: String,
+    },
     /// A value the scene format has no meaning for (found while converting to a scene).
     #[error("{keyword} cannot be converted to a scene: {reason}")]
     NotConvertible {

@@ -25,6 +25,7 @@ mod generators;
 mod keywords;
 mod lattice;
 mod lexer;
+mod locate;
 mod part_size;
 mod reader;
 mod scene;

@@ -9,6 +9,7 @@ mod errors;
 mod language;
 mod mutations;
 mod piston;
+mod ranges;
 mod values;
 
 use super::{GsiErrors, GsiImport, GsiWarningKind, ImportOptions, parse_gsi};
