@@ -124,3 +124,94 @@ fn a_wall_overlapping_the_particles_is_blamed_not_the_time_step() {
     assert!(stderr.contains("`blocks[0]`: a particle and a wall"), "{stderr}");
     assert!(!stderr.contains("gc2d_scene::time_step"), "{stderr}");
 }
+
+/// The piston file with each `(from, to)` replaced once, written as `name` in `dir`.
+fn piston_variant(dir: &Path, name: &str, replacements: &[(&str, &str)]) -> PathBuf {
+    let mut text = std::fs::read_to_string(piston_gsi()).unwrap();
+    for (from, to) in replacements {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    let gsi = dir.join(name);
+    std::fs::write(&gsi, text).unwrap();
+    gsi
+}
+
+#[test]
+fn missing_and_extra_values_are_refused_at_their_gsi_line() {
+    // QA report 1, section 2: these used to be read as 0, dropped, or (GRID_DISTANCE) reported with an invented 0.
+    let dir = tempfile::tempdir().unwrap();
+    let gsi = piston_variant(
+        dir.path(),
+        "counts.gsi",
+        &[
+            ("Time                0          0.2", "Time                0"),
+            ("Gamma               0.5", "Gamma               0.5 0.9"),
+            ("Offset              0.0        0.11", "Offset              0.11"),
+            ("Grid_Distance       0.005      0.005", "Grid_Distance       0.005"),
+        ],
+    );
+    let assert = gc2d().arg("import-gsi").arg(&gsi).assert().code(2);
+    let stderr = String::from_utf8(assert.get_output().stderr.clone()).unwrap();
+    let lines: Vec<&str> = stderr.lines().collect();
+    assert_eq!(
+        lines,
+        [
+            format!("{}:5: TIME: expected 2 values (start end, s), found 1: `0`", gsi.display()),
+            format!("{}:7: GAMMA: expected 1 value, found 2: `0.5 0.9`", gsi.display()),
+            format!("{}:41: OFFSET: expected 2 values (x y, m), found 1: `0.11`", gsi.display()),
+            format!("{}:61: GRID_DISTANCE: expected 2 values (Δx Δy, m), found 1: `0.005`", gsi.display()),
+        ],
+        "{stderr}"
+    );
+    assert!(!dir.path().join("counts.ron").exists());
+}
+
+#[test]
+fn missing_time_and_piston_force_warn_with_the_default_and_comments_without_hash_warn() {
+    let dir = tempfile::tempdir().unwrap();
+    let gsi = piston_variant(
+        dir.path(),
+        "defaults.gsi",
+        &[
+            ("        Time                0          0.2\n", ""),
+            ("        Piston_Force        10000\n", ""),
+            ("E_Modul             1E7", "E_Modul             1E7  Steifigkeit"),
+        ],
+    );
+    gc2d()
+        .arg("import-gsi")
+        .arg(&gsi)
+        .assert()
+        .success()
+        .stderr(contains("defaults.gsi:1: warning: GENERAL has no TIME: gc2d's default 0 1 (s) is used"))
+        .stderr(contains("defaults.gsi:5: warning: E_MODUL: the text after the parameters, `Steifigkeit`, is ignored"))
+        .stderr(contains("defaults.gsi:18: warning: WALL has no PISTON_FORCE: gc2d's default 0 (N) is used"));
+    let scene = Scene::from_path(dir.path().join("defaults.ron")).unwrap();
+    assert_eq!(scene.run.end_time_s, 1.0);
+}
+
+#[test]
+fn values_the_scene_refuses_are_named_at_their_gsi_line() {
+    // QA report 1, section 10: these used to be reported at lines of the written .ron.
+    let dir = tempfile::tempdir().unwrap();
+    let gsi = piston_variant(
+        dir.path(),
+        "ranges.gsi",
+        &[
+            ("Gamma               0.5", "Gamma               -0.5"),
+            ("Part_Num_Corners    8", "Part_Num_Corners    100"),
+        ],
+    );
+    let assert = gc2d().arg("import-gsi").arg(&gsi).assert().code(2);
+    let stderr = String::from_utf8(assert.get_output().stderr.clone()).unwrap();
+    assert!(
+        stderr.contains("ranges.gsi:7: GAMMA: -0.5: must be a finite number ≥ 0 (scene field `materials[0].gamma`)"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("ranges.gsi:63: PART_NUM_CORNERS: 100 is not allowed"), "{stderr}");
+    assert!(!stderr.contains("ranges.ron"), "{stderr}");
+    assert!(!dir.path().join("ranges.ron").exists());
+    let gsi = piston_variant(dir.path(), "steps.gsi", &[("Steps_Data          1000", "Steps_Data          0")]);
+    gc2d().arg("import-gsi").arg(&gsi).assert().code(2).stderr(contains("steps.gsi:8: STEPS_DATA"));
+}
