@@ -32,8 +32,11 @@ pub struct GsiConversion {
 
 /// Converts a read gsi file into a scene named `name`.
 ///
-/// Fails only where a value has no meaning in the scene at all (a gravity step count that is not a whole number
-/// ≥ 1); values the scene format cannot hold are dropped with a [`GsiWarningKind::NotConverted`] warning.
+/// Fails where a value has no meaning in the scene at all (a gravity step count that is not a whole number ≥ 1,
+/// `STEPS_DATA 0`) and where the scene refuses a value (out of range, say): the converted scene is validated and
+/// each refusal is reported at the gsi line and command that set the value ([`GsiErrorKind::InvalidValue`]).
+/// Refusals found only when the scene is built (start overlaps) are not looked for. Values the scene format cannot
+/// hold are dropped with a [`GsiWarningKind::NotConverted`] warning.
 pub fn to_scene(import: &GsiImport, name: &str) -> Result<GsiConversion, GsiErrors> {
     let mut converter = Converter::default();
     let source = &import.scene;

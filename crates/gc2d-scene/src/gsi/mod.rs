@@ -1,11 +1,13 @@
 //! The legacy gc2d input reader: `.gsi` files (reference §9.1–§9.9) into a typed [`GsiScene`].
 //!
-//! The reader works in stages, one module each: `lexer` splits the text into lines of words (header, line length,
-//! comments, END_OF_FILE); `syntax` groups them into objects using the vocabulary in `keywords`; the object
+//! The reader works in stages, one module each: `encoding` decodes the bytes (UTF-8, else Latin-1); `lexer` splits
+//! the text into lines of words (header, line length, comments, END_OF_FILE); `syntax` groups them into objects
+//! using the vocabulary in `keywords`, checking each command's value count; the object
 //! modules (`general`, `bodies`, `generators`) turn each object into typed values with gc2d's defaults and gc2d-rs
 //! conventions (SI units, counter-clockwise angles); `part_size` settles how PART_SIZE is read. Every value keeps
 //! the line it came from ([`Sourced`]), so later stages can name `file:line`. `convert` ([`to_scene`]) turns the
-//! result into a RON [`crate::Scene`], warning about every written command the scene cannot hold.
+//! result into a RON [`crate::Scene`], warning about every written command the scene cannot hold, and reports the
+//! values the scene refuses at their gsi lines (`locate` maps a scene field back to its command).
 //!
 //! ```
 //! use gc2d_scene::gsi::{ImportOptions, parse_gsi};
