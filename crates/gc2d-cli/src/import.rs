@@ -6,7 +6,7 @@
 
 use crate::failure::CommandFailure;
 use gc2d_scene::Scene;
-use gc2d_scene::gsi::{GsiWarning, PartSizeConvention, parse_gsi, to_scene};
+use gc2d_scene::gsi::{GsiWarning, PartSizeConvention, parse_gsi_bytes, to_scene};
 use std::path::{Path, PathBuf};
 
 /// How `--part-size` says PART_SIZE is read (see `docs/model.md`, D6).
@@ -51,12 +51,13 @@ pub fn import_gsi(
         )));
     }
     let file = gsi.display().to_string();
-    let text = std::fs::read_to_string(gsi).map_err(|e| CommandFailure::input(format!("cannot read {file}: {e}")))?;
+    let bytes = std::fs::read(gsi).map_err(|e| CommandFailure::input(format!("cannot read {file}: {e}")))?;
     let located = |errors: gc2d_scene::gsi::GsiErrors| {
         let lines: Vec<String> = errors.0.iter().map(|error| error.located(&file)).collect();
         CommandFailure::input(lines.join("\n"))
     };
-    let import = parse_gsi(&text, &gc2d_scene::gsi::ImportOptions { part_size: part_size.into() }).map_err(located)?;
+    let import =
+        parse_gsi_bytes(&bytes, &gc2d_scene::gsi::ImportOptions { part_size: part_size.into() }).map_err(located)?;
     for note in &import.notes {
         // The comments are for reading along; a closed stdout does not stop the conversion.
         let _ = crate::console::out(&format!("{file}:{}: $ {}", note.line, note.text));

@@ -215,3 +215,24 @@ fn values_the_scene_refuses_are_named_at_their_gsi_line() {
     let gsi = piston_variant(dir.path(), "steps.gsi", &[("Steps_Data          1000", "Steps_Data          0")]);
     gc2d().arg("import-gsi").arg(&gsi).assert().code(2).stderr(contains("steps.gsi:8: STEPS_DATA"));
 }
+
+/// An old gc2d file with a Latin-1 umlaut in a comment was refused as a whole, without a line (QA report 1, section
+/// 6): it is read as Latin-1, with a warning at the line of the first byte that is not UTF-8.
+#[test]
+fn a_latin1_file_is_read_with_a_warning_at_its_first_non_utf8_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(piston_gsi()).unwrap();
+    let (first, rest) = text.split_once('\n').unwrap();
+    let mut bytes = format!("{first}\n# Kolben mit Gr").into_bytes();
+    bytes.push(0xFC); // ü in Latin-1
+    bytes.extend_from_slice(format!("n\n{rest}").as_bytes());
+    let gsi = dir.path().join("latin1.gsi");
+    std::fs::write(&gsi, bytes).unwrap();
+    gc2d()
+        .arg("import-gsi")
+        .arg(&gsi)
+        .assert()
+        .success()
+        .stderr(contains("latin1.gsi:2: warning: the file is not UTF-8 (byte 0xfc at column 16").and(contains("`ü`")));
+    assert!(Scene::from_path(dir.path().join("latin1.ron")).is_ok());
+}
