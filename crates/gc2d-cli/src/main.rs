@@ -754,10 +754,11 @@ fn refuse_cadences_below_the_step(args: &RunArgs, scene: &Scene, dt: f64) -> Res
 }
 
 /// Refuses a frame rate (`run.frames_per_second`) above 1/`dt`: it records a time-series row and a frame at every
-/// step, and 1e11 (a unit slip) made a run of seconds take hours.
+/// step, and 1e11 (a unit slip) made a run of seconds take hours. The default rate is left alone: with a step longer
+/// than its 10 ms (an experiment with `allow_unsafe_time_step`) a row at every step is what it means.
 fn refuse_more_frames_than_steps(scene: &Scene, dt: f64) -> Result<(), CommandFailure> {
     let fps = scene.run.frames_per_second;
-    if 1.0 / fps < dt {
+    if 1.0 / fps < dt && fps != gc2d_scene::Run::default().frames_per_second {
         return Err(CommandFailure::input(render(
             SceneError::new(
                 ErrorKind::Value,
