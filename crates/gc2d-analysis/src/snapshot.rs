@@ -3,7 +3,7 @@
 //! Every analysis function reads a [`Snapshot`], never a World, so each can be tested on hand-made configurations
 //! whose answer is known.
 
-use gc2d_engine::{BodyKind, World};
+use gc2d_engine::{BodyKind, ShapeKind, World};
 use gc2d_geometry::DVec2;
 use serde::Serialize;
 
@@ -20,6 +20,8 @@ pub struct Particle {
     pub area: f64,
     /// Mass per unit thickness, kg.
     pub mass: f64,
+    /// True for a disk: its `vertices` are a fine polygon inscribed in its circle.
+    pub is_disk: bool,
 }
 
 /// One wall (immovable or driven body of infinite mass).
@@ -110,6 +112,7 @@ impl Snapshot {
                         vertices,
                         area: bodies.area[slot] * scale * scale,
                         mass: bodies.mass[slot],
+                        is_disk: bodies.shape[slot] == ShapeKind::Disk,
                     });
                 }
                 BodyKind::Wall => {

@@ -29,6 +29,12 @@ fn disks_and_chamber_walls_are_traced_at_their_radius() {
     assert_eq!(disk.vertices.len(), CIRCLE_SEGMENTS);
     assert!(disk.vertices.iter().all(|v| (v.distance(centre) - 0.003).abs() < 1e-15));
     assert!((disk.area - std::f64::consts::PI * 9e-6).abs() < 1e-18);
+    // A single disk filled 1.0029 of the hull of its inscribed polygon; the hull now takes the circumscribed one:
+    // πr² over n·r²·tan(π/n), just below 1.
+    let n = CIRCLE_SEGMENTS as f64;
+    let expected = std::f64::consts::PI / (n * (std::f64::consts::PI / n).tan());
+    let packing = gc2d_analysis::bulk_packing_fraction(&snapshot);
+    assert!(packing <= 1.0 && (packing - expected).abs() < 1e-12, "{packing} against {expected}");
     let wall = &snapshot.walls[0];
     assert!(wall.vertices.len() >= CIRCLE_SEGMENTS);
     assert!(wall.vertices.iter().all(|v| (v.distance(chamber) - 0.05).abs() < 1e-15));

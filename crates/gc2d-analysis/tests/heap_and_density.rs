@@ -57,7 +57,7 @@ fn area_method_is_exact_for_a_triangular_outline() {
     let right = vec![DVec2::new(0.2, 0.0), DVec2::new(0.4, 0.0), DVec2::new(0.2, h)];
     let particle = |id: u32, vertices: Vec<DVec2>| {
         let centroid = vertices.iter().copied().sum::<DVec2>() / 3.0;
-        Particle { id, centroid, vertices, area: 0.01, mass: 50.0 }
+        Particle { id, centroid, vertices, area: 0.01, mass: 50.0, is_disk: false }
     };
     let heap = Snapshot { gravity: G, particles: vec![particle(0, left), particle(1, right)], ..Default::default() };
     let repose = angle_of_repose(&heap, &FlankOptions { bin_width: 0.01, ..Default::default() }).unwrap();

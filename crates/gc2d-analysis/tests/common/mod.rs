@@ -18,7 +18,14 @@ pub fn rectangle(min: DVec2, max: DVec2) -> Vec<DVec2> {
 
 /// A square particle of side `side` and area density `density`.
 pub fn square_particle(id: u32, center: DVec2, side: f64, density: f64) -> Particle {
-    Particle { id, centroid: center, vertices: square(center, side), area: side * side, mass: density * side * side }
+    Particle {
+        id,
+        centroid: center,
+        vertices: square(center, side),
+        area: side * side,
+        mass: density * side * side,
+        is_disk: false,
+    }
 }
 
 /// A wall body.
