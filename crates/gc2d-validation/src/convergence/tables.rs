@@ -139,6 +139,8 @@ fn failure_kind(sweep: &IntegratorSweep) -> &'static str {
         "non-finite state"
     } else if message.contains("energy rose") {
         "energy jump"
+    } else if message.contains("in one step") {
+        "travel limit"
     } else if message.contains("still touch") {
         "bodies did not separate"
     } else if message.contains(" above ") {
@@ -213,4 +215,39 @@ pub fn problem_markdown(report: &ProblemReport) -> String {
 pub fn write_summary_markdown(dir: &Path, reports: &[ProblemReport]) -> Result<PathBuf, ConvergenceError> {
     let text: String = reports.iter().map(problem_markdown).collect();
     write(dir.join("summary.md"), &text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::convergence::sweep::{Instability, RunRecord};
+
+    /// Gear's first unstable head-on run stopped at the engine's travel limit and was labelled "engine error".
+    #[test]
+    fn the_travel_limit_is_named_as_such() {
+        let travel = gc2d_engine::SafetyError::ExcessiveTravel {
+            time: 1e-4,
+            step: 12,
+            body: 1,
+            travel: 2e-3,
+            inscribed_radius: 1e-3,
+            limit_percent: 50.0,
+            suggested_dt: 1e-6,
+        };
+        let run = RunRecord {
+            dt: 1e-5,
+            fraction: 1.28,
+            steps: 12,
+            wall_seconds: 0.0,
+            errors: None,
+            failure: Some(travel.to_string()),
+        };
+        let sweep = IntegratorSweep {
+            integrator: gc2d_engine::Integrator::default(),
+            runs: vec![run],
+            orders: vec![],
+            instability: Instability::default(),
+        };
+        assert_eq!(failure_kind(&sweep), "travel limit");
+    }
 }
