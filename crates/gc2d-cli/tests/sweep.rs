@@ -560,3 +560,32 @@ fn a_point_another_process_runs_is_left_to_it_not_failed() {
     assert!(dir.path().join("out/end=0.005_seed=3/final.ckpt").is_file(), "the other point ran");
     drop(lock);
 }
+
+/// A malformed path is refused with the path as written and what is wrong in it: `materials[0]mu` said "`materials`
+/// has 1 element, so no [0]mu]", and `materials[0].` spoke of a name "``" the sweep file never gave.
+#[test]
+fn a_malformed_path_is_refused_with_what_is_wrong_in_it() {
+    for (path, what) in [
+        ("materials[0]mu", "expected `.` or `[` after `]`, found `m`"),
+        ("materials[0].", "empty field name after `.`"),
+        ("run..end_time_s", "empty field name after `.`"),
+        (".run.end_time_s", "empty field name at the start"),
+        ("materials[0", "`[` without its closing `]`"),
+        ("materials[].mu", "`[]`: an index is a number, counted from 0"),
+        ("materials[x].mu", "`[x]`: an index is a number, counted from 0"),
+        ("run.end time", "`end time`: a field name has only letters, digits and `_`"),
+        ("", "the path is empty"),
+    ] {
+        let error = sweep_error(&format!("    parameters: [(path: \"{path}\", values: List([0.3]))],\n"));
+        assert!(error.contains("sweep.ron:5:"), "{error}");
+        assert!(error.contains(&format!("`parameters[0].path`: `{path}` is not a field path: {what}")), "{error}");
+    }
+    // The seed is no parameter: each point of a figure is already the mean over the seeds.
+    let error = sweep_error(
+        "    parameters: [(path: \"materials[0].mu\", values: List([0.5]))],\n    plots: [(x: \"seed\", y: [\"time_s\"])],\n",
+    );
+    assert!(
+        error.contains("`seed` is not a parameter of this sweep: each point of a figure is the mean over the seeds"),
+        "{error}"
+    );
+}

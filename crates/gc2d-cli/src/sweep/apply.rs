@@ -92,6 +92,48 @@ pub fn target(text: &str, path: &str) -> Result<Target, PathProblem> {
     }
 }
 
+/// Refuses a path that is not a field path as scene errors write it (`mill.rotor.rpm`, `materials[0].mu`): field
+/// names of letters, digits and `_` joined by `.`, each followed by any number of `[index]`. The error says what is
+/// wrong, to follow "`path` is not a field path: ".
+pub fn check_syntax(path: &str) -> Result<(), String> {
+    if path.is_empty() {
+        return Err("the path is empty".into());
+    }
+    let mut rest = path;
+    let mut at_start = true;
+    loop {
+        let end = rest.find(['.', '[', ']']).unwrap_or(rest.len());
+        let field = &rest[..end];
+        if field.is_empty() {
+            return Err(if at_start { "empty field name at the start" } else { "empty field name after `.`" }.into());
+        }
+        if !field.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+            return Err(format!("`{field}`: a field name has only letters, digits and `_`"));
+        }
+        rest = &rest[end..];
+        while let Some(inner) = rest.strip_prefix('[') {
+            let Some(close) = inner.find(']') else { return Err("`[` without its closing `]`".into()) };
+            let index = &inner[..close];
+            if index.is_empty() || !index.bytes().all(|b| b.is_ascii_digit()) {
+                return Err(format!("`[{index}]`: an index is a number, counted from 0"));
+            }
+            rest = &inner[close + 1..];
+            match rest.chars().next() {
+                None | Some('.' | '[') => {}
+                Some(c) => return Err(format!("expected `.` or `[` after `]`, found `{c}`")),
+            }
+        }
+        match rest.chars().next() {
+            None => return Ok(()),
+            Some('.') => {
+                rest = &rest[1..];
+                at_start = false;
+            }
+            Some(c) => return Err(format!("`{c}` without its opening `[`")),
+        }
+    }
+}
+
 /// `text` with `value` put at `target`.
 pub fn put(text: &str, target: &Target, value: &str) -> String {
     match target {
@@ -183,6 +225,24 @@ mod tests {
         assert!(put(SCENE, &t, "0.3").contains("Material(gamma: 0.3, name:"));
         let t = target(SCENE, "description").unwrap();
         assert!(put(SCENE, &t, "\"d\"").contains("\nScene(description: \"d\", \n"));
+    }
+
+    #[test]
+    fn malformed_paths_say_what_is_wrong() {
+        for path in ["run.seed", "materials[0].mu", "a[1][2].b_3", "mill"] {
+            assert_eq!(check_syntax(path), Ok(()), "{path}");
+        }
+        let error = |path: &str| check_syntax(path).unwrap_err();
+        assert_eq!(error("materials[0]mu"), "expected `.` or `[` after `]`, found `m`");
+        assert_eq!(error("materials[0]."), "empty field name after `.`");
+        assert_eq!(error("a..b"), "empty field name after `.`");
+        assert_eq!(error("[0].mu"), "empty field name at the start");
+        assert_eq!(error("a]"), "`]` without its opening `[`");
+        assert_eq!(error("a[0]]"), "expected `.` or `[` after `]`, found `]`");
+        assert_eq!(error("a[0"), "`[` without its closing `]`");
+        assert_eq!(error("a[-1]"), "`[-1]`: an index is a number, counted from 0");
+        assert_eq!(error("a-b"), "`a-b`: a field name has only letters, digits and `_`");
+        assert_eq!(error(""), "the path is empty");
     }
 
     #[test]

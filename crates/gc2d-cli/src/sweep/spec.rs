@@ -87,6 +87,9 @@ impl Sweep {
         let mut paths = HashSet::new();
         for (index, parameter) in file.parameters.iter().enumerate() {
             let field = |name: &str| format!("parameters[{index}].{name}");
+            if let Err(what) = super::apply::check_syntax(&parameter.path) {
+                return Err(error(field("path"), format!("`{}` is not a field path: {what}", parameter.path)));
+            }
             if parameter.path == "run.seed" {
                 return Err(error(field("path"), "the seed is set by `seeds`, not as a parameter".into()));
             }
@@ -280,6 +283,15 @@ fn check_plots(plots: &[Plot], parameters: &[ParameterSpec]) -> Result<(), (Stri
             return Err((
                 format!("plots[{k}].x"),
                 format!("`{}` has the value `{value}`, which is not a number to put on an axis", plot.x),
+            ));
+        }
+        if plot.x == SEED {
+            return Err((
+                format!("plots[{k}].x"),
+                format!(
+                    "`{SEED}` is not a parameter of this sweep: each point of a figure is the mean over the seeds (each \
+                     seed's values are in sweep.csv); put a parameter on x"
+                ),
             ));
         }
         if !parameters.iter().any(|p| p.name == plot.x) {
