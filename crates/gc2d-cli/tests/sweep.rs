@@ -589,3 +589,36 @@ fn a_malformed_path_is_refused_with_what_is_wrong_in_it() {
         "{error}"
     );
 }
+
+/// A scene without `materials` has the implicit material `default` (`gc2d-rs check` prints it), whose
+/// `materials[0].mu` was refused as "`materials` has 0 elements, so no [0]". The sweep writes it out, and a point at
+/// the default's own values runs exactly as the base scene does.
+#[test]
+fn the_implicit_default_material_of_a_scene_can_be_swept() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "Scene(\n    run: (end_time_s: 0.01, seed: 3),\n    walls: [Wall(shape: Rectangle(width_m: 0.1, height_m: \
+                 0.01), position_m: (0, -0.005))],\n    particles: [(shape: Regular(corners: 6, radius_m: 0.003), \
+                 position_m: (0, 0.003), velocity_m_s: (0.1, -0.2))],\n)\n";
+    std::fs::write(dir.path().join("bare.ron"), scene).unwrap();
+    let sweep_file = "Sweep(\n    scene: \"bare.ron\",\n    out: \"out\",\n    parameters: [(path: \"materials[0].mu\", \
+                      values: List([0.3, 0.6]))],\n)\n";
+    std::fs::write(dir.path().join("sweep.ron"), sweep_file).unwrap();
+    sweep(dir.path()).assert().success();
+    for (point, mu) in [("mu=0.3_seed=3", 0.3), ("mu=0.6_seed=3", 0.6)] {
+        let run = dir.path().join("out").join(point);
+        assert_eq!(summary(&run)["outcome"]["status"], "completed", "{point}");
+        let scene = gc2d_scene::Scene::from_path(run.join("scene.ron")).unwrap();
+        assert_eq!(scene.materials.len(), 1, "{point}");
+        assert_eq!((scene.materials[0].name.as_str(), scene.materials[0].mu), ("default", mu), "{point}");
+    }
+    // μ = 0.6 is the default material's own: that point ends in the base scene's final state, bit for bit.
+    gc2d().current_dir(dir.path()).args(["run", "bare.ron", "--out", "base", "--quiet"]).assert().success();
+    assert!(read(dir.path().join("base/final.ckpt")) == read(dir.path().join("out/mu=0.6_seed=3/final.ckpt")));
+    // A sweep that leaves the materials alone writes the scene as before, without the material.
+    let sweep_file = "Sweep(\n    scene: \"bare.ron\",\n    out: \"ends\",\n    parameters: [(path: \"run.end_time_s\", \
+                      values: List([0.005]))],\n)\n";
+    std::fs::write(dir.path().join("sweep.ron"), sweep_file).unwrap();
+    sweep(dir.path()).assert().success();
+    let text = String::from_utf8(read(dir.path().join("ends/end_time_s=0.005_seed=3/scene.ron"))).unwrap();
+    assert!(text.contains("materials: []"), "{text}");
+}

@@ -6,13 +6,16 @@ use super::apply::{PathProblem, Target, put, target};
 use super::spec::{ParameterSpec, Point, Sweep};
 use crate::analysis::AnalysisKind;
 use crate::failure::CommandFailure;
-use gc2d_scene::{ErrorKind, Scene};
+use gc2d_scene::{ErrorKind, Material, Scene};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 /// The path of the seed in a scene.
 const SEED_PATH: &str = "run.seed";
+
+/// The name of the material a scene without `materials` has (gc2d-scene's default material, which `check` prints).
+const IMPLICIT_MATERIAL: &str = "default";
 
 /// Longest list of further failing points a report names.
 const LISTED_FAILURES: usize = 10;
@@ -49,6 +52,7 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
     let base_folder = base.folder();
     base.anchor_file_names(&base_folder)
         .map_err(|e| CommandFailure::input(format!("cannot find the folder of {}: {e}", sweep.scene.display())))?;
+    name_implicit_material(&mut base, sweep);
     let base_text =
         base.to_ron_string().map_err(|e| CommandFailure::failed(format!("cannot write the base scene: {e}")))?;
     for parameter in &sweep.parameters {
@@ -96,6 +100,17 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
     }
     check_analysis_inputs(sweep, &scenes)?;
     Ok(scenes)
+}
+
+/// Writes the implicit material of a scene without `materials` (the one `check` prints) into `base`, where a
+/// parameter's path leads into `materials[…]`: the written scene then has the `materials[0]` the path names, and
+/// builds the same World. Other sweeps leave the scene as written (`materials: []`), so that their run directories'
+/// `scene.ron` stay what earlier versions wrote.
+fn name_implicit_material(base: &mut Scene, sweep: &Sweep) {
+    let into_materials = sweep.parameters.iter().any(|p| p.path.starts_with("materials["));
+    if base.materials.is_empty() && into_materials {
+        base.materials.push(Material::named(IMPLICIT_MATERIAL));
+    }
 }
 
 /// Refuses what would make every point's analysis fail after its run: a warm-up (`analysis.warm_up_s`) that is not
@@ -192,5 +207,35 @@ fn check_path(sweep: &Sweep, base_text: &str, parameter: &ParameterSpec) -> Resu
     match problem {
         Some(PathProblem { message, help, .. }) => Err(sweep.parameter_error(parameter, message, help)),
         None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The implicit material written out, as the sweep writes it for a path into `materials[…]`, is the one the
+    /// scene had: the same name in `check`, and the same World, step for step.
+    #[test]
+    fn the_implicit_material_written_out_builds_the_same_world() {
+        let text = "Scene(run: (end_time_s: 0.01, seed: 3), walls: [Wall(shape: Rectangle(width_m: 0.1, height_m: 0.01), \
+                    position_m: (0, -0.005))], particles: [(shape: Regular(corners: 6, radius_m: 0.003), position_m: \
+                    (0, 0.003), velocity_m_s: (0.1, -0.2)), (shape: Regular(corners: 5, radius_m: 0.002), position_m: \
+                    (0.004, 0.008))])";
+        let bare = Scene::from_str(text, "bare").unwrap();
+        assert!(bare.materials.is_empty());
+        assert_eq!(bare.summary().unwrap().materials, [IMPLICIT_MATERIAL]);
+        let mut named = bare.clone();
+        named.materials.push(Material::named(IMPLICIT_MATERIAL));
+        let named = Scene::from_str(&named.to_ron_string().unwrap(), "named").unwrap();
+        assert_eq!(named.summary().unwrap().to_string(), bare.summary().unwrap().to_string());
+        let end_state = |scene: &Scene| {
+            let mut world = scene.build().unwrap();
+            world.run_until(0.01).unwrap();
+            let mut bytes = Vec::new();
+            world.save_checkpoint(&mut bytes).unwrap();
+            bytes
+        };
+        assert!(end_state(&bare) == end_state(&named));
     }
 }
