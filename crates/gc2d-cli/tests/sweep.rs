@@ -622,3 +622,29 @@ fn the_implicit_default_material_of_a_scene_can_be_swept() {
     let text = String::from_utf8(read(dir.path().join("ends/end_time_s=0.005_seed=3/scene.ron"))).unwrap();
     assert!(text.contains("materials: []"), "{text}");
 }
+
+/// A parameter `name` too long for a directory name (255 bytes) was accepted and failed at the first point with
+/// "File name too long (os error 36)"; it is refused before anything runs, at the name, or at the parameters where
+/// only their names together are too long.
+#[test]
+fn a_point_directory_name_too_long_is_refused_before_any_run() {
+    let long = "m".repeat(250);
+    let error = sweep_error(&format!(
+        "    parameters: [(path: \"materials[0].mu\", name: \"{long}\", values: List([0.3]))],\n"
+    ));
+    assert!(error.contains("`parameters[0].name`:"), "{error}");
+    // miette breaks the long name across lines.
+    let unbroken = error.replace(' ', "");
+    assert!(
+        unbroken.contains(&format!("thepointdirectory`{long}=0.3_seed=3`is261byteslong,morethanthe255")),
+        "{error}"
+    );
+    let (a, b) = ("a".repeat(120), "b".repeat(120));
+    let error = sweep_error(&format!(
+        "    parameters: [(path: \"materials[0].mu\", name: \"{a}\", values: List([0.3])), (path: \"run.end_time_s\", \
+         name: \"{b}\", values: List([0.01, 0.02]))],\n"
+    ));
+    assert!(error.contains("`parameters`:"), "{error}");
+    let unbroken = error.replace(' ', "");
+    assert!(unbroken.contains(&format!("thepointdirectory`{a}=0.3_{b}=0.01_seed=3`is257byteslong")), "{error}");
+}

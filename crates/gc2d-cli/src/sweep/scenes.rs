@@ -3,7 +3,7 @@
 //! point's values put in, and the result loaded and built like `gc2d-rs check` does (errors name the point).
 
 use super::apply::{PathProblem, Target, put, target};
-use super::spec::{ParameterSpec, Point, Sweep};
+use super::spec::{ParameterSpec, Point, Sweep, label};
 use crate::analysis::AnalysisKind;
 use crate::failure::CommandFailure;
 use gc2d_scene::{ErrorKind, Material, Scene};
@@ -16,6 +16,9 @@ const SEED_PATH: &str = "run.seed";
 
 /// The name of the material a scene without `materials` has (gc2d-scene's default material, which `check` prints).
 const IMPLICIT_MATERIAL: &str = "default";
+
+/// The longest name of a file or directory most file systems take (ext4, XFS, btrfs, APFS, NTFS: 255 bytes).
+const MAX_DIR_NAME: usize = 255;
 
 /// Longest list of further failing points a report names.
 const LISTED_FAILURES: usize = 10;
@@ -60,6 +63,7 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
     }
     check_analysis_kind(sweep, &base)?;
     let points = sweep.points(base.run.seed);
+    check_dir_name_lengths(sweep, &points)?;
     let mut seen: HashMap<String, usize> = HashMap::new();
     for point in &points {
         let name = sweep.dir_name(point);
@@ -111,6 +115,42 @@ fn name_implicit_material(base: &mut Scene, sweep: &Sweep) {
     if base.materials.is_empty() && into_materials {
         base.materials.push(Material::named(IMPLICIT_MATERIAL));
     }
+}
+
+/// Refuses points whose run directory names are longer than a file system allows ([`MAX_DIR_NAME`] bytes), before
+/// anything is made: at the `name` (or `path`) of a parameter whose own part and the seed's are too long already,
+/// else at `parameters` as a whole; the message names the longest directory and its length.
+fn check_dir_name_lengths(sweep: &Sweep, points: &[Point]) -> Result<(), CommandFailure> {
+    let Some((point, name)) =
+        points.iter().map(|p| (p, sweep.dir_name(p))).max_by_key(|(p, name)| (name.len(), std::cmp::Reverse(p.index)))
+    else {
+        return Ok(());
+    };
+    if name.len() <= MAX_DIR_NAME {
+        return Ok(());
+    }
+    let seed_part = format!("_{}={}", super::spec::SEED, point.seed).len();
+    let parts = sweep.parameters.iter().zip(&point.values).map(|(p, v)| (p, format!("{}={}", p.name, label(v)).len()));
+    let alone = parts.filter(|(_, len)| len + seed_part > MAX_DIR_NAME).max_by_key(|(_, len)| *len);
+    let message = format!(
+        "the point directory `{name}` is {} bytes long, more than the {MAX_DIR_NAME} a directory name may have",
+        name.len()
+    );
+    Err(match alone {
+        Some((parameter, _)) => {
+            let own_name = parameter_has_name(sweep, parameter);
+            sweep.field_error(
+                &format!("parameters[{}].{}", parameter.index, if own_name { "name" } else { "path" }),
+                format!("{message}: give the parameter a shorter `name`"),
+            )
+        }
+        None => sweep.field_error("parameters", format!("{message}: give the parameters shorter `name`s")),
+    })
+}
+
+/// Whether the sweep file gives `parameter` a `name` (else it is named after its path).
+fn parameter_has_name(sweep: &Sweep, parameter: &ParameterSpec) -> bool {
+    sweep.file.parameters.get(parameter.index).is_some_and(|p| p.name.is_some())
 }
 
 /// Refuses what would make every point's analysis fail after its run: a warm-up (`analysis.warm_up_s`) that is not

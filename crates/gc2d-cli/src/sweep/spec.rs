@@ -373,7 +373,7 @@ fn last_field(path: &str) -> &str {
 }
 
 /// A value as part of a directory name: quotes dropped, anything but letters, digits, `.`, `+` and `-` as `-`.
-fn label(value: &str) -> String {
+pub(super) fn label(value: &str) -> String {
     value
         .trim_matches('"')
         .chars()
