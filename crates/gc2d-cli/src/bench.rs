@@ -163,8 +163,9 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
 }
 
 /// Refuses a `--csv` path that cannot take the table, before the measurements rather than after them: a folder (or a
-/// name ending in a separator), a file in a folder that does not exist, or one that cannot be opened for writing
-/// (tried without changing an existing file; a new one is removed again).
+/// name ending in a separator), a file in a folder that does not exist or under a file (named as a file, not as a
+/// missing folder), or one that cannot be opened for writing (tried without changing an existing file; a new one is
+/// removed again).
 fn refuse_unwritable_csv(path: &std::path::Path) -> Result<(), CommandFailure> {
     let refuse = |why: String| Err(CommandFailure::input(format!("--csv {}: {why}", path.display())));
     if path.is_dir() || path.as_os_str().to_string_lossy().ends_with(std::path::MAIN_SEPARATOR) {
@@ -173,6 +174,10 @@ fn refuse_unwritable_csv(path: &std::path::Path) -> Result<(), CommandFailure> {
     if let Some(folder) = path.parent().filter(|parent| !parent.as_os_str().is_empty())
         && !folder.is_dir()
     {
+        // A file where a folder of the path should be is named as what it is.
+        if let Some(file) = folder.ancestors().find(|a| !a.as_os_str().is_empty() && a.exists() && !a.is_dir()) {
+            return refuse(format!("{} is a file, not a folder", file.display()));
+        }
         return refuse(format!("the folder {} does not exist", folder.display()));
     }
     let existed = path.exists();

@@ -179,6 +179,12 @@ fn bench_refuses_unknown_piles_and_zero_counts() {
     assert!(refusal(&["--csv", &format!("{folder}/x.csv/")]).contains("this is a folder; give a file name"));
     let nowhere = dir.path().join("no/such/folder/bench.csv");
     assert!(refusal(&["--csv", nowhere.to_str().unwrap()]).contains("does not exist"));
+    // A regular file where the table's folder should be was called a folder that does not exist.
+    std::fs::write(dir.path().join("afile"), "").unwrap();
+    for csv in ["afile/x.csv", "afile/deeper/x.csv"] {
+        let error = refusal(&["--csv", dir.path().join(csv).to_str().unwrap()]);
+        assert!(error.contains(&format!("{folder}/afile is a file, not a folder")), "{error}");
+    }
     // A folder where no file can be made (even by root).
     if cfg!(target_os = "linux") {
         assert!(refusal(&["--csv", "/proc/bench.csv"]).contains("cannot write it"));
