@@ -87,6 +87,10 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
             gc2d_scene::MAX_INITIAL_PARTICLES
         )));
     }
+    let pile_names: Vec<&str> = args.pile.iter().map(|p| p.name()).collect();
+    refuse_repeats("--pile", &pile_names)?;
+    refuse_repeats("--size", &args.size)?;
+    refuse_repeats("--threads", &args.threads)?;
     for &threads in &args.threads {
         crate::refuse_too_many_threads("--threads", threads).map_err(CommandFailure::input)?;
     }
@@ -160,6 +164,17 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
         )));
     }
     Ok(0)
+}
+
+/// Refuses a list option (`--pile`, `--size`, `--threads`) that gives one entry twice: it would be measured twice, and
+/// the verdict on the end states would read "identical on 1, 1 threads".
+fn refuse_repeats<T: PartialEq + std::fmt::Display>(option: &str, items: &[T]) -> Result<(), CommandFailure> {
+    match items.iter().enumerate().find(|(k, item)| items[..*k].contains(item)) {
+        Some((_, twice)) => {
+            Err(CommandFailure::input(format!("{option}: {twice} is given twice; give each once, it is measured once")))
+        }
+        None => Ok(()),
+    }
 }
 
 /// Refuses a `--csv` path that cannot take the table, before the measurements rather than after them: a folder (or a

@@ -185,6 +185,11 @@ fn bench_refuses_unknown_piles_and_zero_counts() {
         let error = refusal(&["--csv", dir.path().join(csv).to_str().unwrap()]);
         assert!(error.contains(&format!("{folder}/afile is a file, not a folder")), "{error}");
     }
+    // A pile, size or thread count given twice was measured twice, and the verdict read "bitwise identical on 1, 1
+    // threads".
+    assert!(refusal(&["--pile", "dense7,disks,dense7"]).contains("--pile: dense7 is given twice"));
+    assert!(refusal(&["--size", "60,70,60"]).contains("--size: 60 is given twice"));
+    assert!(refusal(&["--threads", "1,1"]).contains("--threads: 1 is given twice"));
     // A folder where no file can be made (even by root).
     if cfg!(target_os = "linux") {
         assert!(refusal(&["--csv", "/proc/bench.csv"]).contains("cannot write it"));
