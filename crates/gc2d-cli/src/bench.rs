@@ -37,10 +37,10 @@ pub struct BenchArgs {
     /// Particle-steps per measurement: the timed steps are this divided by the particles (at least 20).
     #[arg(long, default_value_t = 20_000_000)]
     pub particle_steps: u64,
-    /// Timed steps per measurement, the same for every size (instead of `--particle-steps`): to compare sizes over
-    /// the same stretch of simulated time after settling, where the budget of particle-steps would time a small
-    /// pile for many more steps than a large one.
-    #[arg(long)]
+    /// Timed steps per measurement, the same for every size (instead of `--particle-steps`, which may not be given
+    /// with it): to compare sizes over the same stretch of simulated time after settling, where the budget of
+    /// particle-steps would time a small pile for many more steps than a large one.
+    #[arg(long, conflicts_with = "particle_steps")]
     pub steps: Option<u64>,
     /// Simulated time each pile settles before it is measured, s [default: the pile's own, e.g. 0.06 s for dense7].
     #[arg(long, allow_hyphen_values = true)]

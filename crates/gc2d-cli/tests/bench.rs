@@ -41,7 +41,8 @@ const STAGES: [&str; 9] = [
 fn small_bench(cache: &Path, csv: &Path, extra: &[&str]) -> (String, String, Vec<Row>) {
     let output = Command::cargo_bin("gc2d-rs")
         .unwrap()
-        .args(["bench", "--pile", "dense7,disks", "--size", "60", "--threads", "1,2", "--particle-steps", "3000"])
+        .args(["bench", "--pile", "dense7,disks", "--size", "60", "--threads", "1,2"])
+        .args(if extra.contains(&"--steps") { &[][..] } else { &["--particle-steps", "3000"][..] })
         .args(extra)
         .args(["--settle-time", "0.002", "--quiet", "--cache"])
         .arg(cache)
@@ -190,6 +191,9 @@ fn bench_refuses_unknown_piles_and_zero_counts() {
     assert!(refusal(&["--pile", "dense7,disks,dense7"]).contains("--pile: dense7 is given twice"));
     assert!(refusal(&["--size", "60,70,60"]).contains("--size: 60 is given twice"));
     assert!(refusal(&["--threads", "1,1"]).contains("--threads: 1 is given twice"));
+    // `--steps` silently won over a `--particle-steps` given with it.
+    let both = refusal(&["--steps", "30", "--particle-steps", "20000"]);
+    assert!(both.contains("'--steps <STEPS>' cannot be used with '--particle-steps <PARTICLE_STEPS>'"), "{both}");
     // A folder where no file can be made (even by root).
     if cfg!(target_os = "linux") {
         assert!(refusal(&["--csv", "/proc/bench.csv"]).contains("cannot write it"));
