@@ -8,7 +8,7 @@ use crate::checks::{finite, finite_pair, in_range, non_negative, number, ordered
 use crate::error::{SceneError, suggest};
 use crate::schema::{
     Area, Damping, FrictionStiffness, Gravity, GravityProfile, InteractionLaw, MassModel, Material, Particle, Scene,
-    Source, defaults,
+    Source,
 };
 use crate::spans::field_path;
 use gc2d_contact::{
@@ -24,7 +24,7 @@ pub(crate) struct Materials<'a>(Cow<'a, [Material]>);
 impl<'a> Materials<'a> {
     pub fn of(scene: &'a Scene) -> Self {
         if scene.materials.is_empty() {
-            Self(Cow::Owned(vec![Material::named(defaults::MATERIAL)]))
+            Self(Cow::Owned(vec![Material::implicit()]))
         } else {
             Self(Cow::Borrowed(&scene.materials))
         }

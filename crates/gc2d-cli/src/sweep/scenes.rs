@@ -14,9 +14,6 @@ use std::path::{Path, PathBuf};
 /// The path of the seed in a scene.
 const SEED_PATH: &str = "run.seed";
 
-/// The name of the material a scene without `materials` has (gc2d-scene's default material, which `check` prints).
-const IMPLICIT_MATERIAL: &str = "default";
-
 /// The longest name of a file or directory most file systems take (ext4, XFS, btrfs, APFS, NTFS: 255 bytes).
 const MAX_DIR_NAME: usize = 255;
 
@@ -113,7 +110,7 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
 fn name_implicit_material(base: &mut Scene, sweep: &Sweep) {
     let into_materials = sweep.parameters.iter().any(|p| p.path.starts_with("materials["));
     if base.materials.is_empty() && into_materials {
-        base.materials.push(Material::named(IMPLICIT_MATERIAL));
+        base.materials.push(Material::implicit());
     }
 }
 
@@ -264,9 +261,9 @@ mod tests {
                     (0.004, 0.008))])";
         let bare = Scene::from_str(text, "bare").unwrap();
         assert!(bare.materials.is_empty());
-        assert_eq!(bare.summary().unwrap().materials, [IMPLICIT_MATERIAL]);
+        assert_eq!(bare.summary().unwrap().materials, [Material::implicit().name]);
         let mut named = bare.clone();
-        named.materials.push(Material::named(IMPLICIT_MATERIAL));
+        named.materials.push(Material::implicit());
         let named = Scene::from_str(&named.to_ron_string().unwrap(), "named").unwrap();
         assert_eq!(named.summary().unwrap().to_string(), bare.summary().unwrap().to_string());
         let end_state = |scene: &Scene| {

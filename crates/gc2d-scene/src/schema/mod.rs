@@ -295,6 +295,11 @@ fn is_default_poisson_ratio(value: &f64) -> bool {
 }
 
 impl Material {
+    /// The material a scene that declares none has (named `default`, with the default values): every body is of it.
+    pub fn implicit() -> Self {
+        Self::named(defaults::MATERIAL)
+    }
+
     /// A material with the default values.
     pub fn named(name: &str) -> Self {
         Self {
