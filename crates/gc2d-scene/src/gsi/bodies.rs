@@ -94,15 +94,15 @@ fn read_wall_motion(reader: &mut ObjectReader<'_, '_>) -> Option<GsiWallMotion> 
     let vibration_line = reader.first_line_of(&VIBRATION_COMMANDS);
     let piston = piston_line.map(|_| {
         let force = reader.float("PISTON_FORCE", 0.0);
-        if !force.origin.is_written() {
-            let kind = GsiWarningKind::DefaultUsed {
+        reader.warn_if_defaulted(
+            &force,
+            GsiWarningKind::DefaultUsed {
                 keyword: "PISTON_FORCE",
                 object: "WALL",
                 default: "0 (N)",
                 consequence: "the piston exerts no force",
-            };
-            reader.diagnostics.warn(force.line(), kind);
-        }
+            },
+        );
         GsiPiston {
             direction_angle: reader.float("PISTON_ANGLE", 0.0),
             force,

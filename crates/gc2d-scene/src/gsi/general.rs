@@ -22,15 +22,15 @@ pub(super) fn read_general(reader: &mut ObjectReader<'_, '_>) -> GsiGeneral {
     }
     let heating = reader.first_line_of(&HEATING_COMMANDS).map(|_| read_heating(reader));
     let time = reader.window("TIME", [0.0, 1.0]);
-    if !time.origin.is_written() {
-        let kind = GsiWarningKind::DefaultUsed {
+    reader.warn_if_defaulted(
+        &time,
+        GsiWarningKind::DefaultUsed {
             keyword: "TIME",
             object: "GENERAL",
             default: "0 1 (s)",
             consequence: "the run ends at t = 1 s",
-        };
-        reader.diagnostics.warn(time.line(), kind);
-    }
+        },
+    );
     GsiGeneral {
         time_step: reader.float("DELTA_T", 1e-4),
         time,

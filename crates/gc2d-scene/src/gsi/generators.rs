@@ -39,16 +39,16 @@ const DROP_SHAPE: ShapeDefaults = ShapeDefaults {
 /// objects are read (see `part_size`). A missing PART_SIZE warns: the default sets the size of every particle.
 fn read_shape(reader: &mut ObjectReader<'_, '_>, defaults: &ShapeDefaults) -> GsiShape {
     let part_size = reader.vector("PART_SIZE", defaults.part_size);
-    if !part_size.origin.is_written() {
-        let kind = GsiWarningKind::DefaultUsed {
+    reader.warn_if_defaulted(
+        &part_size,
+        GsiWarningKind::DefaultUsed {
             keyword: "PART_SIZE",
             object: defaults.object,
             default: defaults.part_size_text,
             consequence: "every particle's size is this default (semi-axes or full axes as the file's PART_SIZE \
                           reading says)",
-        };
-        reader.diagnostics.warn(part_size.line(), kind);
-    }
+        },
+    );
     GsiShape {
         part_size,
         reading: PartSizeReading::SemiAxes,

@@ -8,7 +8,7 @@ use std::str::FromStr;
 use gc2d_engine::TimeWindow;
 use gc2d_geometry::DVec2;
 
-use super::diagnostics::{Diagnostics, GsiErrorKind};
+use super::diagnostics::{Diagnostics, GsiErrorKind, GsiWarningKind};
 use super::keywords::CORNERS;
 use super::scene::{Bounds, Sourced};
 use super::syntax::{Args, Entry, RawObject};
@@ -142,6 +142,14 @@ impl<'a, 'd> ObjectReader<'a, 'd> {
                 Some((Sourced::written(corners, line), complete))
             }
             _ => None,
+        }
+    }
+
+    /// Warns `warning` (a [`GsiWarningKind::DefaultUsed`]) at `value`'s line where the file did not write it and
+    /// gc2d's default was used.
+    pub fn warn_if_defaulted<T>(&mut self, value: &Sourced<T>, warning: GsiWarningKind) {
+        if !value.origin.is_written() {
+            self.diagnostics.warn(value.line(), warning);
         }
     }
 
