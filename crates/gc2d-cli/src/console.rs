@@ -30,12 +30,7 @@ pub fn is_closed(error: &io::Error) -> bool {
 /// A simulated time (or any computed quantity) for a message, rounded to 9 significant digits: a time summed step by
 /// step reads 0.3, not 0.29999999999908655; the files keep every digit.
 pub fn rounded(value: f64) -> String {
-    let rounded: f64 = format!("{value:.8e}").parse().unwrap_or(value);
-    if rounded == 0.0 || !rounded.is_finite() || (1e-4..1e7).contains(&rounded.abs()) {
-        format!("{rounded}")
-    } else {
-        format!("{rounded:e}")
-    }
+    gc2d_scene::significant_digits(value, 9)
 }
 
 #[cfg(test)]

@@ -97,6 +97,13 @@ pub(crate) fn number(x: f64) -> String {
     if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) { format!("{x}") } else { format!("{x:e}") }
 }
 
+/// A computed number rounded to `digits` significant digits (at least 1) and written as [`number`] writes it: a
+/// time summed step by step reads 0.3, not 0.29999999999908655, and a derived modulus 1.07802e11, not
+/// 1.0780219780219778e11. For messages; files keep every digit.
+pub fn significant_digits(x: f64, digits: usize) -> String {
+    number(format!("{x:.*e}", digits.max(1) - 1).parse().unwrap_or(x))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -345,10 +345,10 @@ impl fmt::Display for Summary {
     }
 }
 
-/// A derived number (E* from E and ν, an estimate of particle-steps) to six significant digits, written as [`number`]
-/// writes it: 1.07802e11, not the 1.0780219780219778e11 of its last bit.
+/// A derived number (E* from E and ν, an estimate of particle-steps) to six significant digits: 1.07802e11, not the
+/// 1.0780219780219778e11 of its last bit.
 fn six_digits(x: f64) -> String {
-    number(format!("{x:.5e}").parse().unwrap_or(x))
+    crate::checks::significant_digits(x, 6)
 }
 
 #[cfg(test)]
