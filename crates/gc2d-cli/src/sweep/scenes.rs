@@ -3,7 +3,7 @@
 //! point's values put in, and the result loaded and built like `gc2d-rs check` does (errors name the point).
 
 use super::apply::{PathProblem, Target, put, target};
-use super::spec::{ParameterSpec, Point, Sweep, label};
+use super::spec::{ParameterSpec, Point, Sweep};
 use crate::analysis::AnalysisKind;
 use crate::failure::CommandFailure;
 use gc2d_scene::{ErrorKind, Material, Scene};
@@ -126,9 +126,11 @@ fn check_dir_name_lengths(sweep: &Sweep, points: &[Point]) -> Result<(), Command
     if name.len() <= MAX_DIR_NAME {
         return Ok(());
     }
-    let seed_part = format!("_{}={}", super::spec::SEED, point.seed).len();
-    let parts = sweep.parameters.iter().zip(&point.values).map(|(p, v)| (p, format!("{}={}", p.name, label(v)).len()));
-    let alone = parts.filter(|(_, len)| len + seed_part > MAX_DIR_NAME).max_by_key(|(_, len)| *len);
+    let mut parts = sweep.dir_name_parts(point);
+    // The seed's part, with the `_` that joins it.
+    let seed_part = parts.pop().map_or(0, |seed| seed.len() + 1);
+    let lengths = sweep.parameters.iter().zip(parts.iter().map(String::len));
+    let alone = lengths.filter(|(_, len)| len + seed_part > MAX_DIR_NAME).max_by_key(|(_, len)| *len);
     let message = format!(
         "the point directory `{name}` is {} bytes long, more than the {MAX_DIR_NAME} a directory name may have",
         name.len()

@@ -217,10 +217,16 @@ impl Sweep {
 
     /// The directory name of a point: `rpm=1700_count=130_seed=1`.
     pub fn dir_name(&self, point: &Point) -> String {
+        self.dir_name_parts(point).join("_")
+    }
+
+    /// The parts of the point's directory name, joined by `_`: one `name=value` per parameter, in order, then
+    /// `seed=…`.
+    pub fn dir_name_parts(&self, point: &Point) -> Vec<String> {
         let mut parts: Vec<String> =
             self.parameters.iter().zip(&point.values).map(|(p, v)| format!("{}={}", p.name, label(v))).collect();
         parts.push(format!("{SEED}={}", point.seed));
-        parts.join("_")
+        parts
     }
 
     /// The point's values for a message: `mill.rotor.rpm = 1700, run.seed = 1`.
@@ -373,7 +379,7 @@ fn last_field(path: &str) -> &str {
 }
 
 /// A value as part of a directory name: quotes dropped, anything but letters, digits, `.`, `+` and `-` as `-`.
-pub(super) fn label(value: &str) -> String {
+fn label(value: &str) -> String {
     value
         .trim_matches('"')
         .chars()
