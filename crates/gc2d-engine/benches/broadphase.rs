@@ -7,7 +7,8 @@
 //! per body per update.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use gc2d_engine::broadphase::{BodyKind, SortAndSweep};
+use gc2d_engine::BodyKind;
+use gc2d_engine::broadphase::SortAndSweep;
 use gc2d_geometry::{Aabb, DVec2};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -55,7 +56,7 @@ fn frame(sites: &[Site], step: f64, frame: u32) -> Vec<Aabb> {
 fn filled(boxes: &[Aabb]) -> SortAndSweep<Payload> {
     let mut sweep = SortAndSweep::new();
     for (id, aabb) in boxes.iter().enumerate() {
-        sweep.insert(id as u32, *aabb, BodyKind::Dynamic).expect("ids are below the limit");
+        sweep.insert(id as u32, *aabb, BodyKind::Particle).expect("ids are below the limit");
     }
     sweep.update(boxes);
     sweep

@@ -36,10 +36,10 @@ mod box_query;
 mod pair_set;
 mod segments;
 
-pub use bodies::{BodyKind, BoxWriter};
+pub use bodies::BoxWriter;
 pub use pair_set::PairEntry;
 
-use crate::bodies::vec_bytes;
+use crate::bodies::{BodyKind, vec_bytes};
 use crate::parallel::steps_in_parallel;
 use bands::YBands;
 use bodies::{Bodies, Interval, SlotState};
@@ -230,7 +230,8 @@ impl<T: Default + Send> SortAndSweep<T> {
     }
 
     /// Adds `body` with its box. It joins the axes, and gets its pairs, at the next [`update`](Self::update), which
-    /// also replaces the box given here if its slice covers `body`.
+    /// also replaces the box given here if its slice covers `body`. Two walls are never paired: their contact would
+    /// exert no force.
     pub fn insert(&mut self, body: u32, aabb: Aabb, kind: BodyKind) -> Result<(), BroadphaseError> {
         if body >= MAX_BODIES {
             return Err(BroadphaseError::IdTooLarge(body));
@@ -241,8 +242,8 @@ impl<T: Default + Send> SortAndSweep<T> {
         self.bodies.make_pending(body, kind, &aabb);
         self.pending.push(body);
         match (kind, &mut self.static_bodies, &mut self.pending_index) {
-            (BodyKind::Static, Some(statics), _) => statics.push(body),
-            (BodyKind::Dynamic, _, Some(index)) => index.insert(body, self.bodies.interval(0, body)),
+            (BodyKind::Wall, Some(statics), _) => statics.push(body),
+            (BodyKind::Particle, _, Some(index)) => index.insert(body, self.bodies.interval(0, body)),
             _ => {}
         }
         Ok(())
@@ -256,7 +257,7 @@ impl<T: Default + Send> SortAndSweep<T> {
         if state == SlotState::Absent {
             return false;
         }
-        if let (BodyKind::Static, Some(statics)) = (self.bodies.kind(body), &mut self.static_bodies) {
+        if let (BodyKind::Wall, Some(statics)) = (self.bodies.kind(body), &mut self.static_bodies) {
             statics.retain(|&s| s != body);
         }
         match state {
@@ -488,7 +489,7 @@ impl<T: Default + Send> SortAndSweep<T> {
         for axis in 0..2 {
             for &body in &self.pending {
                 let interval = self.bodies.interval(axis, body);
-                if self.bodies.kind(body) == BodyKind::Dynamic {
+                if self.bodies.kind(body) == BodyKind::Particle {
                     self.dynamic_extent[axis] = self.dynamic_extent[axis].max(interval.upper - interval.lower);
                 }
             }
@@ -708,7 +709,7 @@ mod tests {
         // Old order b1 b2 e1 e2 b3 e3; K = {(1, 2)}.
         let old = [interval_box(0.0, 0.0), interval_box(0.0, 2.0), interval_box(1.0, 3.0), interval_box(4.0, 5.0)];
         for body in 1..4 {
-            sweep.insert(body, old[body as usize], BodyKind::Dynamic).unwrap();
+            sweep.insert(body, old[body as usize], BodyKind::Particle).unwrap();
         }
         sweep.update(&old);
         let (b, e) = (false, true);
@@ -733,8 +734,8 @@ mod tests {
     fn touching_boxes_pair_and_a_gap_of_one_ulp_separates_them() {
         let mut sweep = SortAndSweep::<u32>::new();
         let touching = [interval_box(0.0, 1.0), interval_box(1.0, 2.0)];
-        sweep.insert(0, touching[0], BodyKind::Dynamic).unwrap();
-        sweep.insert(1, touching[1], BodyKind::Dynamic).unwrap();
+        sweep.insert(0, touching[0], BodyKind::Particle).unwrap();
+        sweep.insert(1, touching[1], BodyKind::Particle).unwrap();
         sweep.update(&touching);
         assert_eq!(sweep.pairs().len(), 1);
         let apart = [interval_box(0.0, 1.0), interval_box(1.0 + f64::EPSILON, 2.0)];
@@ -759,8 +760,8 @@ mod tests {
         for (x, y) in [(2.0, 2.0), (-2.0, 2.0), (2.0, -2.0), (-2.0, -2.0), (2.0, 0.5), (0.5, 2.0)] {
             let mut sweep = SortAndSweep::<u32>::new();
             let overlapping = boxes(0.5, 0.5);
-            sweep.insert(0, overlapping[0], BodyKind::Dynamic).unwrap();
-            sweep.insert(1, overlapping[1], BodyKind::Dynamic).unwrap();
+            sweep.insert(0, overlapping[0], BodyKind::Particle).unwrap();
+            sweep.insert(1, overlapping[1], BodyKind::Particle).unwrap();
             sweep.update(&overlapping);
             assert_eq!(sweep.pairs().len(), 1);
             sweep.update(&boxes(x, y));
@@ -774,8 +775,8 @@ mod tests {
     fn negative_zero_touches_positive_zero_when_inserted_together() {
         let mut sweep = SortAndSweep::<u32>::new();
         let boxes = [interval_box(-1.0, -0.0), interval_box(0.0, 1.0)];
-        sweep.insert(0, boxes[0], BodyKind::Dynamic).unwrap();
-        sweep.insert(1, boxes[1], BodyKind::Dynamic).unwrap();
+        sweep.insert(0, boxes[0], BodyKind::Particle).unwrap();
+        sweep.insert(1, boxes[1], BodyKind::Particle).unwrap();
         sweep.update(&boxes);
         assert_eq!(sweep.pairs().len(), 1);
     }
@@ -786,7 +787,7 @@ mod tests {
         let nan = Aabb { min: DVec2::NAN, max: DVec2::NAN };
         let boxes = [interval_box(0.0, 1.0), nan, Aabb::of_points(&[]), interval_box(3.0, 2.0)];
         for body in 0..4 {
-            sweep.insert(body, boxes[body as usize], BodyKind::Dynamic).unwrap();
+            sweep.insert(body, boxes[body as usize], BodyKind::Particle).unwrap();
         }
         sweep.update(&boxes);
         // Bodies 1 and 2 both sit at (+∞, +∞); the inverted box 3 is the point interval x = 3.
@@ -802,12 +803,12 @@ mod tests {
     fn insert_rejects_duplicates_and_oversized_ids() {
         let mut sweep = SortAndSweep::<u32>::new();
         let unit = interval_box(0.0, 1.0);
-        assert_eq!(sweep.insert(MAX_BODIES, unit, BodyKind::Dynamic), Err(BroadphaseError::IdTooLarge(MAX_BODIES)));
-        sweep.insert(2, unit, BodyKind::Dynamic).unwrap();
-        assert_eq!(sweep.insert(2, unit, BodyKind::Static), Err(BroadphaseError::AlreadyInserted(2)));
+        assert_eq!(sweep.insert(MAX_BODIES, unit, BodyKind::Particle), Err(BroadphaseError::IdTooLarge(MAX_BODIES)));
+        sweep.insert(2, unit, BodyKind::Particle).unwrap();
+        assert_eq!(sweep.insert(2, unit, BodyKind::Wall), Err(BroadphaseError::AlreadyInserted(2)));
         assert!(sweep.remove(2));
         assert!(!sweep.remove(2));
         assert!(!sweep.remove(7));
-        assert!(sweep.insert(2, unit, BodyKind::Static).is_ok());
+        assert!(sweep.insert(2, unit, BodyKind::Wall).is_ok());
     }
 }

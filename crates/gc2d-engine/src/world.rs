@@ -15,7 +15,7 @@ use crate::body_forces::{
     AttachedSpring, BodyForce, BodyForceStep, Fluid, OutletCrossings, WeighedBodies, add_weights,
 };
 use crate::body_sums::{BODIES_PER_CHUNK, BodySums, ClosingColumns, ClosingPass};
-use crate::broadphase::{self, PairEntry, SortAndSweep};
+use crate::broadphase::{PairEntry, SortAndSweep};
 use crate::clearance::Clearance;
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
 use crate::force_ranges::{BodyRanges, add_contact_forces, add_pair_forces, mark_touching_pair};
@@ -365,7 +365,7 @@ impl World {
             self.integrator.time_step(),
         );
         self.start_in_fluid(i)?;
-        self.insert_into_broadphase(id, broadphase::BodyKind::Dynamic);
+        self.insert_into_broadphase(id, BodyKind::Particle);
         let g = self.config.gravity.magnitude(self.time);
         let translational = 0.5 * mass.mass * velocity.length_squared();
         let rotational = 0.5 * mass.inertia * pose.scale * pose.scale * angular_velocity * angular_velocity;
@@ -405,7 +405,7 @@ impl World {
             self.moving_walls.push(MovingWall { body: id, rest: pose, motion });
             self.stages.moving_walls = true;
         }
-        self.insert_into_broadphase(id, broadphase::BodyKind::Static);
+        self.insert_into_broadphase(id, BodyKind::Wall);
         id
     }
 
@@ -600,7 +600,7 @@ impl World {
         &self.body_forces
     }
 
-    fn insert_into_broadphase(&mut self, id: BodyId, kind: broadphase::BodyKind) {
+    fn insert_into_broadphase(&mut self, id: BodyId, kind: BodyKind) {
         // Ids are dense slots far below the broadphase limit of 2^31, and each slot is inserted once.
         let inserted = self.broadphase.insert(id.0, self.bodies.aabb(id.index()), kind);
         debug_assert!(inserted.is_ok());

@@ -1,7 +1,8 @@
 //! The sort-and-sweep broadphase against brute force (reference §4.2): exact pair sets, payload lifetimes, ended
 //! pairs and determinism, on clouds of moving, rotating, appearing and disappearing bodies.
 
-use gc2d_engine::broadphase::{BodyKind, SortAndSweep};
+use gc2d_engine::BodyKind;
+use gc2d_engine::broadphase::SortAndSweep;
 use gc2d_geometry::{Aabb, ConvexPolygon, DVec2, Pose};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -62,7 +63,7 @@ fn quarter(rng: &mut ChaCha8Rng, cells: i32) -> f64 {
 
 /// A new body somewhere in the square [0, side]²; lattice boxes sometimes sit exactly on an existing one.
 fn random_body(rng: &mut ChaCha8Rng, side: f64, existing: &BTreeMap<u32, Body>) -> Body {
-    let kind = if rng.random_bool(0.15) { BodyKind::Static } else { BodyKind::Dynamic };
+    let kind = if rng.random_bool(0.15) { BodyKind::Wall } else { BodyKind::Particle };
     if rng.random_bool(0.5) {
         let cells = (side / QUARTER) as i32;
         let mut position = DVec2::new(quarter(rng, cells), quarter(rng, cells));
@@ -93,7 +94,7 @@ fn brute_force_pairs(bodies: &[(u32, BodyKind)], boxes: &[Aabb]) -> Vec<(u32, u3
     let mut pairs = Vec::new();
     for (i, &(a, kind_a)) in bodies.iter().enumerate() {
         for &(b, kind_b) in &bodies[i + 1..] {
-            let both_static = kind_a == BodyKind::Static && kind_b == BodyKind::Static;
+            let both_static = kind_a == BodyKind::Wall && kind_b == BodyKind::Wall;
             if !both_static && boxes[a as usize].overlaps(&boxes[b as usize]) {
                 pairs.push((a, b));
             }
@@ -264,8 +265,8 @@ fn unit_box(center: DVec2) -> Aabb {
 fn payload_persists_while_touching_and_restarts_after_separation() {
     let mut sweep = SortAndSweep::<Age>::new();
     let fixed = unit_box(DVec2::ZERO);
-    sweep.insert(0, fixed, BodyKind::Static).unwrap();
-    sweep.insert(1, unit_box(DVec2::new(0.5, 0.0)), BodyKind::Dynamic).unwrap();
+    sweep.insert(0, fixed, BodyKind::Wall).unwrap();
+    sweep.insert(1, unit_box(DVec2::new(0.5, 0.0)), BodyKind::Particle).unwrap();
     // Body 1 slides right: overlapping, exactly touching at x = 1, apart, then back to touching.
     let path = [0.5, 0.8, 1.0, 1.25, 1.0, 0.9];
     let mut seen = Vec::new();
@@ -283,7 +284,7 @@ fn payload_persists_while_touching_and_restarts_after_separation() {
 fn static_bodies_never_pair_with_each_other() {
     let mut sweep = SortAndSweep::<Age>::new();
     let same = unit_box(DVec2::ZERO);
-    for (id, kind) in [(0, BodyKind::Static), (1, BodyKind::Static), (2, BodyKind::Dynamic)] {
+    for (id, kind) in [(0, BodyKind::Wall), (1, BodyKind::Wall), (2, BodyKind::Particle)] {
         sweep.insert(id, same, kind).unwrap();
     }
     sweep.update(&[same; 3]);
@@ -308,7 +309,7 @@ fn a_body_teleported_across_the_cloud_stays_exact() {
         .collect();
     let mut sweep = SortAndSweep::<Age>::new();
     for (id, aabb) in boxes.iter().enumerate() {
-        sweep.insert(id as u32, *aabb, BodyKind::Dynamic).unwrap();
+        sweep.insert(id as u32, *aabb, BodyKind::Particle).unwrap();
     }
     sweep.update(&boxes);
     for pair in sweep.pairs_mut() {
@@ -321,7 +322,7 @@ fn a_body_teleported_across_the_cloud_stays_exact() {
     sweep.update(&boxes);
     assert!(sweep.stats().swaps >= 2 * (cells as u64 * cells as u64 - 2), "it passed almost every endpoint twice");
 
-    let kinds: Vec<(u32, BodyKind)> = (0..boxes.len() as u32).map(|id| (id, BodyKind::Dynamic)).collect();
+    let kinds: Vec<(u32, BodyKind)> = (0..boxes.len() as u32).map(|id| (id, BodyKind::Particle)).collect();
     let mut current: Vec<_> = sweep.pairs().iter().map(|p| (p.a(), p.b())).collect();
     current.sort_unstable();
     assert_eq!(current, brute_force_pairs(&kinds, &boxes));
@@ -366,7 +367,7 @@ fn the_pair_list_returns_to_body_order_and_a_saved_copy_sorts_on_the_same_update
     let frames = churning_gas(4, 400, 300);
     let mut sweep = SortAndSweep::<u32>::new();
     for (id, aabb) in frames[0].iter().enumerate() {
-        sweep.insert(id as u32, *aabb, BodyKind::Dynamic).unwrap();
+        sweep.insert(id as u32, *aabb, BodyKind::Particle).unwrap();
     }
     let mut copy = None;
     let mut returns_to_order = 0;

@@ -6,7 +6,8 @@
 //! from a thread outside the pool would hand its task over through the pool's queue, which grows as it goes.
 
 use gc2d_alloc_count::{CountingAllocator, thread_allocations};
-use gc2d_engine::broadphase::{BodyKind, SortAndSweep};
+use gc2d_engine::BodyKind;
+use gc2d_engine::broadphase::SortAndSweep;
 use gc2d_geometry::{Aabb, DVec2};
 
 #[global_allocator]
@@ -28,7 +29,7 @@ fn warm_updates_do_not_allocate() {
     let frames: Vec<Vec<Aabb>> = (0..8).map(lattice).collect();
     let mut sweep = SortAndSweep::<[f64; 4]>::new();
     for (id, aabb) in frames[0].iter().enumerate() {
-        sweep.insert(id as u32, *aabb, BodyKind::Dynamic).unwrap();
+        sweep.insert(id as u32, *aabb, BodyKind::Particle).unwrap();
     }
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
     let (allocations, pairs_seen) = pool.install(|| {

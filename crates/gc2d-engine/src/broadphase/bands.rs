@@ -20,8 +20,9 @@
 //! bands' edges belong to the outer bands. The changes are applied in a fixed order (the x axis's, then each band's
 //! in band order, then the rechecks in body order), so the pair list is the same for any thread count.
 
-use super::bodies::{Bodies, BodyKind, Interval, SlotState};
+use super::bodies::{Bodies, Interval, SlotState};
 use super::{Endpoint, PairChange, insertion_sort, merge_sorted};
+use crate::BodyKind;
 use crate::bodies::vec_bytes;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -407,7 +408,7 @@ impl YBands {
 /// `None` when there are none or it is not finite.
 fn dynamic_x_extent(bodies: &Bodies) -> Option<Interval> {
     let mut extent = Interval { lower: f64::INFINITY, upper: f64::NEG_INFINITY };
-    let dynamic = |&body: &u32| bodies.state(body) != SlotState::Absent && bodies.kind(body) == BodyKind::Dynamic;
+    let dynamic = |&body: &u32| bodies.state(body) != SlotState::Absent && bodies.kind(body) == BodyKind::Particle;
     for body in (0..bodies.len() as u32).filter(dynamic) {
         let x = bodies.interval(0, body);
         extent.lower = extent.lower.min(x.lower);
@@ -475,7 +476,7 @@ mod tests {
         let mut bodies = Bodies::default();
         for (body, aabb) in boxes.iter().enumerate() {
             let body = body as u32;
-            bodies.make_pending(body, BodyKind::Dynamic, aabb);
+            bodies.make_pending(body, BodyKind::Particle, aabb);
             if body % 97 != 5 {
                 bodies.set_state(body, SlotState::Active);
             }

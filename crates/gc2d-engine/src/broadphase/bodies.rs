@@ -4,22 +4,13 @@
 //! scattered order, touches 16 bytes per body rather than a whole record. The box of the previous update is not
 //! kept (32 bytes per body): the sort's removals are checked against the pair list instead (`sink`).
 
-use crate::bodies::vec_bytes;
+use crate::bodies::{BodyKind, vec_bytes};
 use gc2d_geometry::Aabb;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// Slots one task of [`Bodies::advance`] takes at least; below twice this the boxes are copied on one thread.
 const SLOTS_PER_TASK: usize = 4096;
-
-/// Whether a body moves. Two static bodies (walls) are never paired: their contact would exert no force.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub enum BodyKind {
-    /// A free particle.
-    Dynamic,
-    /// A wall: immovable or moved by a prescribed motion.
-    Static,
-}
 
 /// Where a body slot stands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -151,7 +142,7 @@ impl Bodies {
     /// Grows the table to `len` slots; the new ones are absent.
     fn grow_to(&mut self, len: usize) {
         if len > self.flags.len() {
-            let absent = Flags { state: SlotState::Absent, kind: BodyKind::Dynamic, fresh: false };
+            let absent = Flags { state: SlotState::Absent, kind: BodyKind::Particle, fresh: false };
             self.flags.resize(len, absent);
             for axis in &mut self.current {
                 axis.resize(len, Interval::default());
@@ -201,7 +192,7 @@ impl Bodies {
         [0, 1].map(|axis| {
             let width = |(index, interval): (usize, &Interval)| {
                 let f = flags[index];
-                let measured = f.state != SlotState::Absent && f.kind == BodyKind::Dynamic;
+                let measured = f.state != SlotState::Absent && f.kind == BodyKind::Particle;
                 if measured { interval.upper - interval.lower } else { 0.0 }
             };
             let current = &self.current[axis];
@@ -221,7 +212,7 @@ impl Bodies {
 
     /// The static slots in the broadphase (pending or active), in id order.
     pub(super) fn static_slots(&self) -> Vec<u32> {
-        let is_static = |f: &Flags| f.kind == BodyKind::Static && f.state != SlotState::Absent;
+        let is_static = |f: &Flags| f.kind == BodyKind::Wall && f.state != SlotState::Absent;
         (0..self.flags.len() as u32).filter(|&body| is_static(&self.flags[body as usize])).collect()
     }
 
@@ -241,7 +232,7 @@ impl Bodies {
     #[inline]
     pub(super) fn may_pair(&self, a: u32, b: u32) -> bool {
         let (a, b) = (a as usize, b as usize);
-        (self.flags[a].kind == BodyKind::Dynamic || self.flags[b].kind == BodyKind::Dynamic)
+        (self.flags[a].kind == BodyKind::Particle || self.flags[b].kind == BodyKind::Particle)
             && self.current[0][a].meets(self.current[0][b])
             && self.current[1][a].meets(self.current[1][b])
     }

@@ -19,7 +19,8 @@
 
 use super::bands::FromTop;
 use super::bodies::Interval;
-use super::{BodyKind, Endpoint, SlotState, SortAndSweep};
+use super::{Endpoint, SlotState, SortAndSweep};
+use crate::BodyKind;
 use gc2d_geometry::Aabb;
 use std::collections::BTreeSet;
 
@@ -46,7 +47,7 @@ impl<T: Default> SortAndSweep<T> {
             Some(statics) => statics.iter().any(|&body| offered(body, &mut hit)),
             None => (0..self.bodies.len() as u32)
                 .filter(|&body| self.bodies.state(body) != SlotState::Absent)
-                .filter(|&body| self.bodies.kind(body) == BodyKind::Static)
+                .filter(|&body| self.bodies.kind(body) == BodyKind::Wall)
                 .any(|body| offered(body, &mut hit)),
         };
         if walls_hit {
@@ -57,7 +58,7 @@ impl<T: Default> SortAndSweep<T> {
             None => self
                 .pending
                 .iter()
-                .filter(|&&body| self.bodies.kind(body) == BodyKind::Dynamic)
+                .filter(|&&body| self.bodies.kind(body) == BodyKind::Particle)
                 .any(|&body| offered(body, &mut hit)),
         };
         if pending_hit {
@@ -76,7 +77,9 @@ impl<T: Default> SortAndSweep<T> {
             .iter()
             .filter(|e| !e.is_end())
             .map(|e| e.body())
-            .filter(|&body| self.bodies.state(body) == SlotState::Active && self.bodies.kind(body) == BodyKind::Dynamic)
+            .filter(|&body| {
+                self.bodies.state(body) == SlotState::Active && self.bodies.kind(body) == BodyKind::Particle
+            })
             .any(|body| offered(body, &mut hit))
     }
 
@@ -94,7 +97,7 @@ impl<T: Default> SortAndSweep<T> {
         endpoints
             .filter(|e| e.is_end())
             .filter(|e| {
-                self.bodies.state(e.body()) == SlotState::Active && self.bodies.kind(e.body()) == BodyKind::Dynamic
+                self.bodies.state(e.body()) == SlotState::Active && self.bodies.kind(e.body()) == BodyKind::Particle
             })
             .map(|e| (e.body(), e.value))
     }
@@ -222,7 +225,7 @@ mod tests {
                     aabbs[i] = aabb(-5.0, aabbs[i].min.y, 10.0, 0.01); // a floor as wide as everything
                 }
             }
-            let kind = |i: usize| if is_wall(i) { BodyKind::Static } else { BodyKind::Dynamic };
+            let kind = |i: usize| if is_wall(i) { BodyKind::Wall } else { BodyKind::Particle };
             let settled = aabbs.len().saturating_sub(late);
             let mut sweep = SortAndSweep::<()>::new();
             for (i, b) in aabbs.iter().enumerate().take(settled) {
@@ -267,7 +270,7 @@ mod tests {
         let mut sweep = SortAndSweep::<()>::new();
         let boxes: Vec<Aabb> = (0..5).map(|i| aabb(i as f64 * 0.1, 0.0, 0.05, 0.05)).collect();
         for (i, b) in boxes.iter().enumerate() {
-            sweep.insert(i as u32, *b, BodyKind::Dynamic).unwrap();
+            sweep.insert(i as u32, *b, BodyKind::Particle).unwrap();
         }
         sweep.update(&boxes);
         let mut asked = 0;
@@ -283,7 +286,7 @@ mod tests {
         let mut sweep = SortAndSweep::<()>::new();
         let boxes =
             [aabb(0.0, 0.0, 1.0, 0.3), aabb(0.0, 0.5, 1.0, 0.1), aabb(-5.0, 2.0, 10.0, 1.0), aabb(0.0, -1.0, 0.1, 0.1)];
-        let kinds = [BodyKind::Dynamic, BodyKind::Dynamic, BodyKind::Static, BodyKind::Dynamic];
+        let kinds = [BodyKind::Particle, BodyKind::Particle, BodyKind::Wall, BodyKind::Particle];
         for (i, (b, kind)) in boxes.iter().zip(kinds).enumerate() {
             sweep.insert(i as u32, *b, kind).unwrap();
         }
@@ -305,7 +308,7 @@ mod tests {
             aabb(3.9, 0.6, 0.1, 0.05),
             aabb(1.5, 0.4, 0.1, 0.2),
         ];
-        let kinds = |i: usize| if i == 3 { BodyKind::Static } else { BodyKind::Dynamic };
+        let kinds = |i: usize| if i == 3 { BodyKind::Wall } else { BodyKind::Particle };
         let order = |banded: bool| {
             let mut sweep = SortAndSweep::<()>::new();
             for (i, b) in boxes.iter().enumerate() {

@@ -181,8 +181,9 @@ fn sort_groups(
 
 #[cfg(test)]
 mod tests {
-    use super::super::bodies::{BodyKind, SlotState};
+    use super::super::bodies::SlotState;
     use super::*;
+    use crate::BodyKind;
     use gc2d_geometry::{Aabb, DVec2};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -223,7 +224,7 @@ mod tests {
         let mut boxes = row_of_boxes(count, &mut rng);
         let mut bodies = Bodies::default();
         for (body, aabb) in boxes.iter().enumerate() {
-            bodies.make_pending(body as u32, BodyKind::Dynamic, aabb);
+            bodies.make_pending(body as u32, BodyKind::Particle, aabb);
             bodies.set_state(body as u32, SlotState::Active);
         }
         let mut axis = sorted_axis(&bodies);
