@@ -44,7 +44,7 @@ pub use scene_mill::{
 };
 pub use scene_pile::{FloorPressureReport, PileReport};
 pub use scene_silo::SiloReport;
-pub use snapshot::{BodyRef, Contact, Particle, Snapshot, Wall};
+pub use snapshot::{BodyRef, Contact, ParticleOutline, Snapshot, Wall};
 pub use statistics::{
     Coordination, DirectionHistogram, MagnitudeHistogram, coordination, force_direction_histogram,
     force_magnitude_histogram,

@@ -9,7 +9,7 @@ use serde::Serialize;
 
 /// One particle at the instant of the snapshot.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Particle {
+pub struct ParticleOutline {
     /// The engine's body id (stable slot number; ascending with insertion, i.e. with "age", §5.5).
     pub id: u32,
     /// Centre of mass, m.
@@ -81,7 +81,7 @@ pub struct Snapshot {
     /// Magnitude of gravity, m/s²; gravity points along −y.
     pub gravity: f64,
     /// Living particles in slot order.
-    pub particles: Vec<Particle>,
+    pub particles: Vec<ParticleOutline>,
     /// Walls in slot order.
     pub walls: Vec<Wall>,
     /// Touching pairs with their forces.
@@ -106,7 +106,7 @@ impl Snapshot {
                 BodyKind::Particle => {
                     let scale = bodies.pose[slot].scale;
                     *reference = Some(BodyRef::Particle(particles.len()));
-                    particles.push(Particle {
+                    particles.push(ParticleOutline {
                         id: id.0,
                         centroid: bodies.pose[slot].position,
                         vertices,

@@ -57,7 +57,7 @@ fn area_method_is_exact_for_a_triangular_outline() {
     let right = vec![DVec2::new(0.2, 0.0), DVec2::new(0.4, 0.0), DVec2::new(0.2, h)];
     let particle = |id: u32, vertices: Vec<DVec2>| {
         let centroid = vertices.iter().copied().sum::<DVec2>() / 3.0;
-        Particle { id, centroid, vertices, area: 0.01, mass: 50.0, is_disk: false }
+        ParticleOutline { id, centroid, vertices, area: 0.01, mass: 50.0, is_disk: false }
     };
     let heap = Snapshot { gravity: G, particles: vec![particle(0, left), particle(1, right)], ..Default::default() };
     let repose = angle_of_repose(&heap, &FlankOptions { bin_width: 0.01, ..Default::default() }).unwrap();
@@ -101,7 +101,7 @@ fn hull_correction_removes_the_dilution_at_a_free_surface() {
 fn spaced_squares_give_the_lattice_packing_fraction() {
     // Squares of side 2 mm on a 2.5 mm lattice: ρ_rel = 0.64 in a test area of whole lattice cells.
     let (d, s) = (0.002, 0.0025);
-    let particles: Vec<Particle> = (0..20)
+    let particles: Vec<ParticleOutline> = (0..20)
         .flat_map(|j| (0..20).map(move |i| (i, j)))
         .map(|(i, j)| square_particle(0, DVec2::new(s * (i as f64 + 0.5), s * (j as f64 + 0.5)), d, DENSITY))
         .collect();

@@ -2,7 +2,7 @@
 
 #![allow(dead_code)]
 
-use gc2d_analysis::{BodyRef, Contact, Particle, Snapshot, Wall};
+use gc2d_analysis::{BodyRef, Contact, ParticleOutline, Snapshot, Wall};
 use gc2d_geometry::DVec2;
 
 /// Counter-clockwise square of side `side` centred on `center`.
@@ -17,8 +17,8 @@ pub fn rectangle(min: DVec2, max: DVec2) -> Vec<DVec2> {
 }
 
 /// A square particle of side `side` and area density `density`.
-pub fn square_particle(id: u32, center: DVec2, side: f64, density: f64) -> Particle {
-    Particle {
+pub fn square_particle(id: u32, center: DVec2, side: f64, density: f64) -> ParticleOutline {
+    ParticleOutline {
         id,
         centroid: center,
         vertices: square(center, side),
@@ -48,7 +48,7 @@ pub const G: f64 = 9.81;
 /// body id 0) in static equilibrium under gravity, without friction: the floor carries the whole weight at x = 0 and
 /// each square carries the weight of those above it.
 pub fn column_on_floor(n: usize, d: f64, half_floor: f64) -> Snapshot {
-    let particles: Vec<Particle> =
+    let particles: Vec<ParticleOutline> =
         (0..n).map(|i| square_particle(i as u32 + 1, DVec2::new(0.0, d * (i as f64 + 0.5)), d, DENSITY)).collect();
     let weight = DENSITY * d * d * G;
     let mut contacts =
