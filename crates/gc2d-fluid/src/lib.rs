@@ -35,5 +35,5 @@ pub use field::{FluidField, Outside, OutsideField};
 pub use poiseuille::{Poiseuille, PoiseuilleError};
 pub use ramp::{RampShape, TimeRamp};
 pub use sampled::{FieldSamples, Interpolation, SampledError, SampledField};
-pub use series::{SeriesError, Snapshot, SnapshotSeries, TimeInterpolation};
+pub use series::{FieldSnapshot, SeriesError, SnapshotSeries, TimeInterpolation};
 pub use vtk::{DataLocation, VtkError, VtkFile};

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 /// One snapshot of a series.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Snapshot {
+pub struct FieldSnapshot {
     /// The time the snapshot shows, s.
     pub time_s: f64,
     /// Its field.
@@ -46,7 +46,7 @@ pub enum SeriesError {
 /// Snapshots at increasing times. Before the first the first holds, after the last the last.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SnapshotSeries {
-    snapshots: Vec<Snapshot>,
+    snapshots: Vec<FieldSnapshot>,
     interpolation: TimeInterpolation,
 }
 
@@ -57,7 +57,7 @@ impl SnapshotSeries {
     }
 
     /// A series of `snapshots` (times finite and strictly increasing).
-    pub fn new(snapshots: Vec<Snapshot>, interpolation: TimeInterpolation) -> Result<Self, SeriesError> {
+    pub fn new(snapshots: Vec<FieldSnapshot>, interpolation: TimeInterpolation) -> Result<Self, SeriesError> {
         let Some(first) = snapshots.first() else { return Err(SeriesError::Empty) };
         if !first.time_s.is_finite() {
             return Err(SeriesError::Times {
@@ -79,7 +79,7 @@ impl SnapshotSeries {
     }
 
     /// The snapshots, in time order.
-    pub fn snapshots(&self) -> &[Snapshot] {
+    pub fn snapshots(&self) -> &[FieldSnapshot] {
         &self.snapshots
     }
 

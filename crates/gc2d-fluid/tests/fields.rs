@@ -2,8 +2,8 @@
 
 use gc2d_fluid::vtk::Cells;
 use gc2d_fluid::{
-    FieldSamples, FluidField, Interpolation, Outside, Poiseuille, PoiseuilleError, RampShape, SampledField,
-    SeriesError, Snapshot, SnapshotSeries, TimeInterpolation, TimeRamp,
+    FieldSamples, FieldSnapshot, FluidField, Interpolation, Outside, Poiseuille, PoiseuilleError, RampShape,
+    SampledField, SeriesError, SnapshotSeries, TimeInterpolation, TimeRamp,
 };
 use gc2d_geometry::DVec2;
 
@@ -46,7 +46,7 @@ fn ramps_linear_smooth_and_step() {
 }
 
 /// A loaded snapshot whose velocity is `a + b·x` at every node of a 3 × 3 lattice on [0, 1]².
-fn snapshot(time_s: f64, a: DVec2, b: DVec2) -> Snapshot {
+fn snapshot(time_s: f64, a: DVec2, b: DVec2) -> FieldSnapshot {
     let positions: Vec<[f64; 3]> = (0..9).map(|k| [(k % 3) as f64 * 0.5, (k / 3) as f64 * 0.5, 0.0]).collect();
     let samples = FieldSamples {
         source: format!("U_{time_s}.vtk"),
@@ -55,7 +55,7 @@ fn snapshot(time_s: f64, a: DVec2, b: DVec2) -> Snapshot {
         positions,
         cells: Cells::default(),
     };
-    Snapshot { time_s, field: SampledField::new(&samples, Interpolation::Bilinear, Outside::Error).unwrap() }
+    FieldSnapshot { time_s, field: SampledField::new(&samples, Interpolation::Bilinear, Outside::Error).unwrap() }
 }
 
 #[test]

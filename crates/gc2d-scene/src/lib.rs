@@ -37,4 +37,4 @@ pub use checks::significant_digits;
 pub use error::{ErrorKind, Location, SceneError};
 pub use schema::*;
 pub use source::SourceText;
-pub use summary::Summary;
+pub use summary::SceneSummary;

@@ -99,7 +99,7 @@ fn describe(model: &ContactModel) -> String {
 
 /// Counts and time-step facts of a built scene.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Summary {
+pub struct SceneSummary {
     /// The scene's name.
     pub name: String,
     /// Material names, in order (the first is the material of bodies that name none).
@@ -172,7 +172,7 @@ pub fn bytes_per_box_pair() -> usize {
 /// faster, 100,000 grains slower.
 pub const PARTICLE_STEPS_PER_SECOND: f64 = 2e6;
 
-impl Summary {
+impl SceneSummary {
     /// The most particles the scene can hold: those at the start and every insertion its sources plan.
     pub fn most_particles(&self) -> u64 {
         self.particles as u64 + self.planned_insertions
@@ -255,7 +255,7 @@ fn human_duration(seconds: f64) -> String {
     format!("{} {unit}", three_digits(value))
 }
 
-impl Summary {
+impl SceneSummary {
     /// Steps to reach the end time.
     pub fn steps(&self) -> u64 {
         let steps = (self.end_time_s / self.time_step_s).round();
@@ -263,7 +263,7 @@ impl Summary {
     }
 }
 
-impl fmt::Display for Summary {
+impl fmt::Display for SceneSummary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "scene `{}`", self.name)?;
         writeln!(f, "  materials: {}", self.materials.join(", "))?;

@@ -9,8 +9,8 @@ use gc2d_engine::{Fluid as EngineFluid, MassModel};
 use gc2d_fluid::drag::{ImmersedBody, drag_force};
 use gc2d_fluid::sampled::MAX_NEIGHBOURS;
 use gc2d_fluid::{
-    DragCoefficient, FluidField, FluidProperties, Interpolation, Poiseuille, SampledField, Snapshot, SnapshotSeries,
-    TimeRamp, VtkFile,
+    DragCoefficient, FieldSnapshot, FluidField, FluidProperties, Interpolation, Poiseuille, SampledField,
+    SnapshotSeries, TimeRamp, VtkFile,
 };
 use gc2d_geometry::DVec2;
 use std::path::{Path, PathBuf};
@@ -69,7 +69,7 @@ pub(crate) fn check(fluid: &Fluid, errors: &mut Vec<SceneError>) {
     }
 }
 
-/// Snapshot times: finite and strictly increasing.
+/// FieldSnapshot times: finite and strictly increasing.
 fn snapshot_times(snapshots: &[VtkSnapshot], path: &str) -> Result<(), SceneError> {
     for (i, snapshot) in snapshots.iter().enumerate() {
         crate::checks::finite(&field_path(&format!("{path}[{i}]"), "time_s"), snapshot.time_s)?;
@@ -125,7 +125,7 @@ pub(crate) fn plan(fluid: &Fluid, folder: &Path) -> Result<EngineFluid, SceneErr
                         .enumerate()
                         .map(|(i, s)| {
                             let at = field_path(&format!("{list}[{i}]"), "file");
-                            Ok(Snapshot { time_s: s.time_s, field: load(&s.file, &at)? })
+                            Ok(FieldSnapshot { time_s: s.time_s, field: load(&s.file, &at)? })
                         })
                         .collect::<Result<Vec<_>, SceneError>>()?;
                     FluidField::Series(

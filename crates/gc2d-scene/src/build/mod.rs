@@ -22,7 +22,7 @@ use crate::checks::number;
 use crate::error::{ErrorKind, SceneError};
 use crate::schema::{Corrector, DropHeight, Gravity, GravityProfile, Scene, Source};
 use crate::spans::field_path;
-use crate::summary::Summary;
+use crate::summary::SceneSummary;
 use crate::validate::Materials;
 use blocks::Lattice;
 use gc2d_engine::integrator::IntegratorError;
@@ -68,7 +68,7 @@ pub(crate) struct PlannedParticle {
 /// A built scene and what the summary reports about it.
 pub(crate) struct Built {
     pub world: World,
-    pub summary: Summary,
+    pub summary: SceneSummary,
     /// The scene entry each body of the built World comes from, by body id ([`Scene::body_origins`]); named only
     /// when asked for ([`BuildOptions::origins`]), so a plain build allocates no name per body.
     pub origins: Vec<String>,
@@ -94,7 +94,7 @@ impl Scene {
     }
 
     /// What the scene contains once built: counts of walls, particles and sources, materials, Δt and its bound.
-    pub fn summary(&self) -> Result<Summary, SceneError> {
+    pub fn summary(&self) -> Result<SceneSummary, SceneError> {
         Ok(self.build_with_summary()?.summary)
     }
 
@@ -120,7 +120,7 @@ impl Scene {
 
     /// The summary of the scene built without the start-overlap check: for the gsi importer, which needs the
     /// time-step bound of a scene whose bodies may overlap (and then reports the overlap on loading it back).
-    pub(crate) fn summary_ignoring_start_overlaps(&self) -> Result<Summary, SceneError> {
+    pub(crate) fn summary_ignoring_start_overlaps(&self) -> Result<SceneSummary, SceneError> {
         self.validate()?;
         let options = BuildOptions { start_overlaps: StartOverlaps::Ignore, origins: false };
         Ok(build(self, options).map_err(|e| e.located(self.source.as_ref()))?.summary)
@@ -412,7 +412,7 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
     world.check_time_step().map_err(|e| engine_error(&WorldError::Safety(e), "run.time_step_s"))?;
     world.shrink_to_fit();
 
-    let summary = Summary {
+    let summary = SceneSummary {
         name: scene.name.clone(),
         materials: materials.names(),
         interactions: crate::summary::interaction_lines(&materials.names(), &world.config().interactions),
