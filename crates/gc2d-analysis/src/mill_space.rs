@@ -6,9 +6,9 @@ use gc2d_geometry::DVec2;
 use serde::Serialize;
 use std::f64::consts::TAU;
 
-/// The chamber the statistics refer to.
+/// The chamber the statistics refer to, and the width of their rings.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Chamber {
+pub struct ChamberFrame {
     /// Centre, m.
     pub centre_m: [f64; 2],
     /// Radius, m.
@@ -17,7 +17,7 @@ pub struct Chamber {
     pub ball_diameter_m: f64,
 }
 
-impl Chamber {
+impl ChamberFrame {
     /// Distance from the centre and angle CCW from +x in [0, 2π) of `point`.
     pub fn polar(&self, point: DVec2) -> (f64, f64) {
         let d = point - DVec2::from(self.centre_m);
@@ -50,7 +50,7 @@ pub struct RadialProfile {
 }
 
 /// The radial profile of ball centres at distances `radii` from the centre (one per ball and dump).
-pub fn radial_profile(chamber: &Chamber, radii: &[f64]) -> RadialProfile {
+pub fn radial_profile(chamber: &ChamberFrame, radii: &[f64]) -> RadialProfile {
     let (big_r, d) = (chamber.radius_m, chamber.ball_diameter_m);
     let count = ((big_r / d).ceil() as usize).max(1);
     let n = radii.len().max(1) as f64;
@@ -106,7 +106,7 @@ pub struct SectorCell {
 /// The sector maps over [`SECTOR_RINGS`] × [`SECTOR_ANGLES`] equal-area cells of the chamber, from ball samples
 /// (position, speed) and the begin points of collisions over a window of `span` s; points beyond the chamber's radius
 /// count in the outer ring.
-pub fn sector_map(chamber: &Chamber, balls: &[(DVec2, f64)], collisions: &[DVec2], span: f64) -> Vec<SectorCell> {
+pub fn sector_map(chamber: &ChamberFrame, balls: &[(DVec2, f64)], collisions: &[DVec2], span: f64) -> Vec<SectorCell> {
     let cell_of = |point: DVec2| {
         let (r, angle) = chamber.polar(point);
         let ring = ((SECTOR_RINGS as f64 * (r / chamber.radius_m).powi(2)) as usize).min(SECTOR_RINGS - 1);
@@ -146,7 +146,7 @@ pub fn sector_map(chamber: &Chamber, balls: &[(DVec2, f64)], collisions: &[DVec2
 mod tests {
     use super::*;
 
-    const CHAMBER: Chamber = Chamber { centre_m: [1.0, 2.0], radius_m: 0.01, ball_diameter_m: 0.003 };
+    const CHAMBER: ChamberFrame = ChamberFrame { centre_m: [1.0, 2.0], radius_m: 0.01, ball_diameter_m: 0.003 };
 
     #[test]
     fn radial_rings_are_one_diameter_wide_from_the_wall_and_shares_add_up() {

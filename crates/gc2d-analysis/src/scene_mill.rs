@@ -15,7 +15,7 @@
 
 use crate::error::AnalysisError;
 use crate::figures::{Labels, Mark, PolarCell, SERIES_COLOURS, Series, bar_chart, line_chart, polar_cell_map};
-use crate::mill_space::{Chamber, RadialProfile, SectorCell, radial_profile, sector_map};
+use crate::mill_space::{ChamberFrame, RadialProfile, SectorCell, radial_profile, sector_map};
 use crate::mill_speeds::{
     Autocorrelation, Histogram, SpeedDistribution, WarmUpCut, autocorrelation, quantile, warm_up_cut,
 };
@@ -203,7 +203,7 @@ pub struct MillReport {
     /// The balls' speeds from the dumps (`None` without dumps in the window).
     pub ball_speeds: Option<BallSpeeds>,
     /// The chamber (`None` when the run has no circular chamber: no radial profile or sector maps then).
-    pub chamber: Option<Chamber>,
+    pub chamber: Option<ChamberFrame>,
     /// The radial residence profile of the balls.
     pub radial_profile: Option<RadialProfile>,
     /// True when events.csv has the collisions' begin points (the sector maps' collision counts).
@@ -332,7 +332,7 @@ pub fn stress_energy_spectrum(mut energies: Vec<f64>, span: f64) -> StressEnergy
 
 /// The chamber of the final World: its inner-circle wall, with the balls' median diameter (the particles' largest
 /// extent when there are no balls).
-fn chamber_of(world: &World, balls: &BallIds) -> Option<Chamber> {
+fn chamber_of(world: &World, balls: &BallIds) -> Option<ChamberFrame> {
     let bodies = world.bodies();
     let wall =
         (0..bodies.len()).find(|&i| bodies.kind[i] == BodyKind::Wall && bodies.shape[i] == ShapeKind::InnerCircle)?;
@@ -348,7 +348,7 @@ fn chamber_of(world: &World, balls: &BallIds) -> Option<Chamber> {
     };
     radii.sort_by(f64::total_cmp);
     let pose = bodies.pose[wall];
-    Some(Chamber {
+    Some(ChamberFrame {
         centre_m: pose.position.into(),
         radius_m: bodies.radius[wall] * pose.scale,
         ball_diameter_m: 2.0 * quantile(&radii, 0.5),
