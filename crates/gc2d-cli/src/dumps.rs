@@ -11,7 +11,7 @@
 
 use crate::export::rows::{ParticleRow, particle_rows};
 use crate::export::{ExportFormat, particle_columns, vtk};
-use crate::numbered_files::{Cadence, NumberedFolder};
+use crate::numbered_files::{FolderCadence, NumberedFolder};
 use crate::parquet_table::write_parquet;
 use crate::runner::FrameSink;
 use gc2d_analysis::particle_state::csv::{DUMPS_DIR, dump_file_name, write_csv};
@@ -70,13 +70,13 @@ impl StateDumps {
     }
 
     /// The interval and formats the dumps are written with.
-    pub fn cadence(&self) -> Cadence {
+    pub fn cadence(&self) -> FolderCadence {
         let names: Vec<String> = self
             .formats
             .iter()
             .filter_map(|f| clap::ValueEnum::to_possible_value(f).map(|v| v.get_name().to_owned()))
             .collect();
-        Cadence { interval: self.interval, formats: names.join(","), region: None }
+        FolderCadence { interval: self.interval, formats: names.join(","), region: None }
     }
 
     /// Makes `dumps/` ready for a part of the run that starts at `world`'s time (after

@@ -1,5 +1,5 @@
 //! Folders of files numbered on a cadence, `dumps/particles_<k>.*` and `frames/frame-<k>.png`, file k holding the
-//! state at k·interval, across a resume. Each folder records its [`Cadence`] in [`CADENCE_FILE`]: the interval, the
+//! state at k·interval, across a resume. Each folder records its [`FolderCadence`] in [`CADENCE_FILE`]: the interval, the
 //! formats written and, for pictures, the region they show. A resumed part that would number on another interval is
 //! refused (two intervals under one numbering gave files whose number no longer told their time, and a
 //! `particles.pvd` with wrong times), and so is one that would write other formats (an analysis reads the CSV dumps,
@@ -9,12 +9,12 @@
 use gc2d_geometry::{Aabb, DVec2};
 use std::path::Path;
 
-/// The file in a numbered folder that records its [`Cadence`].
+/// The file in a numbered folder that records its [`FolderCadence`].
 pub const CADENCE_FILE: &str = ".gc2d-cadence";
 
 /// How a folder's files are numbered and written.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Cadence {
+pub struct FolderCadence {
     /// Simulated time between two files, s: file k holds the state at k·interval.
     pub interval: f64,
     /// The formats written, as the option lists them (`csv,vtk`; `png` for pictures).
@@ -23,7 +23,7 @@ pub struct Cadence {
     pub region: Option<Aabb>,
 }
 
-impl Cadence {
+impl FolderCadence {
     /// The record's text: one `key = value` line per field.
     fn text(&self) -> String {
         let mut text = format!("interval_s = {:?}\nformats = {}\n", self.interval, self.formats);
@@ -71,7 +71,7 @@ pub struct NumberedFolder<'a> {
 impl NumberedFolder<'_> {
     /// Refuses a resumed part that would number on another interval, or write other formats, than the folder's files
     /// were. Touches nothing.
-    pub fn refuse_other_cadence(&self, ours: &Cadence) -> Result<(), String> {
+    pub fn refuse_other_cadence(&self, ours: &FolderCadence) -> Result<(), String> {
         let Some(earlier) = self.recorded()? else { return Ok(()) };
         if earlier.interval != ours.interval {
             return Err(format!(
@@ -115,17 +115,17 @@ impl NumberedFolder<'_> {
     }
 
     /// Records `cadence` as the folder's (creating the folder).
-    pub fn record(&self, cadence: &Cadence) -> Result<(), String> {
+    pub fn record(&self, cadence: &FolderCadence) -> Result<(), String> {
         std::fs::create_dir_all(self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
         let path = self.dir.join(CADENCE_FILE);
         std::fs::write(&path, cadence.text()).map_err(|e| format!("cannot write {}: {e}", path.display()))
     }
 
     /// The cadence recorded in the folder, if any (a folder an older version wrote has none).
-    pub fn recorded(&self) -> Result<Option<Cadence>, String> {
+    pub fn recorded(&self) -> Result<Option<FolderCadence>, String> {
         let path = self.dir.join(CADENCE_FILE);
         let Ok(text) = std::fs::read_to_string(&path) else { return Ok(None) };
-        Cadence::parse(&text).map(Some).ok_or_else(|| {
+        FolderCadence::parse(&text).map(Some).ok_or_else(|| {
             format!(
                 "{} is damaged: it should hold the interval, formats and region the files were written with",
                 path.display()
@@ -144,8 +144,8 @@ impl NumberedFolder<'_> {
 mod tests {
     use super::*;
 
-    fn cadence(interval: f64, formats: &str) -> Cadence {
-        Cadence { interval, formats: formats.to_owned(), region: None }
+    fn cadence(interval: f64, formats: &str) -> FolderCadence {
+        FolderCadence { interval, formats: formats.to_owned(), region: None }
     }
 
     #[test]
@@ -177,9 +177,9 @@ mod tests {
     #[test]
     fn the_record_reads_back_with_its_region_and_the_first_versions_number_is_an_interval() {
         let region = Aabb { min: DVec2::new(-0.1, -0.01), max: DVec2::new(0.1, 0.2) };
-        let recorded = Cadence { interval: 0.005, formats: "png".to_owned(), region: Some(region) };
-        assert_eq!(Cadence::parse(&recorded.text()), Some(recorded));
-        assert_eq!(Cadence::parse("0.002\n"), Some(cadence(0.002, "")));
-        assert_eq!(Cadence::parse("interval_s = x\n"), None);
+        let recorded = FolderCadence { interval: 0.005, formats: "png".to_owned(), region: Some(region) };
+        assert_eq!(FolderCadence::parse(&recorded.text()), Some(recorded));
+        assert_eq!(FolderCadence::parse("0.002\n"), Some(cadence(0.002, "")));
+        assert_eq!(FolderCadence::parse("interval_s = x\n"), None);
     }
 }

@@ -69,12 +69,12 @@ impl Ticks {
 }
 
 /// Calls a sink whenever its next tick has been reached.
-struct Cadence<'a> {
+struct ScheduledSink<'a> {
     sink: &'a mut dyn FrameSink,
     ticks: Ticks,
 }
 
-impl Cadence<'_> {
+impl ScheduledSink<'_> {
     fn poll(&mut self, world: &World) -> Result<(), String> {
         let slack = 0.5 * world.time_step();
         if self.ticks.due(world.time(), slack) {
@@ -116,11 +116,11 @@ pub fn run_to(
     let mut chatter = ChatterWatch::continuing(earlier_chatter);
     let (start, slack) = (world.time(), 0.5 * world.time_step());
     let mut rows = Ticks::from(series_interval, start, slack);
-    let mut cadences: Vec<Cadence> = sinks
+    let mut scheduled: Vec<ScheduledSink> = sinks
         .iter_mut()
         .map(|sink| {
             let ticks = Ticks::from(sink.interval(), start, slack);
-            Cadence { sink: &mut **sink, ticks }
+            ScheduledSink { sink: &mut **sink, ticks }
         })
         .collect();
     let mut failed_bodies = Vec::new();
@@ -133,7 +133,7 @@ pub fn run_to(
             last_row_time = Some(world.time());
             rows.advance(world.time(), slack);
         }
-        if let Some(message) = cadences.iter_mut().find_map(|c| c.poll(world).err()) {
+        if let Some(message) = scheduled.iter_mut().find_map(|c| c.poll(world).err()) {
             break RunStatus::Failed(message);
         }
         if world.time() + 0.5 * world.time_step() >= end_time {
@@ -146,14 +146,14 @@ pub fn run_to(
             failed_bodies = e.bodies();
             break RunStatus::Failed(e.to_string());
         }
-        if let Some(message) = cadences.iter_mut().find_map(|c| c.sink.after_step(world).err()) {
+        if let Some(message) = scheduled.iter_mut().find_map(|c| c.sink.after_step(world).err()) {
             break RunStatus::Failed(message);
         }
         if let Some(warning) = chatter.observe(world) {
             progress.warn(&warning);
         }
         if let Some(window) = chatter.new_largest() {
-            cadences.iter_mut().for_each(|c| c.sink.largest_alternation(window));
+            scheduled.iter_mut().for_each(|c| c.sink.largest_alternation(window));
         }
         progress.update(world);
     };
@@ -169,7 +169,7 @@ pub fn run_to(
         failed => failed,
     };
     // Every sink ends its files, whatever the others do; the first that cannot fails a run that had not failed.
-    let unfinished: Vec<String> = cadences.iter_mut().filter_map(|c| c.sink.finish().err()).collect();
+    let unfinished: Vec<String> = scheduled.iter_mut().filter_map(|c| c.sink.finish().err()).collect();
     let status = match (status, unfinished.into_iter().next()) {
         (RunStatus::Completed | RunStatus::Interrupted, Some(message)) => RunStatus::Failed(message),
         (status, _) => status,

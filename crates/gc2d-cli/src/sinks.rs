@@ -1,6 +1,6 @@
 //! The run loop's frame sinks: an MCAP recording for Foxglove, PNG pictures and restartable checkpoints.
 
-use crate::numbered_files::{Cadence, NumberedFolder};
+use crate::numbered_files::{FolderCadence, NumberedFolder};
 use crate::runner::{FrameSink, first_tick};
 use gc2d_engine::{CheckpointError, World};
 use gc2d_geometry::Aabb;
@@ -50,8 +50,8 @@ impl PngFrames {
     }
 
     /// The interval the pictures are taken on, and the region they show once it is known.
-    pub fn cadence(&self) -> Cadence {
-        Cadence { interval: self.interval, formats: "png".to_owned(), region: self.options.view }
+    pub fn cadence(&self) -> FolderCadence {
+        FolderCadence { interval: self.interval, formats: "png".to_owned(), region: self.options.view }
     }
 
     /// Makes `frames/` ready for a part of the run that starts at `world`'s time, as [`crate::dumps::StateDumps::prepare`]
