@@ -29,7 +29,7 @@ pub use closest::{Feature, FeaturePair, Separation, closest_features};
 pub use glam::DVec2;
 pub use outline::{CIRCLE_SEGMENTS, TracedOutline};
 pub use overlap::{
-    ContactGeometry, ContactKind, OverlapPolygon, contact_geometry, contact_geometry_from_exit,
+    ContactKind, OverlapGeometry, OverlapPolygon, contact_geometry, contact_geometry_from_exit,
     contact_geometry_with_centroid, overlap_polygon,
 };
 pub use pair::capsule::{disk_capsule_intersection_area, polygon_capsule_intersection_area};

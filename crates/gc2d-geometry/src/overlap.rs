@@ -29,7 +29,7 @@ pub const DEGENERATE_CHORD_FRACTION: f64 = 1e-9;
 /// treated as zero, and the next rule of the orientation fallback chain decides.
 const NEGLIGIBLE_DIRECTION_FRACTION: f64 = 1e-9;
 
-/// How the chord ends c1 and c2 of a [`ContactGeometry`] were found.
+/// How the chord ends c1 and c2 of a [`OverlapGeometry`] were found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactKind {
     /// The outlines cross at exactly two points, each a proper crossing of two edges: the normal DEM contact.
@@ -47,7 +47,7 @@ pub enum ContactKind {
 
 /// Result of intersecting polygon `a` (body i) with polygon `b` (body j).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactGeometry {
+pub struct OverlapGeometry {
     /// Overlap area A in m² (per unit thickness), > 0.
     pub area: f64,
     /// Where `a`'s outline, walked counter-clockwise, enters `b`.
@@ -103,13 +103,13 @@ impl Default for OverlapPolygon {
 /// Both are world-frame, counter-clockwise, validated convex vertex slices of 3..=[`MAX_VERTICES`] vertices.
 /// Returns `None` when the interiors do not overlap (A = 0, including mere touching) or the input is out of range.
 /// Never allocates, never panics, never returns NaN for finite input.
-pub fn contact_geometry(a: &[DVec2], b: &[DVec2]) -> Option<ContactGeometry> {
+pub fn contact_geometry(a: &[DVec2], b: &[DVec2]) -> Option<OverlapGeometry> {
     contact_geometry_from_exit(a, b, false, &mut None)
 }
 
-/// [`contact_geometry`] with the overlap polygon's area centroid in [`ContactGeometry::centroid`] (bitwise the same
+/// [`contact_geometry`] with the overlap polygon's area centroid in [`OverlapGeometry::centroid`] (bitwise the same
 /// other fields), for laws that apply the elastic force at the centroid (docs/model.md, "Rocking of flat contacts").
-pub fn contact_geometry_with_centroid(a: &[DVec2], b: &[DVec2]) -> Option<ContactGeometry> {
+pub fn contact_geometry_with_centroid(a: &[DVec2], b: &[DVec2]) -> Option<OverlapGeometry> {
     contact_geometry_from_exit(a, b, true, &mut None)
 }
 
@@ -125,7 +125,7 @@ pub fn contact_geometry_from_exit(
     b: &[DVec2],
     with_centroid: bool,
     exit: &mut Option<FeaturePair>,
-) -> Option<ContactGeometry> {
+) -> Option<OverlapGeometry> {
     let total = checked_total_vertices(a, b)?;
     if let Some(FeaturePair { a: Feature::Edge(edge_of_a), b: Feature::Edge(edge_of_b) }) = *exit
         && let Some(overlap) = two_crossings_from_exit(a, b, usize::from(edge_of_a), usize::from(edge_of_b))
@@ -199,7 +199,7 @@ fn contact_with_capacity<const CAP: usize>(
     b: &[DVec2],
     with_centroid: bool,
     exit: &mut Option<FeaturePair>,
-) -> Option<ContactGeometry> {
+) -> Option<OverlapGeometry> {
     let facing = Facing::of(a, b)?;
     if let Some(overlap) = two_crossings(a, b, &facing) {
         return Some(two_crossing_contact(&overlap, with_centroid, exit));
@@ -211,7 +211,7 @@ fn contact_with_capacity<const CAP: usize>(
         return None;
     }
     let contact = contact_from_overlap(ring.vertices(), area, a, b);
-    Some(ContactGeometry { centroid: with_centroid.then(|| ring_centroid(ring.vertices())), ..contact })
+    Some(OverlapGeometry { centroid: with_centroid.then(|| ring_centroid(ring.vertices())), ..contact })
 }
 
 /// The contact of a two-crossing overlap: a plain crossing whose chord runs from the entry c1 to the exit c2; sets
@@ -220,13 +220,13 @@ fn two_crossing_contact(
     overlap: &TwoCrossings,
     with_centroid: bool,
     exit: &mut Option<FeaturePair>,
-) -> ContactGeometry {
+) -> OverlapGeometry {
     let (edge_of_a, edge_of_b) = overlap.exit_edges();
     *exit = Some(FeaturePair { a: Feature::edge(edge_of_a), b: Feature::edge(edge_of_b) });
     let (c1, c2) = (overlap.c1(), overlap.c2());
     let chord = c2 - c1;
     let chord_length = chord.length();
-    ContactGeometry {
+    OverlapGeometry {
         area: overlap.area(),
         c1,
         c2,
@@ -239,7 +239,7 @@ fn two_crossing_contact(
 }
 
 /// The chord rules of `docs/model.md`, applied to the labelled overlap polygon.
-fn contact_from_overlap(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -> ContactGeometry {
+fn contact_from_overlap(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -> OverlapGeometry {
     let (mut any_b, mut shared) = (false, 0);
     for vertex in ring {
         any_b |= vertex.edge == Label::B;
@@ -274,7 +274,7 @@ fn contact_from_overlap(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]
     };
     let chord = c2 - c1;
     let chord_length = chord.length();
-    ContactGeometry {
+    OverlapGeometry {
         area,
         c1,
         c2,
@@ -367,7 +367,7 @@ fn farthest_crossings(
 
 /// Containment policy: normal along centroid(a) − centroid(b) (+y when they coincide within
 /// [`NEGLIGIBLE_DIRECTION_FRACTION`]·√A); chord = the overlap's width across the normal, through its centroid.
-fn contained_contact(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -> ContactGeometry {
+fn contained_contact(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -> OverlapGeometry {
     let offset = centroid(a) - centroid(b);
     let normal =
         if offset.length() > NEGLIGIBLE_DIRECTION_FRACTION * area.sqrt() { offset.normalize() } else { DVec2::Y };
@@ -386,7 +386,7 @@ fn contained_contact(ring: &[RingVertex], area: f64, a: &[DVec2], b: &[DVec2]) -
         }
     }
     let (c1, c2) = (center + low * tangent, center + high * tangent);
-    ContactGeometry {
+    OverlapGeometry {
         area,
         c1,
         c2,

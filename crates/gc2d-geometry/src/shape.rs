@@ -85,7 +85,7 @@ impl ShapeView<'_> {
     }
 }
 
-/// What the gc2d overlap-area law needs: today's polygon [`ContactGeometry`](crate::ContactGeometry) reduced to
+/// What the gc2d overlap-area law needs: today's polygon [`OverlapGeometry`](crate::OverlapGeometry) reduced to
 /// the area, the chord c1c2 and the normal, for any pair of shapes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AreaContact {

@@ -2,7 +2,7 @@
 
 use approx::assert_relative_eq;
 use gc2d_geometry::{
-    ContactGeometry, ContactKind, ConvexPolygon, DVec2, OverlapPolygon, Pose, contact_geometry,
+    ContactKind, ConvexPolygon, DVec2, OverlapGeometry, OverlapPolygon, Pose, contact_geometry,
     contact_geometry_with_centroid, cross, overlap_polygon,
 };
 use proptest::prelude::*;
@@ -86,7 +86,7 @@ fn convex_polygon(size: f64) -> impl Strategy<Value = Vec<DVec2>> {
 }
 
 /// The properties every result must have, against the reference area. Returns the contact for further checks.
-fn check_contact(a: &[DVec2], b: &[DVec2], size: f64) -> Result<Option<ContactGeometry>, TestCaseError> {
+fn check_contact(a: &[DVec2], b: &[DVec2], size: f64) -> Result<Option<OverlapGeometry>, TestCaseError> {
     let reference = reference_area(a, b);
     let contact = contact_geometry(a, b);
     let mut polygon = OverlapPolygon::new();
@@ -188,7 +188,7 @@ proptest! {
     fn the_overlap_centroid_agrees_with_parry(a in convex_polygon(1.75e-3), b in convex_polygon(1.75e-3)) {
         let Some(plain) = contact_geometry(&a, &b) else { return Ok(()) };
         let with = contact_geometry_with_centroid(&a, &b).unwrap();
-        prop_assert_eq!(ContactGeometry { centroid: None, ..with }, plain);
+        prop_assert_eq!(OverlapGeometry { centroid: None, ..with }, plain);
         let mut points = Vec::new();
         parry2d_f64::transformation::convex_polygons_intersection_points(&a, &b, &mut points);
         let origin = points[0];

@@ -373,7 +373,7 @@ mod tests {
     use super::*;
     use crate::overlap::clip::{self, Ring};
     use crate::overlap::contact_from_overlap;
-    use crate::{ContactGeometry, ContactKind, ConvexPolygon, Feature, FeaturePair, Pose, contact_geometry};
+    use crate::{ContactKind, ConvexPolygon, Feature, FeaturePair, OverlapGeometry, Pose, contact_geometry};
     use proptest::prelude::*;
     use proptest::strategy::ValueTree;
     use proptest::test_runner::RngSeed;
@@ -390,7 +390,7 @@ mod tests {
     }
 
     /// The clipper's contact alone, for comparison.
-    fn clipped(a: &[DVec2], b: &[DVec2]) -> Option<ContactGeometry> {
+    fn clipped(a: &[DVec2], b: &[DVec2]) -> Option<OverlapGeometry> {
         let facing = Facing::of(a, b)?;
         let (mut first, mut second) = (Ring::<64>::new(), Ring::<64>::new());
         let ring = clip::clip(a, b, &facing, &mut first, &mut second)?;

@@ -3,7 +3,7 @@
 
 use crate::DVec2;
 use crate::shape::{AreaContact, PairPenetration};
-use crate::{ContactGeometry, contact_geometry, contact_geometry_with_centroid};
+use crate::{OverlapGeometry, contact_geometry, contact_geometry_with_centroid};
 
 /// Polygon i against polygon j for the area law: [`contact_geometry`] reduced to [`AreaContact`] (bitwise the same
 /// area, chord length, point and normal).
@@ -16,9 +16,9 @@ pub(crate) fn area_contact_with_centroid(a: &[DVec2], b: &[DVec2]) -> Option<Are
     contact_geometry_with_centroid(a, b).map(AreaContact::from)
 }
 
-impl From<ContactGeometry> for AreaContact {
+impl From<OverlapGeometry> for AreaContact {
     /// The polygon contact reduced to what every pair reports (bitwise the same fields).
-    fn from(g: ContactGeometry) -> Self {
+    fn from(g: OverlapGeometry) -> Self {
         AreaContact {
             area: g.area,
             chord_length: g.chord_length,
