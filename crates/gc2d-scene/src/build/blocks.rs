@@ -48,7 +48,7 @@ impl Lattice {
             )
             .with_help("check the units: ranges and spacing are in metres"));
         }
-        let offset_rows = matches!(block.grid, GridType::Fcc | GridType::FccGauss | GridType::FccEqual);
+        let offset_rows = block.grid.is_fcc();
         Ok(Self {
             x_range,
             spacing,

@@ -9,13 +9,13 @@ use gc2d_geometry::{AngleMode, DVec2, Randomization};
 
 use super::locate;
 use super::{
-    GridType as GsiGridType, GsiBlock, GsiDisplay, GsiDropSource, GsiError, GsiErrorKind, GsiErrors, GsiGeneral,
-    GsiImport, GsiParticle, GsiScene, GsiShape, GsiWall, GsiWallMotion, GsiWarning, GsiWarningKind, Sourced,
+    GsiBlock, GsiDisplay, GsiDropSource, GsiError, GsiErrorKind, GsiErrors, GsiGeneral, GsiImport, GsiParticle,
+    GsiScene, GsiShape, GsiWall, GsiWallMotion, GsiWarning, GsiWarningKind, Sourced,
 };
 use crate::SceneError;
 use crate::schema::{
-    Area, Block, CornerPositions, CountSpread, DragSpring, DropHeight, Gravity, GravityProfile, GridType, Heating,
-    Material, Motion, Orientation, Particle, Recipe, Run, Scene, Shape, SizeSpread, Source, WallItem, Waveform, Window,
+    Area, Block, CornerPositions, CountSpread, DragSpring, DropHeight, Gravity, GravityProfile, Heating, Material,
+    Motion, Orientation, Particle, Recipe, Run, Scene, Shape, SizeSpread, Source, WallItem, Waveform, Window,
 };
 
 /// The name of the one material an imported scene has: gsi has one global material in GENERAL.
@@ -360,7 +360,7 @@ fn material(general: &GsiGeneral) -> Material {
 fn block(block: &GsiBlock) -> Block {
     let range = |bounds: &Sourced<super::Bounds>| [bounds.value.min, bounds.value.max];
     Block {
-        grid: grid_type(block.grid_type.value),
+        grid: block.grid_type.value,
         speed_range_m_s: range(&block.speed_range),
         direction_range_rad: range(&block.velocity_direction_range),
         ..Block::new(
@@ -419,17 +419,6 @@ fn recipe(shape: &GsiShape) -> Recipe {
             Randomization::Gauss => Orientation::Gauss(rotation),
         },
         disk: false,
-    }
-}
-
-fn grid_type(grid: GsiGridType) -> GridType {
-    match grid {
-        GsiGridType::Rect => GridType::Rect,
-        GsiGridType::RectGauss => GridType::RectGauss,
-        GsiGridType::RectEqual => GridType::RectEqual,
-        GsiGridType::Fcc => GridType::Fcc,
-        GsiGridType::FccGauss => GridType::FccGauss,
-        GsiGridType::FccEqual => GridType::FccEqual,
     }
 }
 

@@ -8,7 +8,8 @@ use gc2d_geometry::{AngleMode, Randomization};
 
 use super::diagnostics::{GsiErrorKind, GsiWarningKind};
 use super::reader::ObjectReader;
-use super::scene::{GridType, GsiBlock, GsiDropSource, GsiShape, PartSizeReading, Sourced};
+use super::scene::{GsiBlock, GsiDropSource, GsiShape, PartSizeReading, Sourced};
+use crate::schema::GridType;
 
 /// The shape defaults that differ between GENERATE_BLOCK and DROPSOURCE, with the object's name and the default
 /// PART_SIZE as the warning about a missing one shows it.

@@ -43,8 +43,8 @@ pub use lattice::MAX_GRID_SITES;
 pub use lexer::MAX_LINE_LENGTH;
 pub use part_size::{ImportOptions, PartSizeConvention};
 pub use scene::{
-    BIG_NUMBER, Bounds, GridType, GsiBlock, GsiDisplay, GsiDrag, GsiDropSource, GsiGeneral, GsiGravity, GsiHeating,
-    GsiParticle, GsiPiston, GsiScene, GsiShape, GsiVibration, GsiWall, GsiWallMotion, Origin, PartSizeReading, Sourced,
+    BIG_NUMBER, Bounds, GsiBlock, GsiDisplay, GsiDrag, GsiDropSource, GsiGeneral, GsiGravity, GsiHeating, GsiParticle,
+    GsiPiston, GsiScene, GsiShape, GsiVibration, GsiWall, GsiWallMotion, Origin, PartSizeReading, Sourced,
 };
 
 use diagnostics::Diagnostics;

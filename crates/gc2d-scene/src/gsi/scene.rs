@@ -9,6 +9,8 @@ use gc2d_engine::schedules::GravityProfile;
 use gc2d_engine::{DropHeight, TimeWindow};
 use gc2d_geometry::{AngleMode, DVec2, Randomization};
 
+use crate::schema::GridType;
+
 /// Where a value of a [`GsiScene`] came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Origin {
@@ -385,43 +387,10 @@ impl fmt::Display for PartSizeReading {
     }
 }
 
-/// The lattice of a GENERATE_BLOCK, `GRID_TYPE` (reference §9.7, Abb. B.6).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum GridType {
-    /// `RECT`: centroids on a rectangular grid.
-    Rect,
-    /// `RECT_GAUSS`: rectangular, scattered by the truncated Gaussian in ±Δx/2 × ±Δy/2 (erratum E28).
-    RectGauss,
-    /// `RECT_EQUAL`: rectangular, scattered uniformly in ±Δx/2 × ±Δy/2.
-    RectEqual,
-    /// `FCC`: rows Δy apart, every other row shifted by Δx/2.
-    Fcc,
-    /// `FCC_GAUSS`: FCC, scattered by the truncated Gaussian.
-    FccGauss,
-    /// `FCC_EQUAL`: FCC, scattered uniformly.
-    FccEqual,
-}
-
-impl GridType {
-    /// Whether every other row is shifted by half a spacing.
-    pub fn is_fcc(self) -> bool {
-        matches!(self, GridType::Fcc | GridType::FccGauss | GridType::FccEqual)
-    }
-
-    /// How the centroids scatter about their sites: `Const` for none.
-    pub fn scatter(self) -> Randomization {
-        match self {
-            GridType::Rect | GridType::Fcc => Randomization::Const,
-            GridType::RectGauss | GridType::FccGauss => Randomization::Gauss,
-            GridType::RectEqual | GridType::FccEqual => Randomization::Equal,
-        }
-    }
-}
-
 impl FromStr for GridType {
     type Err = String;
 
-    /// Parses gc2d's `GRID_TYPE` names, ignoring case.
+    /// Parses gc2d's `GRID_TYPE` names (reference §9.7, Abb. B.6), ignoring case.
     fn from_str(name: &str) -> Result<Self, Self::Err> {
         match name.to_ascii_uppercase().as_str() {
             "RECT" => Ok(GridType::Rect),

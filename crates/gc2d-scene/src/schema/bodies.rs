@@ -151,6 +151,13 @@ pub enum GridType {
     FccEqual,
 }
 
+impl GridType {
+    /// Whether every other row is shifted by half a spacing.
+    pub fn is_fcc(self) -> bool {
+        matches!(self, GridType::Fcc | GridType::FccGauss | GridType::FccEqual)
+    }
+}
+
 /// A particle source (gsi `DROPSOURCE`): one particle per interval inside the window, at a uniformly random x within
 /// the width, starting at rest. A spot where the new particle would overlap another body is retried and, failing
 /// that, skipped.

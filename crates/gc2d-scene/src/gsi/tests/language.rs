@@ -5,7 +5,8 @@ use gc2d_engine::schedules::GravityProfile;
 use gc2d_geometry::{AngleMode, DVec2, Randomization};
 
 use super::{PISTON, file, read, warned};
-use crate::gsi::{GridType, GsiWarningKind, Note};
+use crate::gsi::{GsiWarningKind, Note};
+use crate::schema::GridType;
 
 #[test]
 fn keywords_objects_and_option_values_ignore_case() {

@@ -6,9 +6,8 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use super::{PISTON, read};
-use crate::gsi::{
-    GridType, GsiWallMotion, GsiWarningKind, ImportOptions, PartSizeConvention, PartSizeReading, parse_gsi,
-};
+use crate::gsi::{GsiWallMotion, GsiWarningKind, ImportOptions, PartSizeConvention, PartSizeReading, parse_gsi};
+use crate::schema::GridType;
 
 fn assert_corners(actual: &[DVec2], expected: [[f64; 2]; 4]) {
     assert_eq!(actual.len(), 4);
