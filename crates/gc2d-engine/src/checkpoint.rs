@@ -23,6 +23,13 @@
 //! postcard is not self-describing, so a reader must have the writer's exact layout: a file from another format or
 //! program version is refused with an error naming both versions, and a truncated or corrupted file is refused by
 //! its length or checksum before a byte of it is decoded.
+//!
+//! The checksum covers the payload only, so the header's program version is checked for plausibility before it is
+//! compared: a length above [`MAX_PROGRAM_VERSION_LEN`], or bytes that do not form a version number
+//! (`MAJOR.MINOR.PATCH` in digits, then optionally `-` or `+` and printable ASCII), is a damaged header
+//! ([`CheckpointError::CorruptedHeader`]), never "another program version", and its bytes are never shown raw.
+//! The file ends with the payload: the header gives its length, so a byte after it cannot be part of a checkpoint
+//! and the file is refused ([`CheckpointError::TrailingBytes`]).
 
 use crate::shape::ShapeKind;
 use crate::world::World;
@@ -40,6 +47,10 @@ pub const CHECKPOINT_FORMAT_VERSION: u32 = 17;
 
 /// The program version written into, and required of, every checkpoint.
 pub const PROGRAM_VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The longest program version a checkpoint's header may hold, bytes: a longer length field is damage (a version
+/// like `0.1.0` takes five bytes, one with a pre-release and build tag a few dozen).
+pub const MAX_PROGRAM_VERSION_LEN: usize = 64;
 
 /// Why a checkpoint could not be written or read.
 #[derive(Debug, Error)]
@@ -66,6 +77,24 @@ pub enum CheckpointError {
         found: String,
         /// Version of this program.
         expected: String,
+    },
+    /// A header field holds a value no writer produces: the length of the program version is beyond
+    /// [`MAX_PROGRAM_VERSION_LEN`], or the version is not a version number. The header is not covered by the
+    /// checksum, so this is how damage to it shows.
+    #[error("checkpoint is corrupted (header): {field} {problem}")]
+    CorruptedHeader {
+        /// The damaged field.
+        field: &'static str,
+        /// What is wrong with it (file bytes appear only escaped, never raw).
+        problem: String,
+    },
+    /// Bytes follow the payload whose length the header gives. A checkpoint file holds one checkpoint and nothing
+    /// after it, so they are damage (data appended, or files joined); the file is refused rather than read in part,
+    /// because a file that changed after it was written may have changed elsewhere too.
+    #[error("checkpoint is corrupted: {extra} bytes follow the payload, where the header says the file ends")]
+    TrailingBytes {
+        /// Bytes after the payload.
+        extra: u64,
     },
     /// The file ends before the header or the payload is complete.
     #[error("checkpoint is truncated: {what} needs {expected} bytes, only {found} are left in the file")]
@@ -112,8 +141,9 @@ impl World {
         Ok(())
     }
 
-    /// Reads one checkpoint from `reader`. Refuses, with an error saying why, anything that is not a complete,
-    /// uncorrupted checkpoint of this format and program version; never panics on bad input.
+    /// Reads one checkpoint from `reader`, which must end with it. Refuses, with an error saying why, anything that
+    /// is not a complete, uncorrupted checkpoint of this format and program version, or that has bytes after it;
+    /// never panics on bad input.
     pub fn load_checkpoint<R: Read>(mut reader: R) -> Result<World, CheckpointError> {
         let mut magic = [0; 8];
         read_header_field(&mut reader, &mut magic, "the magic number (GC2DCKPT)")?;
@@ -128,8 +158,21 @@ impl World {
         }
         let mut version_len = [0; 2];
         read_header_field(&mut reader, &mut version_len, "the program version length")?;
-        let mut version = vec![0; usize::from(u16::from_le_bytes(version_len))];
+        let version_len = usize::from(u16::from_le_bytes(version_len));
+        if version_len > MAX_PROGRAM_VERSION_LEN {
+            return Err(CheckpointError::CorruptedHeader {
+                field: "the program version length",
+                problem: format!("is {version_len} bytes, more than the {MAX_PROGRAM_VERSION_LEN} a version may take"),
+            });
+        }
+        let mut version = vec![0; version_len];
         read_header_field(&mut reader, &mut version, "the program version")?;
+        if !is_version_number(&version) {
+            return Err(CheckpointError::CorruptedHeader {
+                field: "the program version",
+                problem: format!("\"{}\" is not a version number", version.escape_ascii()),
+            });
+        }
         if version != PROGRAM_VERSION.as_bytes() {
             return Err(CheckpointError::ProgramVersion {
                 found: String::from_utf8_lossy(&version).into_owned(),
@@ -144,7 +187,7 @@ impl World {
         let checksum = u64::from_le_bytes(checksum);
         // Reads at most `length` bytes, growing with the data actually present (a corrupted length allocates nothing).
         let mut payload = Vec::new();
-        reader.take(length).read_to_end(&mut payload)?;
+        reader.by_ref().take(length).read_to_end(&mut payload)?;
         if payload.len() as u64 != length {
             return Err(CheckpointError::Truncated {
                 what: "the payload",
@@ -155,6 +198,10 @@ impl World {
         let found = fnv1a64(&payload);
         if found != checksum {
             return Err(CheckpointError::Corrupted { expected: checksum, found });
+        }
+        let extra = io::copy(&mut reader, &mut io::sink())?;
+        if extra > 0 {
+            return Err(CheckpointError::TrailingBytes { extra });
         }
         let (mut world, rest): (World, &[u8]) = postcard::take_from_bytes(&payload)?;
         if !rest.is_empty() {
@@ -197,6 +244,16 @@ fn temporary_path(path: &Path) -> PathBuf {
     let mut name = path.as_os_str().to_owned();
     name.push(".tmp");
     PathBuf::from(name)
+}
+
+/// True for what a program version in a header can be: `MAJOR.MINOR.PATCH` in ASCII digits, optionally followed by
+/// a pre-release (`-`) or build (`+`) tag of printable ASCII without spaces.
+fn is_version_number(version: &[u8]) -> bool {
+    let core_end = version.iter().position(|b| matches!(b, b'-' | b'+')).unwrap_or(version.len());
+    let (core, tag) = version.split_at(core_end);
+    let mut numbers = core.split(|&b| b == b'.');
+    let numeric = numbers.by_ref().take(3).filter(|n| !n.is_empty() && n.iter().all(u8::is_ascii_digit)).count() == 3;
+    numeric && numbers.next().is_none() && tag.iter().all(u8::is_ascii_graphic)
 }
 
 /// `read_exact` that reports an early end of input as [`CheckpointError::Truncated`].

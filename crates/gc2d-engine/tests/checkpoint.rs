@@ -318,6 +318,61 @@ fn foreign_and_corrupted_checkpoints_are_refused() {
     }
 }
 
+/// The header is not covered by the checksum: a damaged byte in the program version or its length is a corrupted
+/// header, named as such, not "another program version", and the file's bytes are never shown raw (a length of
+/// 16,901 printed 28 kB of payload, control characters included).
+#[test]
+fn a_damaged_program_version_is_a_corrupted_header_shown_without_raw_bytes() {
+    let bytes = checkpoint_bytes(&scene());
+    let version_end = 14 + PROGRAM_VERSION.len();
+    let check = |position: usize, value: u8| {
+        let mut damaged = bytes.clone();
+        damaged[position] = value;
+        match World::load_checkpoint(damaged.as_slice()) {
+            Err(error @ CheckpointError::CorruptedHeader { .. }) => {
+                let message = error.to_string();
+                assert!(message.starts_with("checkpoint is corrupted (header): "), "{message}");
+                assert!(message.len() < 200 && !message.chars().any(char::is_control), "{position}: {message:?}");
+                message
+            }
+            other => panic!("byte {position} set to {value:#04x}: expected CorruptedHeader, got {:?}", other.err()),
+        }
+    };
+    // The reported cases: one byte set to 0x42 in the length (16,901 or 66 bytes) or in the version ("B.1.0").
+    assert!(check(13, 0x42).contains("the program version length is 16901 bytes"));
+    assert!(check(12, 0x42).contains("the program version length is 66 bytes"));
+    assert!(check(14, 0x42).contains("the program version \"B"));
+    assert!(check(17, 0x42).contains("is not a version number"));
+    for (position, &original) in bytes.iter().enumerate().take(version_end).skip(12) {
+        for value in [0x00, 0x1b, 0xff].into_iter().filter(|&value| value != original) {
+            check(position, value);
+        }
+    }
+    // A shorter length cuts the version to something that is not a number.
+    for length in [0u16, 3, 4] {
+        let mut damaged = bytes.clone();
+        damaged[12..14].copy_from_slice(&length.to_le_bytes());
+        let result = World::load_checkpoint(damaged.as_slice());
+        assert!(matches!(result, Err(CheckpointError::CorruptedHeader { .. })), "{length}: {:?}", result.err());
+    }
+}
+
+/// The header gives the payload's length, so bytes after it are detectable: a file with anything appended is refused.
+#[test]
+fn bytes_after_the_payload_are_refused() {
+    let bytes = checkpoint_bytes(&scene());
+    for tail in [&b"garbage\n"[..], &[0][..], &bytes[..]] {
+        let mut appended = bytes.clone();
+        appended.extend_from_slice(tail);
+        match World::load_checkpoint(appended.as_slice()) {
+            Err(error @ CheckpointError::TrailingBytes { .. }) => {
+                assert!(error.to_string().contains(&format!("{} bytes follow the payload", tail.len())), "{error}");
+            }
+            other => panic!("{} bytes appended: expected TrailingBytes, got {:?}", tail.len(), other.err()),
+        }
+    }
+}
+
 #[test]
 fn a_payload_that_passes_the_checksum_but_is_not_a_world_is_an_error() {
     let garbage: Vec<u8> = (0..200u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8).collect();
