@@ -19,7 +19,7 @@ use gc2d_cli::failure::CommandFailure;
 use gc2d_cli::live::LiveSink;
 use gc2d_cli::object_names::ObjectNames;
 use gc2d_cli::outputs::{RunStatus, SCENE_COPY, Summary, TimeSeriesWriter, write_scene_copy};
-use gc2d_cli::resume::{ResumePoint, load_resume_point};
+use gc2d_cli::resume::{ResumePoint, ResumedOutputs, load_resume_point};
 use gc2d_cli::runner::{FrameSink, RunOutcome, run_to};
 use gc2d_cli::segments::SegmentLog;
 use gc2d_cli::sinks::{Checkpoints, PngFrames, Recording, save_checkpoint};
@@ -351,12 +351,6 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
                     world.time()
                 )));
             }
-            console::err(&format!(
-                "Resuming from {} at t = {:.6} s (step {}).",
-                path.display(),
-                world.time(),
-                world.steps()
-            ));
             (world, Some(path))
         }
         None => {
@@ -370,15 +364,41 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     refuse_cadences_below_the_step(&args, &scene, world.time_step())?;
     refuse_more_frames_than_steps(&scene, world.time_step())?;
     refuse_more_steps_than_the_clock_counts(&scene, world.time_step(), world.time(), args.until)?;
-    let out = match (&args.out, resumed_dir) {
+    let out = match (&args.out, &resumed_dir) {
         (Some(out), _) => out.clone(),
-        (None, Some(run_dir)) => run_dir,
+        (None, Some(run_dir)) => run_dir.clone(),
         (None, None) => default_out_dir(&args.scene),
     };
+    if let Some(from) = &resumed_from {
+        // A checkpoint kept outside a run directory goes on in the scene's default directory only where that holds
+        // no run: going on there would cut back a run that has nothing to do with the checkpoint.
+        if args.out.is_none() && resumed_dir.is_none() && gc2d_cli::earlier_run::holds_a_run(&out) {
+            return Err(CommandFailure::input(format!(
+                "{} lies outside a run directory, and {}, where a run of {} goes by default, holds a run already: \
+                 give --out, a new directory to go on from the checkpoint there (or that one, to go back to the \
+                 checkpoint's time in it where the checkpoint is one of its states)",
+                from.display(),
+                out.display(),
+                args.scene.display()
+            )));
+        }
+        if let Some(why) = gc2d_cli::resume::not_a_state_of_the_run_in(&out, from, &world) {
+            return Err(CommandFailure::input(why));
+        }
+        console::err(&format!(
+            "Resuming from {} at t = {:.6} s (step {}).",
+            from.display(),
+            world.time(),
+            world.steps()
+        ));
+    }
     std::fs::create_dir_all(&out)
         .map_err(|e| CommandFailure::input(format!("cannot create the output directory {}: {e}", out.display())))?;
     let _lock = gc2d_cli::run_lock::lock_run_directory(&out).map_err(CommandFailure::input)?;
     gc2d_cli::resume::remove_temporary_files(&out);
+    if args.resume.is_none() {
+        gc2d_cli::earlier_run::refuse_files_of_no_run(&out).map_err(CommandFailure::input)?;
+    }
     let frame_interval = 1.0 / scene.run.frames_per_second;
     // The outputs that can fail to start (an address in use, a recording into a missing folder) start before the run
     // directory is touched, so that a failure leaves it as it was.
@@ -418,7 +438,15 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     let dump_formats = args.dump_format.clone().unwrap_or_else(|| vec![ExportFormat::Csv]);
     let mut dumps =
         (dump_interval > 0.0).then(|| StateDumps::new(&out, dump_interval, scene.material_names(), dump_formats));
+    let records_events = args.events || (mill && !args.no_events);
     if args.resume.is_some() {
+        let asked = ResumedOutputs {
+            events: records_events,
+            events_stopped: args.no_events,
+            dumps: dumps.is_some(),
+            dump_interval_given: args.dump_every.is_some(),
+        };
+        gc2d_cli::resume::refuse_silently_stopped_outputs(&out, &asked).map_err(CommandFailure::input)?;
         let folders =
             pictures.iter().map(|p| (p.folder(), p.cadence())).chain(dumps.iter().map(|d| (d.folder(), d.cadence())));
         for (folder, cadence) in folders {
@@ -429,16 +457,17 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         let removed = gc2d_cli::earlier_run::remove_earlier_run(&out).map_err(CommandFailure::input)?;
         if removed > 0 {
             console::err(&format!(
-                "Replacing the earlier run in {}: removed its {removed} output files (time series, summary, \
-                 checkpoints, dumps, frames); continue a run with --resume instead.",
+                "Replacing the earlier run in {}: removed the {removed} output files it left (its time series, \
+                 summary, checkpoints and any dumps and frames); continue a run with --resume instead.",
                 out.display()
             ));
         }
     }
     let copy = out.join(SCENE_COPY);
     // The copy records what a fresh run started from; a resumed run keeps it, and the user's own scene file is
-    // never overwritten by it (a scene named scene.ron run into its own directory).
-    if args.resume.is_none() && !same_file(&copy, &args.scene) {
+    // never overwritten by it (a scene named scene.ron run into its own directory). A run resumed into a directory
+    // without one (a checkpoint continued in a new folder) writes the scene it was checked against.
+    if (args.resume.is_none() || !copy.exists()) && !same_file(&copy, &args.scene) {
         write_scene_copy(&copy, &scene)
             .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", copy.display())))?;
     }
@@ -486,7 +515,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     )
     .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", segments_path.display())))?;
     let earlier_chatter = segments.earlier_chatter();
-    let mut events = if args.events || (mill && !args.no_events) {
+    let mut events = if records_events {
         Some(start_events(&out, &scene, &mut world, args.resume.is_some(), frame_interval)?)
     } else {
         None

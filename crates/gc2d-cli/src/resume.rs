@@ -2,7 +2,10 @@
 //! holds. A long run killed without warning (a batch system's wall-time limit, a closed session) leaves no
 //! `final.ckpt`, only its periodic checkpoints; naming the directory spares the user finding the newest one.
 
+use crate::earlier_run::holds_a_run;
+use crate::numbered_files::NumberedFolder;
 use crate::outputs::SCENE_COPY;
+use gc2d_analysis::particle_state::csv::DUMPS_DIR;
 use gc2d_engine::World;
 use gc2d_scene::Scene;
 use std::path::{Path, PathBuf};
@@ -104,6 +107,101 @@ pub fn another_scene(scene: &Scene, scene_path: &Path, run_dir: &Path) -> Option
         before.trim(),
         copy_path.display()
     ))
+}
+
+/// Why the checkpoint at `path`, whose state is `world`, cannot be continued in the directory `out`: `out` holds a run
+/// ([`holds_a_run`]) and the checkpoint is not one of that run's states. It is one where it lies in `out` (as
+/// `final.ckpt` or under `checkpoints/`), or where `out` kept a checkpoint of the same step with the same state (a
+/// copy of it). Any other checkpoint, of another seed, scene or run, would go on in `out` with its own history: the
+/// time series would hold two runs' rows, and the run's later checkpoints would be removed as if the user went back.
+/// `None` where it may be continued there, or `out` holds no run.
+pub fn not_a_state_of_the_run_in(out: &Path, path: &Path, world: &World) -> Option<String> {
+    if !holds_a_run(out) {
+        return None;
+    }
+    let canonical = |p: &Path| p.canonicalize().ok();
+    let folder = path.parent().map(|folder| match folder.file_name() {
+        Some(name) if name == "checkpoints" => folder.parent().unwrap_or(folder),
+        _ => folder,
+    });
+    if folder.and_then(canonical).is_some_and(|folder| canonical(out) == Some(folder)) {
+        return None;
+    }
+    let steps = world.steps();
+    let mut own = vec![out.join("final.ckpt")];
+    if let Ok(entries) = std::fs::read_dir(out.join("checkpoints")) {
+        own.extend(
+            entries
+                .flatten()
+                .filter(|e| e.file_name().to_str().and_then(checkpoint_step) == Some(steps))
+                .map(|e| e.path()),
+        );
+    }
+    let state = world.state_checksum().ok();
+    let mut same_step = false;
+    for candidate in own.iter().filter(|candidate| candidate.is_file()) {
+        let Ok(kept) = World::load_checkpoint_file(candidate) else { continue };
+        if kept.steps() == steps {
+            same_step = true;
+            if state.is_some() && kept.state_checksum().ok() == state {
+                return None;
+            }
+        }
+    }
+    let why = if same_step {
+        format!("its checkpoint of step {steps} holds another state (another seed, scene or start)")
+    } else {
+        format!("it kept no checkpoint of step {steps}")
+    };
+    Some(format!(
+        "{} is not one of the states of the run in {} ({why}). Continued there, it would mix another run's rows into \
+         that run's time series and remove its later checkpoints. Give --out a new directory to go on from the \
+         checkpoint there, or --resume {} to continue the run it holds",
+        path.display(),
+        out.display(),
+        out.display()
+    ))
+}
+
+/// What a resumed part is asked to write of the outputs that may have been on in the parts before it.
+pub struct ResumedOutputs {
+    /// It records contact events (`--events`, or a mill's default).
+    pub events: bool,
+    /// `--no-events` was given: the events file may end at the checkpoint.
+    pub events_stopped: bool,
+    /// It writes dumps.
+    pub dumps: bool,
+    /// `--dump-every` was given (0 stops the dumps at the checkpoint).
+    pub dump_interval_given: bool,
+}
+
+/// Refuses a resumed part that would leave an output of the earlier parts (`events.csv`, the dumps) ending at the
+/// checkpoint without being asked to: a resume without `--events` or `--dump-every`, the options the first part was
+/// given, would silently cut that output short of the run. `--no-events` and `--dump-every 0` stop them on purpose.
+pub fn refuse_silently_stopped_outputs(out: &Path, asked: &ResumedOutputs) -> Result<(), String> {
+    let events = out.join("events.csv");
+    if !asked.events && !asked.events_stopped && events.is_file() {
+        return Err(format!(
+            "{} holds the contact events of the run up to the checkpoint, and this part would record none: add \
+             --events to continue it to the end (or --no-events to let it end at the checkpoint)",
+            events.display()
+        ));
+    }
+    let dumps_dir = out.join(DUMPS_DIR);
+    let dumps = NumberedFolder { dir: &dumps_dir, prefix: "particles_", flag: "--dump-every", format_flag: "" };
+    if !asked.dumps
+        && !asked.dump_interval_given
+        && let Some(earlier) = dumps.recorded()?
+    {
+        return Err(format!(
+            "{} holds the dumps of the run up to the checkpoint, and this part would write none: add --dump-every {} \
+             --dump-format {} to continue them to the end (or --dump-every 0 to let them end at the checkpoint)",
+            dumps_dir.display(),
+            earlier.interval,
+            if earlier.formats.is_empty() { "csv" } else { &earlier.formats }
+        ));
+    }
+    Ok(())
 }
 
 /// How many differences [`another_checkpoint`] lists; the rest are counted.

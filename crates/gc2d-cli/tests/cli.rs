@@ -172,6 +172,103 @@ fn resuming_from_an_earlier_checkpoint_rewrites_the_later_rows_of_the_series() {
     assert_eq!(std::fs::read_to_string(&series_path).unwrap(), expected);
 }
 
+/// The periodic checkpoints of `run_dir`, in step order, without the one of step 0.
+fn periodic_checkpoints(run_dir: &Path) -> Vec<PathBuf> {
+    let mut checkpoints: Vec<PathBuf> = std::fs::read_dir(run_dir.join("checkpoints"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|p| p.file_name().unwrap().to_str().unwrap() != "checkpoint-0000000000.ckpt")
+        .collect();
+    checkpoints.sort();
+    checkpoints
+}
+
+#[test]
+fn a_checkpoint_of_another_run_is_not_continued_in_a_run_directory() {
+    // QA R12: a checkpoint of the same scene run with another seed, resumed with --out into the seed-1 run's
+    // directory, was accepted: its time series held seed 1's rows up to the checkpoint and seed 2's after it.
+    let seed_one = tempfile::tempdir().unwrap();
+    let seed_two = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.025", "--checkpoint-every", "0.01", "--out"]).arg(seed_one.path()).assert().success();
+    run_tiny_pile(&["--until", "0.025", "--checkpoint-every", "0.01", "--seed", "2", "--out"])
+        .arg(seed_two.path())
+        .assert()
+        .success();
+    let series = std::fs::read(seed_one.path().join("timeseries.csv")).unwrap();
+    let foreign = &periodic_checkpoints(seed_two.path())[0];
+    run_tiny_pile(&["--resume"])
+        .arg(foreign)
+        .arg("--out")
+        .arg(seed_one.path())
+        .assert()
+        .code(2)
+        .stderr(contains("is not one of the states of the run in").and(contains("Resuming").not()));
+    assert_eq!(std::fs::read(seed_one.path().join("timeseries.csv")).unwrap(), series, "the run was touched");
+    assert_eq!(periodic_checkpoints(seed_one.path()).len(), 2, "the run's later checkpoint was removed");
+    // A copy of the run's own checkpoint, kept elsewhere, may go back in it; into a new directory, any may go on.
+    let kept = tempfile::tempdir().unwrap();
+    let copy = kept.path().join("settled.ckpt");
+    std::fs::copy(&periodic_checkpoints(seed_one.path())[0], &copy).unwrap();
+    run_tiny_pile(&["--resume"]).arg(&copy).arg("--out").arg(seed_one.path()).assert().success();
+    let branch = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--resume"]).arg(foreign).arg("--out").arg(branch.path()).assert().success();
+}
+
+#[test]
+fn a_checkpoint_outside_a_run_directory_does_not_cut_back_the_default_directory() {
+    // QA R11: `--resume lone.ckpt` without --out went on in out/<scene>, and cut back the complete run there: its
+    // later checkpoints removed, its time series truncated, its final.ckpt replaced.
+    let work = tempfile::tempdir().unwrap();
+    let default_dir = work.path().join("out").join("tiny_pile");
+    run_tiny_pile(&["--until", "0.025", "--checkpoint-every", "0.01"]).current_dir(work.path()).assert().success();
+    let final_state = std::fs::read(default_dir.join("final.ckpt")).unwrap();
+    let lone = work.path().join("settled.ckpt");
+    std::fs::copy(&periodic_checkpoints(&default_dir)[0], &lone).unwrap();
+    run_tiny_pile(&["--resume"])
+        .arg(&lone)
+        .current_dir(work.path())
+        .assert()
+        .code(2)
+        .stderr(contains("lies outside a run directory").and(contains("give --out")));
+    assert_eq!(std::fs::read(default_dir.join("final.ckpt")).unwrap(), final_state, "the run there was cut back");
+    assert_eq!(periodic_checkpoints(&default_dir).len(), 2);
+}
+
+#[test]
+fn a_resume_does_not_silently_stop_the_events_or_dumps_of_the_parts_before() {
+    // QA R5: resumed without --events (or --dump-every), a run left events.csv (the dumps) ending at the checkpoint
+    // without a word, although the run went on to its end.
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.02", "--events", "--dump-every", "0.01", "--out"]).arg(out.path()).assert().success();
+    let resume = |args: &[&str]| {
+        let mut command = run_tiny_pile(&["--until", "0.03"]);
+        command.args(args).arg("--resume").arg(out.path());
+        command
+    };
+    resume(&["--dump-every", "0.01"]).assert().code(2).stderr(contains("add --events").and(contains("--no-events")));
+    resume(&["--events"]).assert().code(2).stderr(contains("add --dump-every 0.01 --dump-format csv"));
+    let series = std::fs::read(out.path().join("timeseries.csv")).unwrap();
+    assert_eq!(std::fs::read(out.path().join("timeseries.csv")).unwrap(), series, "a refusal touched the run");
+    resume(&["--no-events", "--dump-every", "0"]).assert().success();
+}
+
+#[test]
+fn a_checkpoint_continued_in_a_new_directory_writes_its_scene_there() {
+    // QA R9: the new directory had every output but scene.ron, so it did not say what made it and `export` left the
+    // particles' origins and materials empty.
+    let first = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.02", "--checkpoint-every", "0.01", "--out"]).arg(first.path()).assert().success();
+    let branch = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.03", "--resume"])
+        .arg(&periodic_checkpoints(first.path())[0])
+        .arg("--out")
+        .arg(branch.path())
+        .assert()
+        .success();
+    let copy = std::fs::read_to_string(branch.path().join("scene.ron")).unwrap();
+    assert_eq!(copy, std::fs::read_to_string(first.path().join("scene.ron")).unwrap(), "the scene given, written out");
+}
+
 #[test]
 fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     // A run to 0.025 s (final.ckpt at 0.025), resumed to 0.045 s with checkpoints at 0.02 and 0.04 s and then
