@@ -28,6 +28,7 @@ use gc2d_engine::World;
 use gc2d_record::{ColourBy, PngOptions, RecordOptions, Recorder, RunInfo, SceneFile, render_png};
 use gc2d_scene::{ErrorKind, Scene, SceneError};
 use gc2d_validation::{ConvergenceOptions, run_convergence};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -407,6 +408,9 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         Some(address) => Some(LiveSink::start(address, live_options, frame_interval).map_err(CommandFailure::input)?),
         None => None,
     };
+    if let Some(path) = &args.record {
+        refuse_recording_over_other_files(path, &args.scene, &out)?;
+    }
     let mut recording = match &args.record {
         Some(path) => Some(start_recording(path, &args, &scene, frame_interval)?),
         None => None,
@@ -670,6 +674,41 @@ fn start_transits(
 }
 
 /// Opens the MCAP recording with the scene file attached and the run's metadata.
+/// The first bytes of an MCAP file (its magic, with the major version).
+const MCAP_MAGIC: &[u8] = b"\x89MCAP0";
+
+/// Refuses a `--record` path that would overwrite the scene being run, one of the run's own outputs in `out`, or an
+/// existing file that is not a recording: a slip of the user's that would destroy the file, or make the run fail at
+/// its end when the output is written over the recording. An earlier recording is replaced, as a fresh run replaces
+/// its outputs.
+fn refuse_recording_over_other_files(path: &Path, scene_path: &Path, out: &Path) -> Result<(), CommandFailure> {
+    let refuse = |what: &str| {
+        Err(CommandFailure::input(format!(
+            "--record {}: that is {what}, which the recording would overwrite; record to a file of its own, say {}",
+            path.display(),
+            out.join("run.mcap").display()
+        )))
+    };
+    if same_file(path, scene_path) {
+        return refuse("the scene file being run");
+    }
+    let in_out = path.parent().is_some_and(|folder| {
+        let folder = if folder.as_os_str().is_empty() { Path::new(".") } else { folder };
+        same_file(folder, out)
+    });
+    let output_names =
+        ["final.ckpt", "summary.json", "segments.csv", "timeseries.csv", "events.csv", TRANSITS_FILE, SCENE_COPY];
+    if in_out && path.file_name().and_then(|name| name.to_str()).is_some_and(|name| output_names.contains(&name)) {
+        return refuse("one of the run's own outputs");
+    }
+    let mut start = Vec::new();
+    let read = std::fs::File::open(path).and_then(|file| file.take(MCAP_MAGIC.len() as u64).read_to_end(&mut start));
+    if read.is_ok_and(|length| length > 0) && !start.starts_with(MCAP_MAGIC) {
+        return refuse("an existing file that is not a recording");
+    }
+    Ok(())
+}
+
 fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) -> Result<Recording, CommandFailure> {
     let info = RunInfo {
         program_version: env!("CARGO_PKG_VERSION").into(),

@@ -270,6 +270,34 @@ fn a_checkpoint_continued_in_a_new_directory_writes_its_scene_there() {
 }
 
 #[test]
+fn a_recording_does_not_overwrite_the_scene_an_output_or_another_file() {
+    // QA R3: `--record` replaced the scene being run with the recording; a path of the run's own outputs made the run
+    // fail at its end, after removing the recording it had just opened as "the earlier run's" output.
+    let dir = tempfile::tempdir().unwrap();
+    let scene_copy = dir.path().join("pile.ron");
+    std::fs::copy(scene("tiny_pile.ron"), &scene_copy).unwrap();
+    let scene_text = std::fs::read(&scene_copy).unwrap();
+    let out = dir.path().join("out");
+    let notes = dir.path().join("notes.txt");
+    std::fs::write(&notes, "the user's").unwrap();
+    let record = |path: &Path| {
+        let mut command = gc2d();
+        command.args(["run", scene_copy.to_str().unwrap(), "--quiet", "--until", "0.005", "--out"]).arg(&out);
+        command.arg("--record").arg(path);
+        command
+    };
+    record(&scene_copy).assert().code(2).stderr(contains("the scene file being run"));
+    assert_eq!(std::fs::read(&scene_copy).unwrap(), scene_text);
+    record(&out.join("final.ckpt")).assert().code(2).stderr(contains("one of the run's own outputs"));
+    record(&notes).assert().code(2).stderr(contains("not a recording"));
+    assert_eq!(std::fs::read_to_string(&notes).unwrap(), "the user's");
+    // A recording of an earlier run is replaced, as the run's other outputs are.
+    let recording = dir.path().join("run.mcap");
+    record(&recording).assert().success();
+    record(&recording).assert().success();
+}
+
+#[test]
 fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     // A run to 0.025 s (final.ckpt at 0.025), resumed to 0.045 s with checkpoints at 0.02 and 0.04 s and then
     // "killed": its final.ckpt is the stale one of the first part. `--resume DIR` without --out must pick the 0.04 s
