@@ -40,7 +40,8 @@ pub const EVENT_COLUMNS: [&str; 20] = [
     "object_b",
 ];
 
-/// Appends the finished episodes of every step to `events.csv`; as a frame sink it flushes on the frame cadence.
+/// Appends the finished episodes of every step to `events.csv`; as a frame sink it flushes on the frame cadence and
+/// before every checkpoint.
 pub struct EventsWriter {
     file: BufWriter<File>,
     /// The scene's material names, by material id.
@@ -114,11 +115,12 @@ impl FrameSink for EventsWriter {
 
     /// Hands the rows written so far to the operating system.
     fn take(&mut self, _world: &World) -> Result<(), String> {
-        self.file.flush().map_err(|e| format!("events.csv: {e}"))
+        self.flush()
     }
 
-    /// Hands the last rows to the operating system.
-    fn finish(&mut self) -> Result<(), String> {
+    /// Hands the rows written so far to the operating system (on the run's cadence, before a checkpoint and at its
+    /// end).
+    fn flush(&mut self) -> Result<(), String> {
         self.file.flush().map_err(|e| format!("events.csv: {e}"))
     }
 

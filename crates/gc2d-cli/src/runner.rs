@@ -19,13 +19,25 @@ pub trait FrameSink: Send {
     fn after_step(&mut self, _world: &World) -> Result<(), String> {
         Ok(())
     }
+    /// True for a sink that writes the checkpoints a run resumes from: before it takes the World, the run loop has
+    /// every sink [`flush`](Self::flush) what it buffered, so that a run killed right after a checkpoint leaves the
+    /// rows up to it on disk (a resumed run continues its files from the checkpoint's time, and never writes earlier
+    /// rows again); false by default.
+    fn is_checkpoint(&self) -> bool {
+        false
+    }
+    /// Hands the rows buffered so far to the operating system; nothing by default.
+    fn flush(&mut self) -> Result<(), String> {
+        Ok(())
+    }
     /// Hears of the run's new largest force-alternation window (the chatter watch's, when a window of steps closes
     /// above all before it); nothing by default.
     fn largest_alternation(&mut self, _window: AlternationWindow) {}
     /// Ends the run's part of the output: hands what is still buffered to the operating system, so that the files are
-    /// whole when the run reports (a mill run's summary reads `events.csv` right after); nothing by default.
+    /// whole when the run reports (a mill run's summary reads `events.csv` right after); [`flush`](Self::flush) by
+    /// default.
     fn finish(&mut self) -> Result<(), String> {
-        Ok(())
+        self.flush()
     }
 }
 
@@ -75,6 +87,11 @@ struct ScheduledSink<'a> {
 }
 
 impl ScheduledSink<'_> {
+    /// True when the sink writes checkpoints and its next tick has been reached.
+    fn checkpoint_due(&self, world: &World) -> bool {
+        self.sink.is_checkpoint() && self.ticks.due(world.time(), 0.5 * world.time_step())
+    }
+
     fn poll(&mut self, world: &World) -> Result<(), String> {
         let slack = 0.5 * world.time_step();
         if self.ticks.due(world.time(), slack) {
@@ -132,6 +149,13 @@ pub fn run_to(
             }
             last_row_time = Some(world.time());
             rows.advance(world.time(), slack);
+        }
+        // A checkpoint marks a state the other files must already hold on disk: the time series does (each row is
+        // flushed as written), the sinks' buffered rows (events.csv, transits.csv) are flushed first.
+        if scheduled.iter().any(|c| c.checkpoint_due(world))
+            && let Some(message) = scheduled.iter_mut().find_map(|c| c.sink.flush().err())
+        {
+            break RunStatus::Failed(message);
         }
         if let Some(message) = scheduled.iter_mut().find_map(|c| c.poll(world).err()) {
             break RunStatus::Failed(message);

@@ -103,6 +103,10 @@ impl FrameSink for Checkpoints {
         self.interval
     }
 
+    fn is_checkpoint(&self) -> bool {
+        true
+    }
+
     fn take(&mut self, world: &World) -> Result<(), String> {
         std::fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create {}: {e}", self.dir.display()))?;
         let path = self.dir.join(format!("checkpoint-{:010}.ckpt", world.steps()));

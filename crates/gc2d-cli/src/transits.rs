@@ -20,7 +20,8 @@ pub const TRANSITS_FILE: &str = "transits.csv";
 pub const TRANSIT_COLUMNS: [&str; 7] =
     ["particle", "inlet", "entered_s", "outlet", "left_s", "transit_time_s", "mass_kg"];
 
-/// Appends the passages of every step to `transits.csv`; as a frame sink it flushes on the frame cadence.
+/// Appends the passages of every step to `transits.csv`; as a frame sink it flushes on the frame cadence and before
+/// every checkpoint.
 pub struct TransitsWriter {
     file: BufWriter<File>,
     flush_interval: f64,
@@ -69,11 +70,12 @@ impl FrameSink for TransitsWriter {
 
     /// Hands the rows written so far to the operating system.
     fn take(&mut self, _world: &World) -> Result<(), String> {
-        self.file.flush().map_err(|e| format!("{TRANSITS_FILE}: {e}"))
+        self.flush()
     }
 
-    /// Hands the last rows to the operating system.
-    fn finish(&mut self) -> Result<(), String> {
+    /// Hands the rows written so far to the operating system (on the run's cadence, before a checkpoint and at its
+    /// end).
+    fn flush(&mut self) -> Result<(), String> {
         self.file.flush().map_err(|e| format!("{TRANSITS_FILE}: {e}"))
     }
 

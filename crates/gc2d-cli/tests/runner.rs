@@ -1,10 +1,13 @@
 //! The run loop on a small World built in code: rows on their cadence, clean stops, failures reported.
 
+use gc2d_cli::events::EventsWriter;
+use gc2d_cli::object_names::ObjectNames;
 use gc2d_cli::outputs::{RunStatus, Summary, TimeSeriesWriter};
 use gc2d_cli::runner::{FrameSink, run_to};
+use gc2d_cli::sinks::Checkpoints;
 use gc2d_contact::ContactLaw;
 use gc2d_engine::schedules::GravitySchedule;
-use gc2d_engine::{InteractionTable, MassModel, WallMotion, World, WorldConfig};
+use gc2d_engine::{ContactEventKind, InteractionTable, MassModel, WallMotion, World, WorldConfig};
 use gc2d_geometry::{DVec2, Pose, rectangle, regular_polygon};
 use std::sync::atomic::AtomicBool;
 
@@ -118,4 +121,55 @@ fn a_failing_sink_stops_the_run_with_its_message() {
         run_to(&mut world, 1.0, &mut series, 0.1, &mut [&mut Failing(0)], &AtomicBool::new(false), false, None);
     assert_eq!(outcome.status, RunStatus::Failed("disk full".into()));
     assert!(world.time() < 0.01);
+}
+
+/// Counts the contact episodes that ended, and on its ticks (polled after the checkpoints, on their cadence) records
+/// every time `events.csv` on disk held fewer rows than had ended: what a run killed right then would have left.
+struct EventsOnDisk {
+    path: std::path::PathBuf,
+    interval: f64,
+    ended: usize,
+    checked: Vec<(f64, usize)>,
+    short: Vec<(f64, usize, usize)>,
+}
+
+impl FrameSink for EventsOnDisk {
+    fn interval(&self) -> f64 {
+        self.interval
+    }
+    fn take(&mut self, world: &World) -> Result<(), String> {
+        let rows = std::fs::read_to_string(&self.path).unwrap().lines().count() - 1;
+        self.checked.push((world.time(), self.ended));
+        if rows != self.ended {
+            self.short.push((world.time(), rows, self.ended));
+        }
+        Ok(())
+    }
+    fn after_step(&mut self, world: &World) -> Result<(), String> {
+        self.ended += world.contact_events().iter().filter(|e| e.kind == ContactEventKind::End).count();
+        Ok(())
+    }
+}
+
+/// QA R14: `events.csv` was flushed on its own cadence only, so that a run killed right after a periodic checkpoint
+/// had episodes that ended before it still in its buffer, and a resume from that checkpoint never wrote them. Every
+/// checkpoint now finds the rows up to it on disk.
+#[test]
+fn a_checkpoint_finds_the_events_up_to_it_on_disk() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut world = small_world();
+    world.record_contact_events();
+    let mut series = TimeSeriesWriter::create(&dir.path().join("timeseries.csv")).unwrap();
+    let path = dir.path().join("events.csv");
+    // Flushed on its own cadence only at t = 0: every later row reaches the disk before a checkpoint or at the end.
+    let mut events = EventsWriter::create(&path, vec!["m".into()], ObjectNames::default(), 1.0).unwrap();
+    let mut checkpoints = Checkpoints { dir: dir.path().join("checkpoints"), interval: 0.01 };
+    let mut watch =
+        EventsOnDisk { path: path.clone(), interval: 0.01, ended: 0, checked: Vec::new(), short: Vec::new() };
+    let sinks: &mut [&mut dyn FrameSink] = &mut [&mut events, &mut checkpoints, &mut watch];
+    let outcome = run_to(&mut world, 0.1, &mut series, 0.005, sinks, &AtomicBool::new(false), false, None);
+    assert_eq!(outcome.status, RunStatus::Completed);
+    assert_eq!(std::fs::read_dir(dir.path().join("checkpoints")).unwrap().count(), 11, "t = 0, 0.01, …, 0.1");
+    assert!(watch.checked.iter().filter(|(_, ended)| *ended > 0).count() >= 3, "too few episodes: {:?}", watch.checked);
+    assert!(watch.short.is_empty(), "events.csv behind its checkpoints (t, rows, ended): {:?}", watch.short);
 }
