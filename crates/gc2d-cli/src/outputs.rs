@@ -131,7 +131,9 @@ impl TimeSeriesWriter {
     /// not a whole row (a run killed mid-write) are dropped, so that the resumed run's rows follow on without
     /// repeating a time. A row at `resumed_at` itself (within `slack`, half a time step) was written from the same
     /// state and is kept where it lies on the rows' cadence (`row_interval`); off it, it is the last row an
-    /// interrupted run wrote where it stopped, which the unsplit run does not have, and is dropped.
+    /// interrupted run wrote where it stopped, which the unsplit run does not have, and is dropped. A row repeating
+    /// the time of the row before it (an interrupted run of an earlier version wrote its last row twice when it
+    /// stopped on a row's step) is dropped too.
     pub fn continue_at(path: &Path, resumed_at: f64, slack: f64, row_interval: f64) -> io::Result<Self> {
         let text = std::fs::read_to_string(path)?;
         let mut lines = text.lines();
@@ -154,6 +156,7 @@ impl TimeSeriesWriter {
         let on_cadence = |time: f64| ((time / row_interval).round() * row_interval - time).abs() <= slack;
         for line in lines {
             if let Some(time) = row_time(line)
+                && kept_last_row != Some(time)
                 && time < resumed_at + slack
                 && (time < resumed_at - slack || on_cadence(time))
             {

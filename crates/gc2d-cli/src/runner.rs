@@ -181,11 +181,13 @@ pub fn run_to(
         }
         progress.update(world);
     };
-    // The last row: the final state of a run that ended between two rows (an end time off the rows' cadence) or was
-    // stopped, so that the series ends where summary.json and final.ckpt do (a resumed run drops such a row again,
-    // `TimeSeriesWriter::continue_at`); a failure before it (a full disk) stays the reported cause.
+    // The last row: the final state of a run that ended between two rows (an end time off the rows' cadence, a stop
+    // or a failure between two rows), so that the series ends where summary.json and final.ckpt do (a resumed run
+    // drops such a row again, `TimeSeriesWriter::continue_at`). A run that ended on a step with its row (a stop that
+    // came while that step's outputs were written) has its last row already; a failure before it (a full disk) stays
+    // the reported cause.
     let status = match status {
-        RunStatus::Completed if last_row_time == Some(world.time()) => status,
+        _ if last_row_time == Some(world.time()) => status,
         _ if series.append(world).is_ok() => status,
         RunStatus::Completed | RunStatus::Interrupted => {
             RunStatus::Failed("could not write the last row of the time series".into())

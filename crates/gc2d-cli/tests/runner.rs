@@ -95,8 +95,8 @@ fn a_stop_request_ends_the_run_cleanly_with_a_last_row() {
     let mut listed = gc2d_cli::outputs::SUMMARY_FIELDS.to_vec();
     listed.sort_unstable();
     assert_eq!(fields, listed);
-    // Header, the first row, and the closing row.
-    assert_eq!(std::fs::read_to_string(&path).unwrap().lines().count(), 3);
+    // Header and the row of t = 0, which is also the state the run stopped at: written once (QA R7).
+    assert_eq!(std::fs::read_to_string(&path).unwrap().lines().count(), 2);
 }
 
 /// A sink that fails on its second call.
@@ -172,4 +172,65 @@ fn a_checkpoint_finds_the_events_up_to_it_on_disk() {
     assert_eq!(std::fs::read_dir(dir.path().join("checkpoints")).unwrap().count(), 11, "t = 0, 0.01, …, 0.1");
     assert!(watch.checked.iter().filter(|(_, ended)| *ended > 0).count() >= 3, "too few episodes: {:?}", watch.checked);
     assert!(watch.short.is_empty(), "events.csv behind its checkpoints (t, rows, ended): {:?}", watch.short);
+}
+
+/// Asks the run to stop (as Ctrl-C does) when it takes its `at`-th tick, so that the stop lands on a step that also
+/// has a time-series row.
+struct StopOnTick<'a> {
+    interval: f64,
+    at: usize,
+    taken: usize,
+    stop: &'a AtomicBool,
+}
+
+impl FrameSink for StopOnTick<'_> {
+    fn interval(&self) -> f64 {
+        self.interval
+    }
+    fn take(&mut self, _: &World) -> Result<(), String> {
+        self.taken += 1;
+        if self.taken == self.at {
+            self.stop.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+        Ok(())
+    }
+}
+
+/// QA R7: a stop that came while the outputs of a row's step were written (a checkpoint's step) had the run write that
+/// row again as its "last row at the final state", and a resume kept both copies. The stopped run's series now ends
+/// with the row once, and continued it is the unsplit run's series byte for byte; a series an earlier version left
+/// with the row twice is repaired by the resume.
+#[test]
+fn a_stop_on_a_rows_step_writes_its_row_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let whole = dir.path().join("whole.csv");
+    let mut series = TimeSeriesWriter::create(&whole).unwrap();
+    let never = AtomicBool::new(false);
+    let outcome = run_to(&mut small_world(), 0.04, &mut series, 0.005, &mut [], &never, false, None);
+    assert_eq!(outcome.status, RunStatus::Completed);
+
+    let split = dir.path().join("split.csv");
+    let mut world = small_world();
+    let mut series = TimeSeriesWriter::create(&split).unwrap();
+    let stop = AtomicBool::new(false);
+    let mut stopper = StopOnTick { interval: 0.01, at: 3, taken: 0, stop: &stop };
+    let outcome = run_to(&mut world, 0.04, &mut series, 0.005, &mut [&mut stopper], &stop, false, None);
+    assert_eq!(outcome.status, RunStatus::Interrupted);
+    assert!((world.time() - 0.02).abs() < 1e-9, "stopped at {}", world.time());
+    let stopped = std::fs::read_to_string(&split).unwrap();
+    let times: Vec<&str> = stopped.lines().skip(1).map(|line| line.split(',').next().unwrap()).collect();
+    assert_eq!(times.len(), 5, "rows at 0, 0.005, …, 0.02, once each: {times:?}");
+    assert!(times.windows(2).all(|pair| pair[0] != pair[1]), "a row written twice: {times:?}");
+
+    // The same World goes on (a resume from the stop's final.ckpt, without the checkpoint's unknown force history).
+    let (time, slack) = (world.time(), 0.5 * world.time_step());
+    let mut series = TimeSeriesWriter::continue_at(&split, time, slack, 0.005).unwrap();
+    run_to(&mut world, 0.04, &mut series, 0.005, &mut [], &never, false, None);
+    assert!(std::fs::read_to_string(&split).unwrap() == std::fs::read_to_string(&whole).unwrap());
+
+    // What an earlier version left: the stop's row twice. The resume keeps it once.
+    let last = stopped.lines().last().unwrap();
+    std::fs::write(&split, format!("{stopped}{last}\n")).unwrap();
+    drop(TimeSeriesWriter::continue_at(&split, time, slack, 0.005).unwrap());
+    assert_eq!(std::fs::read_to_string(&split).unwrap(), stopped);
 }
