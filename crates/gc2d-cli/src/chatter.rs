@@ -1,12 +1,22 @@
 //! Watches the engine's force-alternation diagnostic during a run and warns once when the contact forces chatter
 //! (alternate from step to step): the sign that Δt is too large for the contact damping (docs/model.md, "Automatic
 //! Δt"; docs/validation.md, "Damping limit of flat contacts").
+//!
+//! A run split by a resume reports the unsplit run's windows but one: the window the resume falls in, which neither
+//! process judges. The earlier process stopped before its end, and the resumed one cannot measure its first step (a
+//! checkpoint holds the contact forces of one step, the diagnostic needs two: `World::force_alternation` is NaN on the
+//! step after loading), so that window's sums could not be the unsplit run's even if its first part were carried
+//! over. The largest window of a split run is therefore the unsplit run's, except where the unsplit run's largest is
+//! that one window (docs/validation.md, "Chatter warning").
 
 use gc2d_engine::{ForceAlternation, World};
 use serde::Serialize;
 
 /// Steps over which the diagnostic is summed: long enough that impacts (a step or two each) do not count, short
-/// enough to catch chatter that lasts a few milliseconds.
+/// enough to catch chatter that lasts a few milliseconds. The windows are the run's steps (k − 1)·`WINDOW_STEPS` + 1
+/// to k·`WINDOW_STEPS`, counted from step 0 whichever process takes them, so that a resumed run's windows are the
+/// unsplit run's; a window is judged only when the process that closes it measured all of its steps, which the one a
+/// resume falls in never is (module doc).
 pub const WINDOW_STEPS: u64 = 1000;
 
 /// Force alternation over a window (change over scale, each summed over the window's steps) above which the run is
@@ -25,7 +35,8 @@ pub const MIN_CONTACT_STEPS: u64 = WINDOW_STEPS / 4;
 pub struct ChatterWatch {
     change: f64,
     scale: f64,
-    steps: u64,
+    /// Steps of the window this watch measured (a finite diagnostic).
+    measured: u64,
     /// Steps of the window on which some contact counted.
     contact_steps: u64,
     largest: Option<AlternationWindow>,
@@ -72,27 +83,28 @@ impl ChatterWatch {
         std::mem::take(&mut self.largest_is_new).then_some(self.largest).flatten()
     }
 
-    /// Takes this step's parts; returns the warning the first time a window's alternation exceeds the threshold.
+    /// Takes the step the World has just taken; returns the warning the first time a window's alternation exceeds the
+    /// threshold.
     pub fn observe(&mut self, world: &World) -> Option<String> {
-        self.take_step(world.force_alternation(), world.time(), world.time_step())
+        self.take_step(world.force_alternation(), world.steps(), world.time(), world.time_step())
     }
 
-    /// [`observe`](Self::observe) with the step's diagnostic, the time at its end and Δt given.
-    fn take_step(&mut self, step: ForceAlternation, time: f64, time_step: f64) -> Option<String> {
-        if !(step.change.is_finite() && step.scale.is_finite()) {
+    /// [`observe`](Self::observe) with the step's diagnostic, the run's steps and the time at its end, and Δt given.
+    fn take_step(&mut self, step: ForceAlternation, steps: u64, time: f64, time_step: f64) -> Option<String> {
+        if step.change.is_finite() && step.scale.is_finite() {
+            self.change += step.change;
+            self.scale += step.scale;
+            self.measured += 1;
+            self.contact_steps += u64::from(step.scale > 0.0);
+        }
+        if steps % WINDOW_STEPS != 0 {
             return None;
         }
-        self.change += step.change;
-        self.scale += step.scale;
-        self.steps += 1;
-        self.contact_steps += u64::from(step.scale > 0.0);
-        if self.steps < WINDOW_STEPS {
-            return None;
-        }
-        let judged = self.contact_steps >= MIN_CONTACT_STEPS;
+        // A window of which this watch missed a step (begun before a resume, or with the step after it) is not judged.
+        let judged = self.measured == WINDOW_STEPS && self.contact_steps >= MIN_CONTACT_STEPS;
         let alternation = if self.scale > 0.0 { self.change / self.scale } else { 0.0 };
         let window = AlternationWindow { alternation, time_s: time };
-        (self.change, self.scale, self.steps, self.contact_steps) = (0.0, 0.0, 0, 0);
+        (self.change, self.scale, self.measured, self.contact_steps) = (0.0, 0.0, 0, 0);
         if !judged {
             return None;
         }
@@ -134,7 +146,44 @@ mod tests {
 
     /// Feeds `steps` steps of the diagnostic `step(k)` (k counts from 0) at Δt = 1 µs; returns the warnings.
     fn watch(watch: &mut ChatterWatch, steps: u64, step: impl Fn(u64) -> ForceAlternation) -> Vec<String> {
-        (0..steps).filter_map(|k| watch.take_step(step(k), 1e-6 * (k + 1) as f64, 1e-6)).collect()
+        watch_from(watch, 0, steps, step)
+    }
+
+    /// Feeds the run's steps `from + 1` to `to` of the diagnostic `step(k)` (k the step's number less one) at
+    /// Δt = 1 µs, as a watch of a run resumed at step `from` does; returns the warnings.
+    fn watch_from(watch: &mut ChatterWatch, from: u64, to: u64, step: impl Fn(u64) -> ForceAlternation) -> Vec<String> {
+        (from..to).filter_map(|k| watch.take_step(step(k), k + 1, 1e-6 * (k + 1) as f64, 1e-6)).collect()
+    }
+
+    /// QA R8: the windows were counted from the step a resumed run started at, so that where a run was split changed
+    /// its largest window. They are the run's steps k·1000 + 1 to (k + 1)·1000 now: a run resumed mid-window skips the
+    /// rest of that window (whose step after the resume is not measured) and then judges the unsplit run's windows.
+    #[test]
+    fn a_resumed_watch_judges_the_unsplit_runs_windows_but_the_one_it_resumed_in() {
+        // Smooth contacts whose alternation grows from window to window, so that every window has its own value.
+        let step = |k: u64| ForceAlternation { change: 1e-6 * (k / 7) as f64, scale: 1.0 };
+        let mut whole = ChatterWatch::default();
+        watch(&mut whole, 5 * WINDOW_STEPS, step);
+        let mut first = ChatterWatch::default();
+        watch(&mut first, 2500, step);
+        let earlier = first.summary().largest_window;
+        assert_eq!(earlier.map(|window| window.time_s), Some(1e-6 * 2000.0), "the largest of steps 1–2000");
+        let mut resumed = ChatterWatch::continuing(earlier);
+        // The step after loading the checkpoint has no force history.
+        let after_loading = |k: u64| if k == 2500 { ForceAlternation::not_measured() } else { step(k) };
+        watch_from(&mut resumed, 2500, 5 * WINDOW_STEPS, after_loading);
+        assert_eq!(resumed.summary(), whole.summary());
+        // The window a resume falls in is judged by neither part: resumed at step 2500, the split run lacks the window
+        // of steps 2001–3000; had that one been the largest, the split run would report the next largest.
+        let mut resumed = ChatterWatch::continuing(earlier);
+        watch_from(&mut resumed, 2500, 3 * WINDOW_STEPS, after_loading);
+        assert_eq!(resumed.summary(), first.summary());
+        // Resumed on a window's boundary, the next window lacks its first step.
+        let mut resumed = ChatterWatch::continuing(earlier);
+        watch_from(&mut resumed, 2000, 3 * WINDOW_STEPS, |k| {
+            if k == 2000 { ForceAlternation::not_measured() } else { step(k) }
+        });
+        assert_eq!(resumed.summary().largest_window, earlier);
     }
 
     #[test]
