@@ -741,7 +741,10 @@ fn resuming_a_checkpoint_with_an_edited_scene_is_refused_without_its_run_directo
         command.arg("--out").arg(kept.path().join("continued")).assert()
     };
     resume(&copy, out.path()).code(2).stderr(
-        contains("does not continue").and(contains("materials or interactions: `sand–sand: ")).and(contains("μ = 0.1")),
+        contains("does not continue")
+            .and(contains("materials or interactions: `sand–sand: "))
+            .and(contains("μ = 0.1"))
+            .and(contains("`#0–#0: ")),
     );
     let checkpoint = kept.path().join("pile.ckpt");
     std::fs::copy(out.path().join("final.ckpt"), &checkpoint).unwrap();

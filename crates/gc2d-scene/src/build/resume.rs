@@ -66,9 +66,15 @@ fn config_differences(scene: &WorldConfig, checkpoint: &WorldConfig, materials: 
             theirs.material_count()
         ));
     } else if ours != theirs {
-        let (ours, theirs) = (interaction_lines(materials, ours), interaction_lines(materials, theirs));
-        if let Some((a, b)) = ours.iter().zip(&theirs).find(|(a, b)| a != b) {
-            differences.push(format!("materials or interactions: `{a}` with the scene, `{b}` in the checkpoint"));
+        // A checkpoint knows its materials by number only: its line names them so, not by the scene's names.
+        let numbered: Vec<String> = (0..materials.len()).map(|i| format!("#{i}")).collect();
+        let (ours, theirs_named) = (interaction_lines(materials, ours), interaction_lines(materials, theirs));
+        if let Some(index) = ours.iter().zip(&theirs_named).position(|(a, b)| a != b) {
+            differences.push(format!(
+                "materials or interactions: `{}` with the scene, `{}` in the checkpoint (its materials by number)",
+                ours[index],
+                interaction_lines(&numbered, theirs)[index]
+            ));
         } else {
             differences.push("materials or interactions: the contact laws differ".to_string());
         }
