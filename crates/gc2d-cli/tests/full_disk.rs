@@ -1,5 +1,6 @@
 //! A recording whose writes fail (a full disk) ends the run with a message, not a panic (issue 16: `--record` to a
-//! file whose first write fails panicked in the mcap writer's drop).
+//! file whose first write fails panicked in the mcap writer's drop); an `export` on a full disk leaves no truncated
+//! file behind (QA R10).
 
 use assert_cmd::Command;
 use predicates::prelude::*;
@@ -24,6 +25,72 @@ fn recording_to_a_full_device_fails_cleanly() {
         .stderr(contains("cannot record to /dev/full").and(contains("panicked").not()));
 }
 
+/// Runs gc2d-rs with `args` in `dir` under a file-size limit of `kib` KiB (`ulimit -f`, SIGXFSZ ignored so that a
+/// write past it fails with EFBIG, as on a full disk); `None` without bash.
+#[cfg(unix)]
+fn limited(dir: &Path, kib: u32, args: &[&str]) -> Option<std::process::Output> {
+    std::process::Command::new("bash")
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .args(["-c", &format!("trap '' XFSZ; ulimit -f {kib}; exec \"$@\""), "bash"])
+        .arg(assert_cmd::cargo::cargo_bin("gc2d-rs"))
+        .args(args)
+        .output()
+        .ok()
+}
+
+/// A short run of the tiny pile in `dir/run`, with its final checkpoint.
+#[cfg(unix)]
+fn tiny_run(dir: &Path) {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/tiny_pile.ron");
+    Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .args(["run", scene.to_str().unwrap(), "--until", "0.03", "--quiet", "--out"])
+        .arg(dir.join("run"))
+        .assert()
+        .success();
+}
+
+/// The names of the files in `folder`, sorted.
+#[cfg(unix)]
+fn file_names(folder: &Path) -> Vec<String> {
+    let mut names: Vec<String> =
+        std::fs::read_dir(folder).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    names
+}
+
+/// An export whose outlines do not fit on the disk fails, leaves no truncated `.vtu` (nor its temporary file), and
+/// lists the file in `.gc2d-export`, so that the next export there, at another time, has only its own files.
+#[cfg(unix)]
+#[test]
+fn an_export_that_fills_the_disk_leaves_no_truncated_file_and_the_next_export_replaces_it() {
+    let dir = tempfile::tempdir().unwrap();
+    tiny_run(dir.path());
+    let Some(output) = limited(dir.path(), 1, &["export", "run", "--format", "vtk", "--out", "exp"]) else {
+        eprintln!("skipped: no bash to set a file-size limit with");
+        return;
+    };
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("cannot write exp/particles_") && stderr.contains("File too large"), "{stderr}");
+    let exp = dir.path().join("exp");
+    let left = file_names(&exp);
+    assert_eq!(left, [".gc2d-export"], "only the manifest, no truncated or temporary file");
+    let manifest = std::fs::read_to_string(exp.join(".gc2d-export")).unwrap();
+    assert!(manifest.starts_with("particles_") && manifest.trim_end().ends_with(".vtu"), "{manifest}");
+    // A killed export's temporary file goes with the next export, as the file the manifest lists.
+    let temporary = format!("{}.tmp", manifest.trim_end());
+    std::fs::write(exp.join(&temporary), "<VTKFile").unwrap();
+    Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .current_dir(dir.path())
+        .args(["export", "run", "--format", "csv", "--out", "exp"])
+        .assert()
+        .success();
+    assert_eq!(file_names(&exp), [".gc2d-export", "contacts.csv", "particles.csv"]);
+}
+
 /// A disk that fills in the middle of a run, stood for by a file-size limit of 2 KiB (`ulimit -f 2`, with SIGXFSZ
 /// ignored so that writes past it fail with EFBIG instead of killing the process): the time series stops growing,
 /// the final checkpoint cannot be written, and the scene path is long enough (1,400 characters of `./`) that
@@ -36,14 +103,7 @@ fn a_disk_that_fills_mid_run_leaves_no_broken_summary_and_names_what_is_missing(
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/tiny_pile.ron");
     std::fs::copy(&scene, dir.path().join("tiny_pile.ron")).unwrap();
     let long_path = format!("{}tiny_pile.ron", "./".repeat(700));
-    let output = std::process::Command::new("bash")
-        .current_dir(dir.path())
-        .env("NO_COLOR", "1")
-        .args(["-c", "trap '' XFSZ; ulimit -f 2; exec \"$@\"", "bash"])
-        .arg(assert_cmd::cargo::cargo_bin("gc2d-rs"))
-        .args(["run", &long_path, "--quiet", "--out", "out"])
-        .output();
-    let Ok(output) = output else {
+    let Some(output) = limited(dir.path(), 2, &["run", &long_path, "--quiet", "--out", "out"]) else {
         eprintln!("skipped: no bash to set a file-size limit with");
         return;
     };

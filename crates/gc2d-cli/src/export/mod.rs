@@ -8,10 +8,12 @@ pub mod vtk;
 use crate::object_names::ObjectNames;
 use crate::outputs::run_scene;
 use crate::parquet_table::{NamedColumn, write_parquet};
+use crate::resume::temporary_path;
 use gc2d_analysis::particle_state::csv::quoted;
 use gc2d_engine::World;
 use rows::{ContactRow, ParticleRow, contact_rows, particle_rows};
 use std::fmt::Write as _;
+use std::fs::File;
 use std::path::{Path, PathBuf};
 
 /// The formats `export` writes.
@@ -149,35 +151,31 @@ pub fn export(run: &Path, at: Option<f64>, formats: &[ExportFormat], out: &Path)
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     remove_earlier_export(out)?;
     let mut files = Vec::new();
-    // Each file written goes into the manifest at once, so that an export that fails half-way is still replaced.
-    let written = |files: &mut Vec<PathBuf>, path: PathBuf| -> Result<(), String> {
-        files.push(path);
-        write_manifest(out, files)
-    };
-    let write = |files: &mut Vec<PathBuf>, name: &str, text: String| -> Result<(), String> {
+    // Each file goes into the manifest before it is written, so that an export that fails half-way (a full disk) or
+    // is killed is still replaced by the next one; each is written whole or not at all (see `write_whole`).
+    let mut write = |name: &str, contents: &dyn Fn(&Path) -> Result<(), String>| -> Result<(), String> {
         let path = out.join(name);
-        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        written(files, path)
+        files.push(path.clone());
+        write_manifest(out, &files)?;
+        write_whole(&path, contents)
     };
+    let text = |text: String| move |path: &Path| std::fs::write(path, &text).map_err(|e| e.to_string());
     for format in &formats {
         let [first, second] = file_names(*format, world.steps());
         match format {
             ExportFormat::Csv => {
-                write(&mut files, &first, particles_csv(&particles))?;
-                write(&mut files, &second, contacts_csv(&contacts, time_s))?;
+                write(&first, &text(particles_csv(&particles)))?;
+                write(&second, &text(contacts_csv(&contacts, time_s)))?;
             }
             ExportFormat::Vtk => {
-                write(&mut files, &first, vtk::particles_vtu(&world, &particles))?;
-                write(&mut files, &second, vtk::collection(&[(time_s, Path::new(&first))]))?;
+                write(&first, &text(vtk::particles_vtu(&world, &particles)))?;
+                write(&second, &text(vtk::collection(&[(time_s, Path::new(&first))])))?;
             }
             ExportFormat::Parquet => {
                 let tables =
                     [("particles", particle_columns(&particles)), ("contacts", contact_columns(&contacts, time_s))];
                 for ((table, columns), name) in tables.into_iter().zip([first, second]) {
-                    let path = out.join(name);
-                    write_parquet(table, &columns, &path)
-                        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-                    written(&mut files, path)?;
+                    write(&name, &|path| write_parquet(table, &columns, path).map_err(|e| e.to_string()))?;
                 }
             }
         }
@@ -219,18 +217,21 @@ pub const EXPORT_MANIFEST: &str = ".gc2d-export";
 
 /// Removes the files an earlier export in `out` wrote, as its [`EXPORT_MANIFEST`] lists them (plain names in `out`,
 /// nothing else): exporting in other formats or at another time would otherwise leave them beside the new ones, a
-/// Parquet table of one time next to a CSV of another, or outlines the new `particles.pvd` does not list. A file the
-/// list names that is gone already is fine; a folder without the list (no export, or one before the list existed)
-/// loses nothing.
+/// Parquet table of one time next to a CSV of another, or outlines the new `particles.pvd` does not list. With each
+/// file goes its `<name>.tmp`, which an export killed while writing it leaves. A file the list names that is gone
+/// already is fine (an export that failed lists the file it could not write); a folder without the list (no export,
+/// or one before the list existed) loses nothing.
 fn remove_earlier_export(out: &Path) -> Result<(), String> {
     let Ok(manifest) = std::fs::read_to_string(out.join(EXPORT_MANIFEST)) else { return Ok(()) };
     for name in manifest.lines().filter(|name| is_plain_file_name(name)) {
         let path = out.join(name);
-        match std::fs::remove_file(&path) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                return Err(format!("cannot remove {} of an earlier export: {e}", path.display()));
+        for path in [temporary_path(&path), path] {
+            match std::fs::remove_file(&path) {
+                Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                    return Err(format!("cannot remove {} of an earlier export: {e}", path.display()));
+                }
+                _ => {}
             }
-            _ => {}
         }
     }
     Ok(())
@@ -242,12 +243,27 @@ fn is_plain_file_name(name: &str) -> bool {
     !name.is_empty() && path.file_name().is_some_and(|file| file == path.as_os_str())
 }
 
-/// Writes the [`EXPORT_MANIFEST`] of the export that wrote `files` into `out`.
+/// Writes the [`EXPORT_MANIFEST`] of the export that wrote `files` into `out`, whole or not at all: a manifest cut
+/// short by a full disk would forget files of the export it lists.
 fn write_manifest(out: &Path, files: &[PathBuf]) -> Result<(), String> {
     let names: Vec<String> =
         files.iter().filter_map(|f| f.file_name()).map(|name| name.to_string_lossy().into_owned()).collect();
-    let path = out.join(EXPORT_MANIFEST);
-    std::fs::write(&path, names.join("\n") + "\n").map_err(|e| format!("cannot write {}: {e}", path.display()))
+    let text = names.join("\n") + "\n";
+    write_whole(&out.join(EXPORT_MANIFEST), &|path| std::fs::write(path, &text).map_err(|e| e.to_string()))
+}
+
+/// Writes `path` whole or not at all, as the run writes its checkpoints and summary.json: `contents` writes
+/// `<path>.tmp` ([`temporary_path`]), which is synced to disk and renamed over `path`. A write that fails (a full
+/// disk) removes the temporary file and reports `path` with the reason, leaving no truncated file behind.
+fn write_whole(path: &Path, contents: &dyn Fn(&Path) -> Result<(), String>) -> Result<(), String> {
+    let temporary = temporary_path(path);
+    let written = contents(&temporary)
+        .and_then(|()| File::open(&temporary).and_then(|file| file.sync_all()).map_err(|e| e.to_string()))
+        .and_then(|()| std::fs::rename(&temporary, path).map_err(|e| e.to_string()));
+    written.map_err(|why| {
+        let _ = std::fs::remove_file(&temporary);
+        format!("cannot write {}: {why}", path.display())
+    })
 }
 
 /// Column names of the particle table, in order.
