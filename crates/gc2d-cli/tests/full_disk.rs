@@ -1,6 +1,6 @@
 //! A recording whose writes fail (a full disk) ends the run with a message, not a panic (issue 16: `--record` to a
-//! file whose first write fails panicked in the mcap writer's drop); an `export` on a full disk leaves no truncated
-//! file behind (QA R10).
+//! file whose first write fails panicked in the mcap writer's drop); `export` and `snapshot` on a full disk leave no
+//! truncated file behind (QA R10).
 
 use assert_cmd::Command;
 use predicates::prelude::*;
@@ -89,6 +89,23 @@ fn an_export_that_fills_the_disk_leaves_no_truncated_file_and_the_next_export_re
         .assert()
         .success();
     assert_eq!(file_names(&exp), [".gc2d-export", "contacts.csv", "particles.csv"]);
+}
+
+/// A snapshot that does not fit on the disk fails and leaves neither a truncated PNG nor its temporary file.
+#[cfg(unix)]
+#[test]
+fn a_snapshot_that_fills_the_disk_leaves_no_truncated_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    tiny_run(dir.path());
+    std::fs::create_dir(dir.path().join("pictures")).unwrap();
+    let Some(output) = limited(dir.path(), 1, &["snapshot", "run", "-o", "pictures/a.png"]) else {
+        eprintln!("skipped: no bash to set a file-size limit with");
+        return;
+    };
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_ne!(output.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("cannot write pictures/a.png: File too large"), "{stderr}");
+    assert_eq!(file_names(&dir.path().join("pictures")), Vec::<String>::new());
 }
 
 /// A disk that fills in the middle of a run, stood for by a file-size limit of 2 KiB (`ulimit -f 2`, with SIGXFSZ

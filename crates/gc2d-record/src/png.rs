@@ -10,7 +10,7 @@ use crate::quantities::{ColourBy, ColourRange, ParticleColours, mean_inscribed_r
 use crate::recorder::DEFAULT_FORCE_WIDTH_RADII;
 use gc2d_engine::{BodyId, BodyKind, World};
 use gc2d_geometry::{Aabb, DVec2, TracedOutline};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use tiny_skia::{Color, FillRule, LineCap, Paint, PathBuilder, Pixmap, Stroke, Transform};
 
 /// Largest picture side, pixels: taller pictures are cut to it, and `gc2d-rs snapshot` refuses wider ones.
@@ -49,10 +49,18 @@ impl Default for PngOptions {
     }
 }
 
-/// Draws `world` and writes it to `path` as a PNG file.
+/// Draws `world` and writes it to `path` as a PNG file, whole or not at all: into `<path>.tmp`, then renamed over
+/// `path`. A write that fails (a full disk) removes the temporary file and leaves `path` as it was, never a truncated
+/// picture.
 pub fn render_png(world: &World, path: &Path, options: &PngOptions) -> Result<(), RecordError> {
     let bytes = encode_png(world, options)?;
-    std::fs::write(path, bytes).map_err(|source| RecordError::Io { path: path.display().to_string(), source })
+    let mut temporary = path.as_os_str().to_owned();
+    temporary.push(".tmp");
+    let temporary = PathBuf::from(temporary);
+    std::fs::write(&temporary, bytes).and_then(|()| std::fs::rename(&temporary, path)).map_err(|source| {
+        let _ = std::fs::remove_file(&temporary);
+        RecordError::Io { path: path.display().to_string(), source }
+    })
 }
 
 /// Draws `world` and returns the PNG file's bytes.
