@@ -45,7 +45,7 @@ impl McapFile {
             .library(library);
         match options.create(BufWriter::new(file)) {
             Ok(writer) => Ok(Self { writer: Some(writer), path: path.to_path_buf(), sequence: 0, buffer: Vec::new() }),
-            Err(error) => Err(error.into()),
+            Err(source) => Err(RecordError::Mcap { path: path.display().to_string(), source }),
         }
     }
 
@@ -56,9 +56,9 @@ impl McapFile {
         operation: impl FnOnce(&mut Writer<BufWriter<File>>) -> Result<T, mcap::McapError>,
     ) -> Result<T, RecordError> {
         let Some(writer) = self.writer.as_mut() else { return Err(self.failed_earlier()) };
-        operation(writer).map_err(|error| {
+        operation(writer).map_err(|source| {
             std::mem::forget(self.writer.take());
-            error.into()
+            RecordError::Mcap { path: self.path.display().to_string(), source }
         })
     }
 
