@@ -602,7 +602,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     let code = report_outcome(&status, &world, &out, wall_time, &unwritten)?;
     // A run that took no step (`--until 0`, to look at the start) has nothing to average.
     if mill && status == RunStatus::Completed && world.steps() > 0 {
-        print_mill_summary(&out, world.time());
+        print_mill_summary(&out, world.time(), world.time_step());
     }
     Ok(code)
 }
@@ -613,8 +613,8 @@ const THESIS_WINDOW_S: [f64; 2] = [0.2, 1.0];
 /// Prints the mill's statistics in a few lines (gc2d-analysis's [`gc2d_analysis::mill_report`], the numbers
 /// `gc2d-rs analyze --kind mill` writes): over the thesis's window when the run reaches its end, else from the
 /// automatic warm-up cut. A run without the files it needs says so instead.
-fn print_mill_summary(out: &Path, end: f64) {
-    let warm_up_s = (end >= THESIS_WINDOW_S[1]).then_some(THESIS_WINDOW_S[0]);
+fn print_mill_summary(out: &Path, end: f64, time_step: f64) {
+    let warm_up_s = reaches_the_thesis_window(end, time_step).then_some(THESIS_WINDOW_S[0]);
     let analyze = format!("`gc2d-rs analyze {} --kind mill`", out.display());
     let (balls, warning) = gc2d_cli::analysis::mill_balls(out);
     if let Some(warning) = warning {
@@ -624,6 +624,12 @@ fn print_mill_summary(out: &Path, end: f64) {
         Ok(report) => console::err(&format!("{}\nTables, maps and figures: {analyze}.", report.summary())),
         Err(e) => console::err(&format!("No mill summary: {e}.")),
     }
+}
+
+/// Whether a run that ended at `end` has reached the end of the thesis's window. The simulated time is a sum of steps,
+/// so a run to 1 s may end a hair before it (0.99999975 s with Δt = 7.5e-7 s): within half a step counts as reached.
+fn reaches_the_thesis_window(end: f64, time_step: f64) -> bool {
+    end + 0.5 * time_step >= THESIS_WINDOW_S[1]
 }
 
 /// Opens `events.csv` (continued on a resumed run that has one) and has the World record contact events.
@@ -1095,4 +1101,19 @@ fn folder_in_words(out: &Path) -> String {
 fn default_out_dir(scene: &Path) -> PathBuf {
     let stem = scene.file_stem().map_or_else(|| "run".into(), |s| s.to_string_lossy().into_owned());
     PathBuf::from("out").join(stem)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_run_to_one_second_reaches_the_thesis_window_whatever_the_round_off() {
+        // QA P2-5: the summed time of a 1 s run with Δt = 7.5e-7 s ends below 1 s, and its summary took the automatic
+        // warm-up cut instead of the thesis's 0.2 s to the end.
+        assert!(reaches_the_thesis_window(0.9999997499923179, 7.5e-7));
+        assert!(reaches_the_thesis_window(0.9999999999628257, 5e-7));
+        assert!(reaches_the_thesis_window(1.0000000000266958, 2e-7));
+        assert!(!reaches_the_thesis_window(0.9999, 7.5e-7), "a run stopped short of 1 s");
+    }
 }
