@@ -684,7 +684,7 @@ fn start_transits(
 const MCAP_MAGIC: &[u8] = b"\x89MCAP0";
 
 /// Refuses a `--record` path that would overwrite the scene being run, one of the run's own outputs in `out`, or an
-/// existing file that is not a recording: a slip of the user's that would destroy the file, or make the run fail at
+/// existing regular file that is not a recording (a device such as a pipe is left to the user): a slip of the user's that would destroy the file, or make the run fail at
 /// its end when the output is written over the recording. An earlier recording is replaced, as a fresh run replaces
 /// its outputs.
 fn refuse_recording_over_other_files(path: &Path, scene_path: &Path, out: &Path) -> Result<(), CommandFailure> {
@@ -709,7 +709,8 @@ fn refuse_recording_over_other_files(path: &Path, scene_path: &Path, out: &Path)
     }
     let mut start = Vec::new();
     let read = std::fs::File::open(path).and_then(|file| file.take(MCAP_MAGIC.len() as u64).read_to_end(&mut start));
-    if read.is_ok_and(|length| length > 0) && !start.starts_with(MCAP_MAGIC) {
+    let regular = std::fs::metadata(path).is_ok_and(|file| file.is_file());
+    if regular && read.is_ok_and(|length| length > 0) && !start.starts_with(MCAP_MAGIC) {
         return refuse("an existing file that is not a recording");
     }
     Ok(())

@@ -2,6 +2,7 @@
 //! holds. A long run killed without warning (a batch system's wall-time limit, a closed session) leaves no
 //! `final.ckpt`, only its periodic checkpoints; naming the directory spares the user finding the newest one.
 
+use crate::console;
 use crate::earlier_run::holds_a_run;
 use crate::numbered_files::NumberedFolder;
 use crate::outputs::SCENE_COPY;
@@ -22,8 +23,9 @@ pub struct ResumePoint {
 ///
 /// A file is loaded as it is. A directory (a run's `--out`) resumes from whichever of
 /// its `final.ckpt` and its highest-numbered `checkpoints/checkpoint-<step>.ckpt` has taken more steps: `final.ckpt`
-/// is missing after a kill, and older than the numbered ones when a later resumed run was killed. Errors name the
-/// file and say why it cannot be used; an unreadable newest checkpoint is reported, not silently skipped.
+/// is missing after a kill, and older than the numbered ones when a later resumed run was killed. A `final.ckpt` that
+/// cannot be read gives a warning, and the newest periodic checkpoint is taken where there is one. Errors name the
+/// file and say why it cannot be used; an unreadable newest periodic checkpoint is reported, not silently skipped.
 pub fn load_resume_point(from: &Path) -> Result<ResumePoint, String> {
     load_newest_state(from, "resume from")
 }
@@ -36,9 +38,18 @@ pub fn load_newest_state(from: &Path, purpose: &str) -> Result<ResumePoint, Stri
         return load(from);
     }
     let final_checkpoint = from.join("final.ckpt");
-    let final_point = if final_checkpoint.is_file() { Some(load(&final_checkpoint)?) } else { None };
     // A periodic checkpoint's name carries its step, so it is only loaded when it is the newer one.
     let numbered = highest_numbered_checkpoint(&from.join("checkpoints"))?;
+    let final_point = match final_checkpoint.is_file().then(|| load(&final_checkpoint)) {
+        None => None,
+        Some(Ok(point)) => Some(point),
+        // A damaged final.ckpt (a full disk, a copy cut short) leaves the periodic checkpoints, as `export` uses them.
+        Some(Err(e)) if numbered.is_some() => {
+            console::err(&format!("warning: {e}; the newest periodic checkpoint is taken instead"));
+            None
+        }
+        Some(Err(e)) => return Err(e),
+    };
     let newest = match (final_point, numbered) {
         (Some(point), Some((step, _))) if point.world.steps() >= step => Some(point),
         (_, Some((_, path))) => Some(load(&path)?),
@@ -290,19 +301,29 @@ pub fn temporary_path(path: &Path) -> PathBuf {
 }
 
 /// Removes the temporary files a process killed while writing (SIGKILL between writing a file and renaming it) left in
-/// the run directory `out`: `final.ckpt.tmp`, `segments.csv.tmp`, `summary.json.tmp` and
-/// `checkpoints/checkpoint-<step>.ckpt.tmp`. They are never read (a resume takes only renamed checkpoints), so they
-/// would only sit there, possibly half written. Called when a run (fresh or resumed) starts in `out`; files that
+/// the run directory `out`: `final.ckpt.tmp`, `segments.csv.tmp`, `summary.json.tmp`,
+/// `checkpoints/checkpoint-<step>.ckpt.tmp` and `frames/frame-<k>.png.tmp`. They are never read (a resume takes only
+/// renamed files), so they would only sit there, possibly half written. Called when a run (fresh or resumed) starts in `out`; files that
 /// cannot be removed are left.
 pub fn remove_temporary_files(out: &Path) {
     for name in ["final.ckpt", "segments.csv", "summary.json"] {
         let _ = std::fs::remove_file(temporary_path(&out.join(name)));
     }
-    let Ok(entries) = std::fs::read_dir(out.join("checkpoints")) else { return };
-    for entry in entries.flatten() {
-        let name = entry.file_name();
-        if name.to_str().and_then(|n| n.strip_suffix(".tmp")).and_then(checkpoint_step).is_some() {
-            let _ = std::fs::remove_file(entry.path());
+    if let Ok(entries) = std::fs::read_dir(out.join("checkpoints")) {
+        for entry in entries.flatten() {
+            let name = entry.file_name();
+            if name.to_str().and_then(|n| n.strip_suffix(".tmp")).and_then(checkpoint_step).is_some() {
+                let _ = std::fs::remove_file(entry.path());
+            }
+        }
+    }
+    // A picture is written as `frame-<k>.png.tmp` and renamed too.
+    if let Ok(entries) = std::fs::read_dir(out.join("frames")) {
+        for entry in entries.flatten() {
+            let name = entry.file_name();
+            if name.to_str().is_some_and(|n| n.starts_with("frame-") && n.ends_with(".png.tmp")) {
+                let _ = std::fs::remove_file(entry.path());
+            }
         }
     }
 }

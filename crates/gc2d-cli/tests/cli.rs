@@ -298,6 +298,38 @@ fn a_recording_does_not_overwrite_the_scene_an_output_or_another_file() {
 }
 
 #[test]
+fn a_damaged_final_checkpoint_leaves_the_periodic_ones_to_resume_and_draw() {
+    // QA R6: `--resume DIR` and `snapshot DIR` failed on a truncated final.ckpt, although an intact periodic
+    // checkpoint was there (as `export` already used).
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.025", "--checkpoint-every", "0.01", "--out"]).arg(out.path()).assert().success();
+    let final_checkpoint = out.path().join("final.ckpt");
+    let bytes = std::fs::read(&final_checkpoint).unwrap();
+    std::fs::write(&final_checkpoint, &bytes[..100]).unwrap();
+    let picture = out.path().join("damaged.png");
+    gc2d()
+        .arg("snapshot")
+        .arg(out.path())
+        .arg("-o")
+        .arg(&picture)
+        .assert()
+        .success()
+        .stderr(contains("warning: cannot draw").and(contains("newest periodic checkpoint is taken instead")));
+    assert!(picture.is_file());
+    run_tiny_pile(&["--until", "0.03", "--resume"])
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("newest periodic checkpoint is taken instead").and(contains("checkpoint-")));
+    // The resumed run wrote a whole final.ckpt again.
+    run_tiny_pile(&["--until", "0.035", "--resume"])
+        .arg(out.path())
+        .assert()
+        .success()
+        .stderr(contains("warning").not());
+}
+
+#[test]
 fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     // A run to 0.025 s (final.ckpt at 0.025), resumed to 0.045 s with checkpoints at 0.02 and 0.04 s and then
     // "killed": its final.ckpt is the stale one of the first part. `--resume DIR` without --out must pick the 0.04 s

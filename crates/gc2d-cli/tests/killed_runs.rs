@@ -31,6 +31,8 @@ fn a_resume_after_a_kill_mid_checkpoint_removes_the_temporary_and_cuts_back_the_
     std::fs::rename(&last, checkpoints.join(format!("{}.tmp", names[3]))).unwrap();
     std::fs::remove_file(out.join("final.ckpt")).unwrap();
     std::fs::write(out.join("final.ckpt.tmp"), b"half a checkpoint").unwrap();
+    std::fs::create_dir_all(out.join("frames")).unwrap();
+    std::fs::write(out.join("frames/frame-000003.png.tmp"), b"half a picture").unwrap();
     let segments = std::fs::read_to_string(out.join("segments.csv")).unwrap();
     std::fs::write(out.join("segments.csv"), segments.replace(",completed,", ",running,")).unwrap();
     let summary: serde_json::Value =
@@ -44,6 +46,7 @@ fn a_resume_after_a_kill_mid_checkpoint_removes_the_temporary_and_cuts_back_the_
     let mut left: Vec<String> = std::fs::read_dir(&checkpoints)
         .unwrap()
         .chain(std::fs::read_dir(&out).unwrap())
+        .chain(std::fs::read_dir(out.join("frames")).unwrap())
         .map(|e| e.unwrap().file_name().into_string().unwrap())
         .filter(|name| name.ends_with(".tmp"))
         .collect();
