@@ -70,7 +70,8 @@ enum Command {
     Snapshot {
         /// A run directory (its final.ckpt is drawn) or a checkpoint file.
         run: PathBuf,
-        /// The picture [default: <run dir>/snapshot.png].
+        /// The picture [default: <run dir>/snapshot.png; for a checkpoint file, <run dir>/snapshot-<its name>.png
+        /// where it belongs to a run directory, else <its name>.png beside it].
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Picture width in pixels.
@@ -876,7 +877,15 @@ fn snapshot(
     let ResumePoint { path: checkpoint, world } =
         gc2d_cli::resume::load_newest_state(run, "draw").map_err(CommandFailure::input)?;
     let output = output.unwrap_or_else(|| {
-        if run.is_dir() { run.join("snapshot.png") } else { checkpoint.with_file_name("snapshot.png") }
+        if run.is_dir() {
+            return run.join("snapshot.png");
+        }
+        // Each checkpoint its own picture, so that drawing several keeps every one.
+        let stem = checkpoint.file_stem().unwrap_or_default().to_string_lossy();
+        match gc2d_cli::resume::run_directory_of(&checkpoint) {
+            Some(run_dir) => run_dir.join(format!("snapshot-{stem}.png")),
+            None => checkpoint.with_file_name(format!("{stem}.png")),
+        }
     });
     // A run directory's scene may name the region its pictures show (`view`), as the frames of `--png-every` do.
     let scene = if run.is_dir() { Scene::from_path(run.join(SCENE_COPY)).ok() } else { None };

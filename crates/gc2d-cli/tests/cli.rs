@@ -330,6 +330,22 @@ fn a_damaged_final_checkpoint_leaves_the_periodic_ones_to_resume_and_draw() {
 }
 
 #[test]
+fn a_snapshot_of_a_checkpoint_is_named_after_it() {
+    // QA R13 b: every checkpoint was drawn into the same checkpoints/snapshot.png, each overwriting the one before.
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.025", "--checkpoint-every", "0.01", "--out"]).arg(out.path()).assert().success();
+    let checkpoint = &periodic_checkpoints(out.path())[0];
+    let stem = checkpoint.file_stem().unwrap().to_str().unwrap();
+    gc2d().arg("snapshot").arg(checkpoint).assert().success();
+    assert!(out.path().join(format!("snapshot-{stem}.png")).is_file());
+    let elsewhere = tempfile::tempdir().unwrap();
+    let copy = elsewhere.path().join("settled.ckpt");
+    std::fs::copy(checkpoint, &copy).unwrap();
+    gc2d().arg("snapshot").arg(&copy).assert().success();
+    assert!(elsewhere.path().join("settled.png").is_file());
+}
+
+#[test]
 fn resuming_a_run_directory_continues_from_its_newest_checkpoint() {
     // A run to 0.025 s (final.ckpt at 0.025), resumed to 0.045 s with checkpoints at 0.02 and 0.04 s and then
     // "killed": its final.ckpt is the stale one of the first part. `--resume DIR` without --out must pick the 0.04 s

@@ -16,14 +16,14 @@ use std::fmt::Write as _;
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
-/// The formats `export` writes.
+/// The formats `export` and the dumps of `run --dump-every` write.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum ExportFormat {
-    /// `particles.parquet` and `contacts.parquet`.
+    /// Apache Parquet tables (export: particles.parquet and contacts.parquet; dumps: particles_<k>.parquet).
     Parquet,
-    /// `particles.csv` and `contacts.csv`.
+    /// CSV tables (export: particles.csv and contacts.csv; dumps: particles_<k>.csv).
     Csv,
-    /// `particles_<step>.vtu` and `particles.pvd`.
+    /// VTK outlines for ParaView, with particles.pvd (export: particles_<step>.vtu; dumps: particles_<k>.vtu).
     Vtk,
 }
 
