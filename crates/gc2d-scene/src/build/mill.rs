@@ -7,7 +7,7 @@
 use super::PlannedParticle;
 use super::shapes::{particle_recipe, polygon_error};
 use super::walls::PlacedWall;
-use crate::checks::{finite, finite_pair, non_negative, number, positive};
+use crate::checks::{finite, finite_pair, non_negative, number, positive, significant_digits};
 use crate::error::SceneError;
 use crate::schema::{BallPlacement, Chamber, MassModel, Mill};
 use crate::spans::field_path;
@@ -34,6 +34,9 @@ const BED_GAP: f64 = 0.01;
 const MAX_CENTRE_OFFSET_RADII: f64 = 1e6;
 /// Samples of one wave when the wavy wall's curvature is checked.
 const CURVATURE_SAMPLES_PER_LOBE: usize = 4096;
+/// Two blades whose angles agree modulo 2π to within this share of a blade's angular width at its tip
+/// (`blade_width_m / tip_radius_m`) are one blade given twice: their tips lie less than this share of the width apart.
+const SAME_ARM_WIDTH_SHARE: f64 = 0.01;
 
 /// The speed of the blade tips at the rotor's full speed, m/s.
 pub(crate) fn tip_speed(mill: &Mill) -> f64 {
@@ -110,6 +113,7 @@ pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
     for (k, &arm) in mill.rotor.arms_rad.iter().enumerate() {
         finite(&format!("{}[{k}]", rotor("arms_rad")), arm)?;
     }
+    check_arms_distinct(mill, &rotor("arms_rad"))?;
     positive(&balls("radius_m"), mill.balls.radius_m)?;
     if let Some(speed) = mill.balls.speed_m_s {
         non_negative(&balls("speed_m_s"), speed)?;
@@ -131,6 +135,40 @@ pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
     check_chamber(mill, &at("chamber"))?;
     if let Some(ore) = &mill.ore {
         particle_recipe(&ore.shape, &field_path(&at("ore"), "shape"))?;
+    }
+    Ok(())
+}
+
+/// Refuses two blades whose angles agree modulo 2π to within [`SAME_ARM_WIDTH_SHARE`] of a blade's angular width: 2π
+/// written as 6.2831853 is the same blade as 0, and a particle touching one touches both, at twice the stiffness.
+fn check_arms_distinct(mill: &Mill, path: &str) -> Result<(), SceneError> {
+    let arms = &mill.rotor.arms_rad;
+    let angular_width = mill.rotor.blade_width_m / mill.rotor.tip_radius_m;
+    let tolerance = SAME_ARM_WIDTH_SHARE * angular_width;
+    for (k, &arm) in arms.iter().enumerate() {
+        for (j, &earlier) in arms[..k].iter().enumerate() {
+            let turn = (arm - earlier).rem_euclid(TAU);
+            let apart = turn.min(TAU - turn);
+            if apart <= tolerance {
+                return Err(SceneError::value(
+                    format!("{path}[{k}]"),
+                    format!(
+                        "{}: this blade (`{path}[{k}]`) points {} rad from `{path}[{j}]` ({}) modulo 2π, within {} rad \
+                         ({} % of a blade's angular width, blade_width_m / tip_radius_m = {} rad): the two are one \
+                         blade given twice, and a particle touching one touches both and feels twice the contact \
+                         stiffness and damping",
+                        number(arm),
+                        significant_digits(apart, 2),
+                        number(earlier),
+                        significant_digits(tolerance, 2),
+                        number(100.0 * SAME_ARM_WIDTH_SHARE),
+                        significant_digits(angular_width, 3)
+                    ),
+                )
+                .with_help("give each blade's angle once (angles a whole turn, 2π, apart are the same blade)")
+                .with_label("the same blade again"));
+            }
+        }
     }
     Ok(())
 }
