@@ -498,3 +498,26 @@ fn a_blade_given_twice_modulo_a_turn_is_refused_naming_both() {
     }
     assert!(Scene::from_str(&scene("0.0, 0.0175"), "arms.ron").unwrap().build().is_ok());
 }
+
+/// A mill left on the default per-unit-thickness masses with its Hertz law passed `check` without a word and blew up
+/// at the first blade hit, advising a stiffer material: the law's force is a sphere's while the masses are per metre
+/// of depth. Warned about at the law's entry, naming `mass_model` and the pair.
+#[test]
+fn a_penetration_law_with_masses_per_unit_thickness_is_warned_about() {
+    let text =
+        std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/mill.ron")).unwrap();
+    assert!(Scene::from_str(&text, "mill.ron").unwrap().warnings().is_empty());
+    let flat = text.replace("    mass_model: SphereEquivalent,\n", "").replace("density_kg_m3", "density_kg_m2");
+    assert_ne!(flat, text);
+    let warnings = Scene::from_str(&flat, "mill_2d.ron").unwrap().warnings();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    let warning = &warnings[0];
+    assert!(warning.starts_with("mill_2d.ron:") && warning.contains(": interactions[0].law: "), "{warning}");
+    assert!(warning.contains("the Hertz law of `steel`–`steel`"), "{warning}");
+    assert!(warning.contains("`mass_model` is `PerUnitThickness`"), "{warning}");
+    assert!(warning.contains("set `mass_model: SphereEquivalent`"), "{warning}");
+    // The overlap-area law is the one made for masses per unit thickness.
+    let area = flat.replace("law: Hertz(damping: SteelReichardt, friction: (mu: 0.2))", "law: OverlapArea()");
+    assert_ne!(area, flat);
+    assert!(Scene::from_str(&area, "mill_area.ron").unwrap().warnings().is_empty());
+}

@@ -3,7 +3,7 @@
 //! rules").
 
 use crate::error::SceneError;
-use crate::schema::{Damping, Friction, FrictionStiffness, InteractionLaw, Material, Rolling, Scene};
+use crate::schema::{Damping, Friction, FrictionStiffness, InteractionLaw, MassModel, Material, Rolling, Scene};
 use crate::validate::{Materials, overlap_area_law};
 use gc2d_contact::penetration::{effective_modulus, effective_shear_modulus};
 use gc2d_contact::{
@@ -35,6 +35,23 @@ fn listed_entry<'a>(scene: &'a Scene, a: &str, b: &str) -> Option<&'a crate::sch
         let [x, y] = [entry.materials[0].as_str(), entry.materials[1].as_str()];
         (x == a && y == b) || (x == b && y == a)
     })
+}
+
+/// The `interactions` entries that give a penetration law (`Linear`, `Hertz`) in a scene whose masses are per unit
+/// thickness: each entry's index and its law's name. Those laws are made for spheres moving in a plane (a force in N
+/// against a sphere's mass), so with masses per metre of depth an impact overlaps far deeper than the law's time-step
+/// bound and the overlap limit expect (docs/model.md, "Mass models"). Empty for a sphere-equivalent scene.
+pub(crate) fn penetration_laws_per_unit_thickness(scene: &Scene) -> Vec<(usize, &'static str)> {
+    if scene.mass_model != MassModel::PerUnitThickness {
+        return Vec::new();
+    }
+    let laws = scene.interactions.iter().enumerate();
+    laws.filter_map(|(i, entry)| match entry.law {
+        InteractionLaw::OverlapArea { .. } => None,
+        InteractionLaw::Linear { .. } => Some((i, "Linear")),
+        InteractionLaw::Hertz { .. } => Some((i, "Hertz")),
+    })
+    .collect()
 }
 
 /// The pairs of materials that can meet in the scene (two materials of its particles, or one of its particles' and one

@@ -136,7 +136,9 @@ impl Scene {
     /// - an outlet wholly outside `run.domain`: the domain removes the particles first, so it counts none;
     /// - a source or inlet with no insertion due before the run's end (an empty window, or one after the end);
     /// - a pair of materials the scene uses without an `interactions` entry where the entries give penetration laws:
-    ///   it falls back to the overlap-area law.
+    ///   it falls back to the overlap-area law;
+    /// - an `interactions` entry with a penetration law (`Linear`, `Hertz`) in a scene whose masses are per unit
+    ///   thickness: those laws are made for sphere-equivalent masses.
     ///
     /// Empty for a scene without such entries, or one that does not build (its errors say why).
     pub fn warnings(&self) -> Vec<String> {
@@ -175,6 +177,18 @@ impl Scene {
                 "{}: the pair `{a}`–`{b}` has no entry, so it takes the overlap-area law mixed from the two materials, \
                  unlike the penetration laws the entries give: add an entry for it if it should have one of those",
                 self.located_field("interactions")
+            ));
+        }
+        for (i, law) in interactions::penetration_laws_per_unit_thickness(self) {
+            let [a, b] = &self.interactions[i].materials;
+            warnings.push(format!(
+                "{}: the {law} law of `{a}`–`{b}` meets masses per unit thickness (`mass_model` is `PerUnitThickness`, \
+                 the default): a penetration law's force is that of a sphere, in N, while these masses are per metre \
+                 of depth, hundreds of times a small ball's, so an impact overlaps far deeper than the law's time \
+                 step and the overlap limit expect, and a run may stop at its first hard impact (\"blew up\", \
+                 \"stiffen it\") though the material is stiff enough: set `mass_model: SphereEquivalent`, with the \
+                 materials' `density_kg_m3`",
+                self.located_field(&format!("interactions[{i}].law"))
             ));
         }
         for field in feed_lines::outlets_outside_domain(self) {
