@@ -521,3 +521,39 @@ fn a_penetration_law_with_masses_per_unit_thickness_is_warned_about() {
     assert_ne!(area, flat);
     assert!(Scene::from_str(&area, "mill_area.ron").unwrap().warnings().is_empty());
 }
+
+/// The mill's messages printed computed numbers with every digit (0.014999999999999993 m, 1.3698630136986302e7) and
+/// a value of 1e300 as 301 digits, and one had a run of stray spaces: numbers read as a scene writes them, derived
+/// ones to 4 significant digits.
+#[test]
+fn mill_messages_write_numbers_short() {
+    let scene = |mill: &str| {
+        format!(
+            "Scene(mass_model: SphereEquivalent, materials: [(name: \"steel\", density_kg_m3: 7850)],
+             mill: (chamber_radius_m: 0.073, rotor: (rpm: 1700, hub_radius_m: 0.008, tip_radius_m: 0.058), {mill}))"
+        )
+    };
+    let message = |mill: &str| {
+        Scene::from_str(&scene(mill), "short.ron").and_then(|s| s.build().map(drop)).unwrap_err().message().to_owned()
+    };
+    let cases = [
+        ("centre_m: (1e6, 0), balls: (count: 10)", "(1000000, 0): the mill's centre lies 1.37e7 chamber radii"),
+        ("centre_m: (1e6, 0), balls: (count: 10)", "beyond the 1000000 at which coordinates keep"),
+        (
+            "balls: (count: 10, radius_m: 0.08)",
+            "0.08: a ball must fit between the blade tips and the chamber (0.015 m)",
+        ),
+        (
+            "balls: (count: 10, radius_m: 1e300)",
+            "1e300: a ball must fit between the blade tips and the chamber (0.015 m)",
+        ),
+        ("chamber: Ramps(tilt_rad: 0.5, height_m: 0.02), balls: (count: 10)", "stays within 0.008936 m of it"),
+        ("chamber: Wavy(amplitude_m: 0.02), balls: (count: 10)", "R − A = 0.053 m must exceed"),
+        ("chamber: Wavy(amplitude_m: 0.001, lobes: 500, segments: 10000), balls: (count: 10)", "radius of 2.19e-5 m"),
+    ];
+    for (mill, expected) in cases {
+        let message = message(mill);
+        assert!(message.contains(expected), "{mill}: {message}");
+        assert!(!message.contains("  ") && !message.contains("99999") && !message.contains("0000000000"), "{message}");
+    }
+}

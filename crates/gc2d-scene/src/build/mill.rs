@@ -38,6 +38,12 @@ const CURVATURE_SAMPLES_PER_LOBE: usize = 4096;
 /// (`blade_width_m / tip_radius_m`) are one blade given twice: their tips lie less than this share of the width apart.
 const SAME_ARM_WIDTH_SHARE: f64 = 0.01;
 
+/// A number the checks computed (a gap, a bound, a ratio), rounded for a message to 4 significant digits: 0.015 m, not
+/// 0.014999999999999993 m.
+fn derived(x: f64) -> String {
+    significant_digits(x, 4)
+}
+
 /// The speed of the blade tips at the rotor's full speed, m/s.
 pub(crate) fn tip_speed(mill: &Mill) -> f64 {
     (mill.rotor.rpm * TAU / 60.0 * mill.rotor.tip_radius_m).abs()
@@ -76,10 +82,11 @@ pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
         return Err(SceneError::value(
             at("centre_m"),
             format!(
-                "({}, {}): the mill's centre lies {} chamber radii from the origin, beyond the {} at which                  coordinates keep enough digits for its contacts",
+                "({}, {}): the mill's centre lies {} chamber radii from the origin, beyond the {} at which \
+                 coordinates keep enough digits for its contacts",
                 number(mill.centre_m[0]),
                 number(mill.centre_m[1]),
-                number(offset / mill.chamber_radius_m),
+                derived(offset / mill.chamber_radius_m),
                 number(MAX_CENTRE_OFFSET_RADII)
             ),
         )
@@ -93,7 +100,7 @@ pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
     if !(tip.is_finite() && tip > mill.rotor.hub_radius_m && tip < mill.chamber_radius_m) {
         return Err(SceneError::value(
             rotor("tip_radius_m"),
-            format!("{tip}: the blade tips must reach beyond the hub and stay inside the chamber"),
+            format!("{}: the blade tips must reach beyond the hub and stay inside the chamber", number(tip)),
         ));
     }
     // An arm is a capsule from the hub's centre whose round end reaches the tip: it needs a straight part, and one of
@@ -127,8 +134,8 @@ pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
             balls("radius_m"),
             format!(
                 "{}: a ball must fit between the blade tips and the chamber ({} m)",
-                mill.balls.radius_m,
-                mill.chamber_radius_m - tip
+                number(mill.balls.radius_m),
+                derived(mill.chamber_radius_m - tip)
             ),
         ));
     }
@@ -198,7 +205,7 @@ fn check_chamber(mill: &Mill, path: &str) -> Result<(), SceneError> {
                         number(height_m),
                         number(tilt_rad),
                         number(radius),
-                        number(deepest)
+                        derived(deepest)
                     ),
                 )
                 .with_help("use a lower ramp or a steeper tilt"));
@@ -209,7 +216,7 @@ fn check_chamber(mill: &Mill, path: &str) -> Result<(), SceneError> {
                     format!(
                         "{}: a ball must fit between the blade tips and a ramp's crest (at most {} m high)",
                         number(height_m),
-                        number(radius - free)
+                        derived(radius - free)
                     ),
                 ));
             }
@@ -234,8 +241,8 @@ fn check_chamber(mill: &Mill, path: &str) -> Result<(), SceneError> {
                         "{}: the wall's smallest radius R − A = {} m must exceed the blade tips plus a ball diameter \
                          ({} m)",
                         number(amplitude_m),
-                        number(radius - amplitude_m),
-                        number(free)
+                        derived(radius - amplitude_m),
+                        derived(free)
                     ),
                 ));
             }
@@ -246,7 +253,7 @@ fn check_chamber(mill: &Mill, path: &str) -> Result<(), SceneError> {
                     format!(
                         "{}: the wall's tightest bend has a radius of {} m, not more than the ball radius {} m",
                         number(amplitude_m),
-                        number(1.0 / curvature),
+                        derived(1.0 / curvature),
                         number(ball)
                     ),
                 )
@@ -261,7 +268,7 @@ fn check_chamber(mill: &Mill, path: &str) -> Result<(), SceneError> {
                     at("segments"),
                     format!(
                         "{segments} segments: the pieces are up to {} m long, longer than the ball radius ({} m)",
-                        number(longest),
+                        derived(longest),
                         number(limit)
                     ),
                 )
@@ -546,9 +553,11 @@ fn random_balls(
         return Err(SceneError::value(
             field_path(path, "count"),
             format!(
-                "{} balls of radius {r} m cannot fit in a chamber of radius {chamber} m: packed as densely as disks \
-                 can be, it would hold at most {}",
+                "{} balls of radius {} m cannot fit in a chamber of radius {} m: packed as densely as disks can be, it \
+                 would hold at most {}",
                 balls.count,
+                number(r),
+                number(chamber),
                 most.floor()
             ),
         )
