@@ -557,3 +557,20 @@ fn mill_messages_write_numbers_short() {
         assert!(!message.contains("  ") && !message.contains("99999") && !message.contains("0000000000"), "{message}");
     }
 }
+
+/// For a penetration law (every mill) `max_overlap_fraction` is the depth over the smaller diameter (docs/model.md),
+/// but the docs of the time series and of the run's limit called it a fraction of the area, 19 times larger than the
+/// area share of a Hertz impact.
+#[test]
+fn the_docs_call_a_penetration_contacts_overlap_fraction_a_share_of_the_diameter() {
+    let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs");
+    for (file, row) in
+        [("outputs.md", "| `max_overlap_fraction` | – |"), ("scene-format.md", "| `max_overlap_fraction` | – | 0.05 |")]
+    {
+        let text = std::fs::read_to_string(docs.join(file)).unwrap();
+        let line = text.lines().find(|line| line.starts_with(row)).unwrap_or_else(|| panic!("{file}: no {row}"));
+        assert!(line.contains("depth as a fraction of the smaller particle's diameter"), "{file}: {line}");
+    }
+    let validation = std::fs::read_to_string(docs.join("validation.md")).unwrap();
+    assert!(!validation.contains("share of the smaller area"), "validation.md");
+}

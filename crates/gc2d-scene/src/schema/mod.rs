@@ -120,8 +120,10 @@ pub struct Run {
     /// Run even if Δt is above the stable bound (for experiments on instability). Default false.
     #[serde(default)]
     pub allow_unsafe_time_step: bool,
-    /// Largest overlap allowed during the run, as a fraction of the smaller particle's area. Default 0.05. (At the start
-    /// no overlap beyond round-off is allowed: docs/scene-format.md, "Checks and errors".)
+    /// Largest overlap allowed during the run: for the overlap-area law its area as a fraction of the smaller
+    /// particle's area, for a penetration law (`Linear`, `Hertz`) its depth as a fraction of the smaller particle's
+    /// diameter. Default 0.05. (At the start no overlap beyond round-off is allowed: docs/scene-format.md, "Checks and
+    /// errors".)
     #[serde(default = "defaults::max_overlap_fraction")]
     pub max_overlap_fraction: f64,
     /// Largest unexplained energy gain, as a fraction of the run's energy scale, before the run stops. Default 1.0 (the engine's).
