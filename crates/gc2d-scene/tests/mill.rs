@@ -61,6 +61,10 @@ fn mill_errors_name_the_field() {
     let error = |text: String| Scene::from_str(&text, "bad.ron").and_then(|s| s.build().map(drop)).unwrap_err();
     let e = error(scene("rpm: 1000, tip_radius_m: 0.08", "count: 10"));
     assert_eq!((e.kind(), e.path()), (ErrorKind::Value, "mill.rotor.tip_radius_m"), "{}", e.render_plain());
+    // A hub larger than the chamber was reported at the tip radius, which lay inside the chamber.
+    let e = error(scene("rpm: 1000, hub_radius_m: 0.08", "count: 10"));
+    assert_eq!((e.kind(), e.path()), (ErrorKind::Value, "mill.rotor.hub_radius_m"), "{}", e.render_plain());
+    assert!(e.message().contains("0.08: the hub must lie inside the chamber (radius 0.073 m)"), "{}", e.message());
     // A blade as wide as twice its tip radius leaves its capsule no straight part: it panicked the engine, and at
     // exactly twice the two arms became one disk, reported as an arm given twice.
     for (tip, width, twice) in

@@ -96,6 +96,16 @@ pub(crate) fn check(mill: &Mill, path: &str) -> Result<(), SceneError> {
     non_negative(&rotor("spin_up_s"), mill.rotor.spin_up_s)?;
     positive(&rotor("hub_radius_m"), mill.rotor.hub_radius_m)?;
     positive(&rotor("blade_width_m"), mill.rotor.blade_width_m)?;
+    if mill.rotor.hub_radius_m >= mill.chamber_radius_m {
+        return Err(SceneError::value(
+            rotor("hub_radius_m"),
+            format!(
+                "{}: the hub must lie inside the chamber (radius {} m)",
+                number(mill.rotor.hub_radius_m),
+                number(mill.chamber_radius_m)
+            ),
+        ));
+    }
     let tip = mill.rotor.tip_radius_m;
     if !(tip.is_finite() && tip > mill.rotor.hub_radius_m && tip < mill.chamber_radius_m) {
         return Err(SceneError::value(
