@@ -232,3 +232,18 @@ fn inlet_and_source_windows_that_feed_nothing_or_start_before_the_run_are_told()
     let warnings = late_source.warnings();
     assert!(warnings.iter().any(|w| w.contains("sources[0].window_s: no insertion is due")), "{warnings:?}");
 }
+
+/// An outlet written the wrong way round (the domain on its outer side) removed nothing without a word: every inlet
+/// lies behind it, so the particles fed cross it inward. Warned about at its `from_m`.
+#[test]
+fn an_outlet_that_every_inlet_lies_behind_is_warned_about() {
+    let good = scene_text(GOOD);
+    let reversed = good.replace("from_m: (0.05, 0.3), to_m: (-0.05, 0.3)", "from_m: (-0.05, 0.3), to_m: (0.05, 0.3)");
+    assert_ne!(reversed, good);
+    let warnings = Scene::from_str(&reversed, "reversed.ron").unwrap().warnings();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(warnings[0].starts_with("reversed.ron:"), "{warnings:?}");
+    assert!(warnings[0].contains(": outlets[0].from_m: every inlet lies on the outlet's outer side"), "{warnings:?}");
+    assert!(warnings[0].contains("swap `from_m` and `to_m`"), "{warnings:?}");
+    assert!(Scene::from_str(&good, "good.ron").unwrap().warnings().is_empty());
+}

@@ -140,6 +140,30 @@ pub(crate) fn outlets_outside_domain(scene: &Scene) -> Vec<String> {
         .collect()
 }
 
+/// The outlets of `scene` that every inlet lies behind: each inlet's middle is strictly on the outlet's outer side
+/// (its right, from `from_m` to `to_m`; the domain is on the left), so the particles fed reach the outlet crossing
+/// inward and it removes none: almost always `from_m` and `to_m` swapped. Their fields (`outlets[0].from_m`), in
+/// scene order; none in a scene without inlets.
+pub(crate) fn reversed_outlets(scene: &Scene) -> Vec<String> {
+    if scene.inlets.is_empty() {
+        return Vec::new();
+    }
+    let behind = |from: DVec2, to: DVec2, point: DVec2| (to - from).perp().dot(point - from) < 0.0;
+    scene
+        .outlets
+        .iter()
+        .enumerate()
+        .filter(|(_, outlet)| {
+            let (from, to) = (DVec2::from_array(outlet.from_m), DVec2::from_array(outlet.to_m));
+            scene.inlets.iter().all(|inlet| {
+                let middle = DVec2::from_array(inlet.from_m).lerp(DVec2::from_array(inlet.to_m), 0.5);
+                behind(from, to, middle)
+            })
+        })
+        .map(|(i, _)| field_path(&format!("outlets[{i}]"), "from_m"))
+        .collect()
+}
+
 /// A line's size for the depth tolerance: its length, or the distance of its ends from the origin where that is more.
 fn line_size(from: DVec2, to: DVec2) -> f64 {
     from.distance(to).max(from.abs().max_element()).max(to.abs().max_element())

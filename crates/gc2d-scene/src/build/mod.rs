@@ -134,6 +134,8 @@ impl Scene {
     /// - a source's drop line or an inlet's segment that lies partly inside a wall that does not move or outside
     ///   `run.domain`: it feeds only on the rest (one wholly there is refused by [`Scene::build`]);
     /// - an outlet wholly outside `run.domain`: the domain removes the particles first, so it counts none;
+    /// - an outlet that every inlet lies behind (on its outer side): the particles fed cross it inward, and it
+    ///   removes none;
     /// - a source or inlet with no insertion due before the run's end (an empty window, or one after the end);
     /// - a pair of materials the scene uses without an `interactions` entry where the entries give penetration laws:
     ///   it falls back to the overlap-area law;
@@ -189,6 +191,14 @@ impl Scene {
                  \"stiffen it\") though the material is stiff enough: set `mass_model: SphereEquivalent`, with the \
                  materials' `density_kg_m3`",
                 self.located_field(&format!("interactions[{i}].law"))
+            ));
+        }
+        for field in feed_lines::reversed_outlets(self) {
+            warnings.push(format!(
+                "{}: every inlet lies on the outlet's outer side (right of the way from `from_m` to `to_m`; the domain \
+                 is on its left), so the particles fed reach it crossing inward and it removes none: swap `from_m` \
+                 and `to_m` if they should leave there",
+                self.located_field(&field)
             ));
         }
         for field in feed_lines::outlets_outside_domain(self) {
