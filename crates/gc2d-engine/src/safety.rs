@@ -13,8 +13,9 @@ use thiserror::Error;
 /// Limits of the run-time blow-up checks.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SafetyLimits {
-    /// Largest overlap area allowed, as a fraction of the smaller particle's area. Settled piles at the thesis's
-    /// parameters stay below 1e-3; an overlap of 5 % means a particle has tunnelled into another.
+    /// Largest overlap allowed: for the overlap-area law the overlap area as a fraction of the smaller particle's
+    /// area, for penetration laws the depth as a fraction of the smaller particle's diameter. Settled piles at the
+    /// thesis's parameters stay below 1e-3; an overlap of 5 % means a particle has tunnelled into another.
     pub max_overlap_fraction: f64,
     /// Largest unexplained energy gain allowed, as a fraction of the energy scale of the run (see
     /// [`crate::ledger::EnergyLedger::energy_scale`]). The ledger books damping at the end-of-step force, so its error
@@ -96,7 +97,7 @@ pub enum SafetyError {
     /// too large), or an impact pressed them together deeper than their contact allows (it is too soft).
     #[error(
         "the simulation blew up at t = {time:.6} s (step {step}): bodies {a} and {b} overlap by {percent:.1} % of the \
-         smaller particle's area (limit {limit_percent:.1} %); {}",
+         smaller particle's {measure} (limit {limit_percent:.1} %); {}",
         overlap_advice(*.approach_per_step, *.approach_speed_m_s, *.suggested_dt)
     )]
     ExcessiveOverlap {
@@ -108,8 +109,11 @@ pub enum SafetyError {
         a: u32,
         /// Second body.
         b: u32,
-        /// Overlap in percent of the smaller area.
+        /// Overlap in percent of the smaller particle's `measure`.
         percent: f64,
+        /// What the overlap is measured against: `area` (the overlap area, for the overlap-area law) or `diameter (the
+        /// depth)` (the penetration depth, for penetration laws such as Hertz), as `run.max_overlap_fraction` is.
+        measure: &'static str,
         /// The limit in percent.
         limit_percent: f64,
         /// How fast the bodies move relative to each other along the contact normal (closing, or thrown apart by

@@ -116,7 +116,8 @@ pub struct StepStats {
     pub box_pairs: usize,
     /// Pairs whose polygons overlap.
     pub contacts: usize,
-    /// Largest overlap area this step as a fraction of the smaller particle's area.
+    /// Largest overlap this step: the area as a fraction of the smaller particle's area (overlap-area law), the depth
+    /// as a fraction of its diameter (penetration laws).
     pub max_overlap_fraction: f64,
     /// Closest-feature queries this step that needed more than one pass.
     pub multi_pass_queries: usize,
@@ -1512,12 +1513,17 @@ impl World {
                 .max_by(|x, y| x.3.total_cmp(&y.3))
         {
             let (approach_speed_m_s, depth) = self.approach_and_depth(a, bb, c);
+            let measure = match c.state {
+                ContactHistory::OverlapArea(_) => "area",
+                ContactHistory::Penetration(_) => "diameter (the depth)",
+            };
             return Err(SafetyError::ExcessiveOverlap {
                 time: self.time,
                 step: self.steps,
                 a: a.0,
                 b: bb.0,
                 percent: 100.0 * overlap_fraction,
+                measure,
                 limit_percent: 100.0 * limits.max_overlap_fraction,
                 approach_speed_m_s,
                 approach_per_step: approach_speed_m_s * self.config.time_step / depth,

@@ -207,3 +207,24 @@ fn a_sliding_disk_starts_to_roll_at_the_analytic_speed_and_time() {
         assert!(time_error < 0.01, "{mass_model:?}: rolls after {} s, expected {expected_time} s", world.time());
     }
 }
+
+#[test]
+fn an_overlap_too_deep_for_a_penetration_law_is_measured_by_the_diameter() {
+    // QA P2-11: the stop message called a penetration law's depth over the smaller diameter a share of the area.
+    // Two steel disks at 1 m/s under a Hertz law a million times too soft press into each other far beyond 5 %.
+    let law = PenetrationLaw::elastic(NormalSpring::Hertz { effective_modulus_pa: 1e-6 * steel_effective_modulus() });
+    let mut world = sphere_world(law, 1e-7, 0.0);
+    let (radius, gap) = (HEAD_ON_RADIUS, 1e-8);
+    add_disk(&mut world, radius, DVec2::new(-radius - gap, 0.0), DVec2::new(0.5, 0.0));
+    add_disk(&mut world, radius, DVec2::new(radius + gap, 0.0), DVec2::new(-0.5, 0.0));
+    let error = world.run_until(1.0).expect_err("the overlap must stop the run");
+    match &error {
+        gc2d_engine::WorldError::Safety(gc2d_engine::SafetyError::ExcessiveOverlap { measure, percent, .. }) => {
+            assert_eq!(*measure, "diameter (the depth)");
+            // The check runs after the step that crossed the 5 % limit.
+            assert!(*percent > 5.0 && *percent < 5.5, "{percent} % of the diameter");
+        }
+        other => panic!("expected ExcessiveOverlap, got {other:?}"),
+    }
+    assert!(error.to_string().contains("of the smaller particle's diameter (the depth)"), "{error}");
+}
