@@ -80,11 +80,11 @@ pub fn import_gsi(
     };
     let summary = Scene::from_str(&written, &output_name).and_then(|scene| scene.summary()).map_err(invalid)?;
     crate::console::err(&format!(
-        "Wrote {output_name}: {} walls, {} particles, {} sources, Δt = {:e} s{}.",
+        "Wrote {output_name}: {} walls, {} particles, {} sources, Δt = {} s{}.",
         summary.wall_bodies,
         summary.particles,
         summary.sources,
-        summary.time_step_s,
+        gc2d_scene::significant_digits(summary.time_step_s, 4),
         if summary.time_step_is_automatic { " (automatic)" } else { "" }
     ));
     Ok(output)
