@@ -1126,4 +1126,14 @@ mod tests {
         assert!(reaches_the_thesis_window(1.0000000000266958, 2e-7));
         assert!(!reaches_the_thesis_window(0.9999, 7.5e-7), "a run stopped short of 1 s");
     }
+
+    #[test]
+    fn the_bins_help_names_the_default_the_analysis_uses() {
+        // `--bins` is an Option, so that `analyze` can tell whether it was given, and its help writes the default.
+        let command = <Cli as clap::CommandFactory>::command();
+        let analyze = command.find_subcommand("analyze").unwrap();
+        let bins = analyze.get_arguments().find(|arg| arg.get_id() == "bins").unwrap();
+        let help = bins.get_help().unwrap().to_string();
+        assert!(help.contains(&format!("[default: {DEFAULT_BINS}]")), "{help}");
+    }
 }
