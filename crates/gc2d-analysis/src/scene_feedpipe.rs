@@ -6,7 +6,7 @@
 //! Profiles are binned across that section, whatever the particle's position along the pipe.
 //!
 //! **Window.** Averages start at the warm-up time: by default the first removal at an outlet (the pipe has filled);
-//! they end at the run's last row.
+//! they end at the run's last row. A removal or dump within half a time step of either end counts as inside.
 //!
 //! Outputs: per outlet the throughput over time (particles and kg per second, over a sliding window of
 //! [`RATE_WINDOW_ROWS`] time-series rows) and its mean in the window; the transit-time distribution of the particles
@@ -342,7 +342,10 @@ pub fn feedpipe_report(
             "the window starts at {start} s, after the run's end {end} s"
         )));
     }
-    let in_window = |t: f64| t >= start && t <= end;
+    // A removal or dump within half a step of an end of the window counts as at it: their times are sums of steps, a
+    // hair off the multiples of the frame interval (and the `--warm-up`) they stand for.
+    let slack = 0.5 * world.time_step();
+    let in_window = |t: f64| t >= start - slack && t <= end + slack;
     // Where the first removal opens the window, it marks the window's start and is not one of its counts: N removals
     // at and after it span N − 1 intervals, and N/T overestimated the rate of a short window.
     let counted = |t: f64| in_window(t) && (options.warm_up_s.is_some() || t > start);

@@ -147,7 +147,8 @@ pub struct MillPower {
 /// How the window's start was chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct WarmUp {
-    /// The start of the window used, s.
+    /// The start of the window used, s: the start given or cut, or the first time-series row after it where it falls
+    /// between two rows (more than [`WarmUp::tolerance_s`] before that row).
     pub start_s: f64,
     /// True when the user gave it (`--warm-up`), false when it is the automatic cut.
     pub given: bool,
@@ -157,6 +158,9 @@ pub struct WarmUp {
     /// The median-speed series the cut and the autocorrelation use: `dumps` (balls' median |v| per dump) or
     /// `timeseries` (all particles', per time-series row, when the run has fewer than 8 dumps).
     pub series: &'static str,
+    /// Half the run's time step, s: a row, dump or event this close to the start counts as at it (their times are
+    /// sums of steps, a hair off the multiples of the frame interval they stand for).
+    pub tolerance_s: f64,
 }
 
 /// The balls' speeds over the window's dumps.
@@ -389,6 +393,14 @@ fn read_dumps(run_dir: &Path, end: f64, slack: f64, balls: &BallIds) -> Result<V
     Ok(dumps)
 }
 
+/// `t` with as many decimals as resolve `tolerance` (a tenth of it), trailing zeros cut: a row's time without the
+/// round-off tail of its sum of steps (0.038 for 0.03799999999988285 with a half step of 3.5e-6).
+fn to_tolerance(t: f64, tolerance: f64) -> String {
+    let decimals = (-(0.1 * tolerance).log10()).ceil().clamp(0.0, 17.0) as usize;
+    let text = format!("{t:.decimals$}");
+    if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').to_string() } else { text }
+}
+
 /// Computes the mill statistics of the run in `run_dir` without writing anything (what `gc2d-rs run` prints at its
 /// end and [`analyze_mill`] writes).
 pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, AnalysisError> {
@@ -430,14 +442,35 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let (times, medians): (Vec<f64>, Vec<f64>) = median_series.iter().copied().unzip();
     let automatic = warm_up_cut(&times, &medians);
     // A series too short for the test is not cut.
-    let start = options.warm_up_s.unwrap_or(automatic.map_or(0.0, |cut| cut.cut_s));
-    if !(start.is_finite() && start >= 0.0 && start < end) {
+    let asked = options.warm_up_s.unwrap_or(automatic.map_or(0.0, |cut| cut.cut_s));
+    if !(asked.is_finite() && asked >= 0.0 && asked < end) {
         return Err(AnalysisError::InvalidParameter(format!(
-            "the warm-up {start} s must lie between 0 and the run's end, {end} s"
+            "the warm-up {asked} s must lie between 0 and the run's end, {end} s"
         )));
     }
+    // The rows, dumps and events of the window: those at or after its start, where a time within half a step of the
+    // start counts as at it (a row's time is a sum of steps, a hair off its frame's multiple).
+    let row_times: Vec<f64> = series.rows.iter().map(|r| number(&r[time])).collect();
+    let first_row = row_times.iter().position(|&t| t >= asked - slack).filter(|&k| k + 2 <= row_times.len());
+    let Some(first_row) = first_row else {
+        let last_two = match row_times.as_slice() {
+            [.., before, last] => {
+                let (before, last) = (to_tolerance(*before, slack), to_tolerance(*last, slack));
+                format!("; its last two rows are at {before} s and {last} s: give a warm-up at or before {before} s")
+            }
+            _ => String::new(),
+        };
+        return Err(AnalysisError::NotEnoughData(format!(
+            "timeseries.csv has fewer than two rows in the window from {asked} s{last_two}"
+        )));
+    };
+    // The window starts at its first row, the first time the power can be measured from: a start between two rows
+    // moves to the next row, so that every number of the report covers the window `window_s` names.
+    let start = if row_times[first_row] - asked > slack { row_times[first_row] } else { asked };
+    let in_window = |t: f64| t >= start - slack;
     let span = end - start;
-    let warm_up = WarmUp { start_s: start, given: options.warm_up_s.is_some(), automatic, series: source };
+    let warm_up =
+        WarmUp { start_s: start, given: options.warm_up_s.is_some(), automatic, series: source, tolerance_s: slack };
 
     // Collisions.
     let events = Table::read(&events_path)?;
@@ -461,7 +494,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
                 events_path.display()
             )));
         }
-        if began < start || ia.max(ib) >= bodies.len() {
+        if !in_window(began) || ia.max(ib) >= bodies.len() {
             continue;
         }
         let v = events.number(k, speed)?.max(0.0);
@@ -506,11 +539,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let blade_hits_per_revolution = if revolutions > 0.0 { blade_hits as f64 / revolutions } else { f64::NAN };
 
     // Power.
-    let window: Vec<&Vec<String>> = series.rows.iter().filter(|r| number(&r[time]) >= start).collect();
-    let (first, last) = match (window.first(), window.last()) {
-        (Some(first), Some(last)) if window.len() >= 2 => (first, last),
-        _ => return Err(AnalysisError::NotEnoughData("timeseries.csv has fewer than two rows in the window".into())),
-    };
+    let (first, last) = (&series.rows[first_row], &series.rows[series.rows.len() - 1]);
     let change = |columns: &[usize]| {
         columns.iter().map(|&c| number(&last[c]) - number(&first[c])).sum::<f64>()
             / (number(&last[time]) - number(&first[time]))
@@ -535,20 +564,20 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     };
 
     // The median-speed series over the window.
-    let in_window: Vec<f64> = median_series.iter().filter(|s| s.0 >= start).map(|s| s.1).collect();
-    let median_mean = in_window.iter().sum::<f64>() / in_window.len() as f64;
+    let window_medians: Vec<f64> = median_series.iter().filter(|s| in_window(s.0)).map(|s| s.1).collect();
+    let median_mean = window_medians.iter().sum::<f64>() / window_medians.len() as f64;
     let median_spread =
-        (in_window.iter().map(|m| (m - median_mean).powi(2)).sum::<f64>() / in_window.len() as f64).sqrt();
-    let window_times: Vec<f64> = median_series.iter().filter(|s| s.0 >= start).map(|s| s.0).collect();
+        (window_medians.iter().map(|m| (m - median_mean).powi(2)).sum::<f64>() / window_medians.len() as f64).sqrt();
+    let window_times: Vec<f64> = median_series.iter().filter(|s| in_window(s.0)).map(|s| s.0).collect();
     let interval = match window_times.len() {
         0 | 1 => f64::NAN,
         n => (window_times[n - 1] - window_times[0]) / (n - 1) as f64,
     };
     let rotor_period = if rotor_speed > 0.0 { std::f64::consts::TAU / rotor_speed } else { f64::INFINITY };
-    let autocorrelation = autocorrelation(&in_window, interval, rotor_period);
+    let autocorrelation = autocorrelation(&window_medians, interval, rotor_period);
 
     // Ball speeds and places from the window's dumps.
-    let window_dumps: Vec<&BallDump> = dumps.iter().filter(|d| d.time >= start).collect();
+    let window_dumps: Vec<&BallDump> = dumps.iter().filter(|d| in_window(d.time)).collect();
     let chamber = chamber_of(&world, &options.balls);
     let samples: Vec<(DVec2, f64)> = window_dumps.iter().flat_map(|d| d.balls.iter().copied()).collect();
     let ball_speeds = (!window_dumps.is_empty()).then(|| {
@@ -667,9 +696,9 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
     let labels = Labels { title: "Impact normal speed per class", x: "v_n (m/s)", y: "density (s/m)" };
     line_chart(&out.file("mill_impact_speeds.svg"), labels, &series)?;
 
-    let cut = report.warm_up.start_s;
+    let (cut, tolerance) = (report.warm_up.start_s, report.warm_up.tolerance_s);
     let median_rows: Vec<Vec<f64>> =
-        report.median_series.iter().map(|&(t, m)| vec![t, m, f64::from(u8::from(t >= cut))]).collect();
+        report.median_series.iter().map(|&(t, m)| vec![t, m, f64::from(u8::from(t >= cut - tolerance))]).collect();
     out.write_csv("mill_median_speed.csv", &["time_s", "median_speed_m_s", "in_window"], &median_rows)?;
     let (lo, hi) =
         report.median_series.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), s| (l.min(s.1), h.max(s.1)));
@@ -798,6 +827,13 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn row_times_are_written_to_the_tolerance_without_their_round_off_tail() {
+        assert_eq!(to_tolerance(0.03799999999988285, 3.5e-6), "0.038");
+        assert_eq!(to_tolerance(0.98999999, 5e-4), "0.99");
+        assert_eq!(to_tolerance(1.0, 5e-4), "1");
+    }
 
     #[test]
     fn the_stress_energy_spectrum_has_log_bins_of_unit_area_per_decade() {

@@ -10,7 +10,7 @@ use gc2d_engine::schedules::GravitySchedule;
 use gc2d_engine::{BodyShape, InteractionTable, MassModel, TimeWindow, WallMotion, World, WorldConfig};
 use gc2d_geometry::{DVec2, Pose, regular_polygon};
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Chamber radius and ball diameter, m.
 const R: f64 = 0.05;
@@ -18,8 +18,9 @@ const D: f64 = 0.005;
 /// Rotor speed, rad/s (10 revolutions per second).
 const OMEGA: f64 = 20.0 * std::f64::consts::PI;
 
-/// Bodies 0 chamber, 1 blade, 2 hub, 3 and 4 balls, 5 and 6 ore grains; nothing touches.
-fn world() -> World {
+/// Bodies 0 chamber, 1 blade, 2 hub, 3 and 4 balls, 5 and 6 ore grains; nothing touches. The blade turns at
+/// [`OMEGA`] after a linear spin-up of `spin_up` s from rest.
+fn world(spin_up: f64) -> World {
     let config = WorldConfig {
         time_step: 1e-3,
         integrator: Default::default(),
@@ -39,12 +40,8 @@ fn world() -> World {
     let mut world = World::new(config).unwrap();
     let origin = Pose::new(DVec2::ZERO, 0.0);
     world.add_wall(BodyShape::InnerCircle { radius: R }, origin, DVec2::ZERO, WallMotion::Static);
-    let rotation = Rotation {
-        pivot: DVec2::ZERO,
-        angular_velocity: OMEGA,
-        window: TimeWindow::new(0.0, f64::INFINITY),
-        spin_up: 0.0,
-    };
+    let rotation =
+        Rotation { pivot: DVec2::ZERO, angular_velocity: OMEGA, window: TimeWindow::new(0.0, f64::INFINITY), spin_up };
     world.add_wall(
         BodyShape::Capsule { half_length: 0.004, radius: 0.001 },
         origin,
@@ -75,48 +72,18 @@ fn event(text: &mut String, begin: f64, a: u32, b: u32, speed: f64, at: DVec2) {
     let _ = writeln!(text, "{begin},{begin},{a},{b},x,x,m,m,{speed:e},0,0,0,0,0,,0,{:e},{:e}", at.x, at.y);
 }
 
-fn run_dir() -> (PathBuf, World) {
-    let mut world = world();
+/// A run directory `gc2d-mill-synthetic-<name>-<pid>` of [`world`]`(spin_up)` run to 1 s.
+fn run_dir(name: &str, spin_up: f64) -> (PathBuf, World) {
+    let mut world = world(spin_up);
     world.run_until(1.0).unwrap();
-    let dir = std::env::temp_dir().join(format!("gc2d-mill-synthetic-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("gc2d-mill-synthetic-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(dir.join("dumps")).unwrap();
     world.save_checkpoint_file(dir.join("final.ckpt")).unwrap();
 
-    // Dumps every 10 ms: both balls at 5 m/s until 0.3 s, then ball 3 at 1 m/s in the upper and ball 4 at 3 m/s in
-    // the lower half of the outer ring (r = 46 mm > R − 2d = 40 mm).
-    let template = particle_states(&world, &["m".to_string()]);
-    for k in 0..=100u64 {
-        let t = k as f64 * 0.01;
-        let rows: Vec<_> = template
-            .iter()
-            .map(|row| {
-                let speed = match (row.id, t < 0.3) {
-                    (3 | 4, true) => 5.0,
-                    (3, false) => 1.0,
-                    (4, false) => 3.0,
-                    _ => 7.0,
-                };
-                gc2d_analysis::ParticleState { time_s: t, vx_m_s: speed, vy_m_s: 0.0, ..row.clone() }
-            })
-            .collect();
-        let mut bytes = Vec::new();
-        write_csv(&rows, &mut bytes).unwrap();
-        std::fs::write(dir.join("dumps").join(dump_file_name(k)), bytes).unwrap();
-    }
-
-    // Time series: ω·τ and Σ F·v sum to 2 W over the steps (their instantaneous rows alternate 7 and −3 W, which the
-    // means must not use), the walls put in 2 W and 1.9 W is dissipated.
-    let mut series = String::from(
-        "time_s,median_speed_m_s,rotor_power_torque_w,rotor_power_work_w,work_in_j,dissipated_normal_damping_j,\
-         dissipated_tangential_damping_j,dissipated_sliding_j,rotor_work_torque_j,rotor_work_j\n",
-    );
-    for k in 0..=100 {
-        let t = k as f64 * 0.01;
-        let (work, noise) = (2.0 * t, if k % 2 == 0 { 7.0 } else { -3.0 });
-        let _ = writeln!(series, "{t},0,{noise},{noise},{work},{},{},{},{work},{work}", 1.0 * t, 0.5 * t, 0.4 * t);
-    }
-    std::fs::write(dir.join("timeseries.csv"), series).unwrap();
+    let frames: Vec<f64> = (0..=100).map(|k| k as f64 * 0.01).collect();
+    write_dumps(&dir, &world, &frames);
+    write_series(&dir, &frames, |t| 2.0 * t);
 
     let mut events = String::from(
         "begin_time_s,end_time_s,a,b,kind_a,kind_b,material_a,material_b,impact_normal_speed_m_s,\
@@ -135,9 +102,46 @@ fn run_dir() -> (PathBuf, World) {
     (dir, world)
 }
 
+/// Dumps at `times` (one every 10 ms, 101 of them): both balls at 5 m/s in the first 30, then ball 3 at 1 m/s in the
+/// upper and ball 4 at 3 m/s in the lower half of the outer ring (r = 46 mm > R − 2d = 40 mm).
+fn write_dumps(dir: &Path, world: &World, times: &[f64]) {
+    let template = particle_states(world, &["m".to_string()]);
+    for (k, &t) in times.iter().enumerate() {
+        let rows: Vec<_> = template
+            .iter()
+            .map(|row| {
+                let speed = match (row.id, k < 30) {
+                    (3 | 4, true) => 5.0,
+                    (3, false) => 1.0,
+                    (4, false) => 3.0,
+                    _ => 7.0,
+                };
+                gc2d_analysis::ParticleState { time_s: t, vx_m_s: speed, vy_m_s: 0.0, ..row.clone() }
+            })
+            .collect();
+        let mut bytes = Vec::new();
+        write_csv(&rows, &mut bytes).unwrap();
+        std::fs::write(dir.join("dumps").join(dump_file_name(k as u64)), bytes).unwrap();
+    }
+}
+
+/// A time series with rows at `times`: ω·τ and Σ F·v and the walls' work sum to `work(t)` over the steps (their
+/// instantaneous rows alternate 7 and −3 W, which the means must not use), and 1.9 J/s is dissipated.
+fn write_series(dir: &Path, times: &[f64], work: impl Fn(f64) -> f64) {
+    let mut series = String::from(
+        "time_s,median_speed_m_s,rotor_power_torque_w,rotor_power_work_w,work_in_j,dissipated_normal_damping_j,\
+         dissipated_tangential_damping_j,dissipated_sliding_j,rotor_work_torque_j,rotor_work_j\n",
+    );
+    for (k, &t) in times.iter().enumerate() {
+        let (work, noise) = (work(t), if k % 2 == 0 { 7.0 } else { -3.0 });
+        let _ = writeln!(series, "{t},0,{noise},{noise},{work},{},{},{},{work},{work}", 1.0 * t, 0.5 * t, 0.4 * t);
+    }
+    std::fs::write(dir.join("timeseries.csv"), series).unwrap();
+}
+
 #[test]
 fn a_hand_made_mill_run_gives_the_known_statistics() {
-    let (dir, world) = run_dir();
+    let (dir, world) = run_dir("known", 0.0);
     let report = analyze_mill(&dir, &MillOptions::default()).unwrap();
     let mass = |i: usize| world.bodies().mass[i];
 
@@ -233,5 +237,53 @@ fn a_hand_made_mill_run_gives_the_known_statistics() {
     ] {
         assert!(dir.join("analysis").join(file).exists(), "{file} is missing");
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// QA P2-2: a row's time is a sum of steps, a hair off its frame's multiple. `--warm-up T` at a frame whose row and
+/// dump lie 1 ns below T left them out: the power was taken from the next row while `window_s` named T, and a start at
+/// the last row but one had "fewer than two rows". A start between two rows moves to the next row.
+#[test]
+fn a_start_at_a_frame_takes_the_frame_whose_time_is_a_hair_below_it() {
+    let (dir, world) = run_dir("hair", 0.0);
+    let end = world.time();
+    // Rows and dumps every 10 ms, 1 ns early (a Δt is 1 ms), the last at the run's end; the work is t², so the mean
+    // power from a row at a to the end is (end² − a²)/(end − a) = end + a.
+    let frames: Vec<f64> = (0..=100).map(|k| if k == 100 { end } else { (k as f64 * 0.01 - 1e-9).max(0.0) }).collect();
+    write_dumps(&dir, &world, &frames);
+    write_series(&dir, &frames, |t| t * t);
+    let mut events = std::fs::read_to_string(dir.join("events.csv")).unwrap();
+    event(&mut events, frames[30], 1, 3, 1.0, DVec2::new(0.004, 0.0)); // a blade hit at the 0.3 s step
+    std::fs::write(dir.join("events.csv"), events).unwrap();
+
+    let analyse =
+        |warm_up: f64| analyze_mill(&dir, &MillOptions { warm_up_s: Some(warm_up), ..MillOptions::default() });
+    let blade = |r: &gc2d_analysis::MillReport| r.classes.iter().find(|c| c.class == "ball–blade").unwrap().collisions;
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+    let at_frame = analyse(0.3).unwrap();
+    assert_eq!(at_frame.window_s, [0.3, end]);
+    assert!(close(at_frame.power.mean_power_torque_w, end + frames[30]), "{:?}", at_frame.power);
+    assert_eq!(at_frame.ball_speeds.as_ref().unwrap().dumps, 71);
+    assert_eq!(blade(&at_frame), 2, "the hits at 0.3 s and 0.4 s");
+    assert_eq!(at_frame.warm_up.tolerance_s, 0.5 * world.time_step());
+    let median = std::fs::read_to_string(dir.join("analysis/mill_median_speed.csv")).unwrap();
+    assert_eq!(median.lines().filter(|l| l.ends_with(",1")).count(), 71, "{median}");
+
+    // Between two frames: the window starts at the next row, and says so.
+    let between = analyse(0.305).unwrap();
+    assert_eq!(between.window_s, [frames[31], end]);
+    assert!(close(between.power.mean_power_torque_w, end + frames[31]), "{:?}", between.power);
+    assert_eq!((between.ball_speeds.as_ref().unwrap().dumps, blade(&between)), (70, 1));
+
+    // The last frame but one leaves two rows; after it, one, and the message says where the rows are.
+    let last = analyse(0.99).unwrap();
+    assert!(close(last.power.mean_power_torque_w, end + frames[99]), "{:?}", last.power);
+    assert_eq!(last.ball_speeds.as_ref().unwrap().dumps, 2);
+    let refused = analyse(0.995).unwrap_err().to_string();
+    assert!(
+        refused.contains("fewer than two rows in the window from 0.995 s")
+            && refused.contains("its last two rows are at 0.99 s and 1 s: give a warm-up at or before 0.99 s"),
+        "{refused}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
