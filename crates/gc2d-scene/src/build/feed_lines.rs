@@ -127,17 +127,10 @@ pub(crate) fn covered_lines(scene: &Scene, walls: &[PlacedWall]) -> Vec<CoveredL
 /// (`outlets[0].from_m`), in scene order.
 pub(crate) fn outlets_outside_domain(scene: &Scene) -> Vec<String> {
     let Some(domain) = scene.run.domain.map(|d| d.aabb()) else { return Vec::new() };
-    scene
-        .outlets
-        .iter()
-        .enumerate()
-        .filter(|(_, outlet)| {
-            let (from, to) = (DVec2::from_array(outlet.from_m), DVec2::from_array(outlet.to_m));
-            let tolerance = DEPTH_TOLERANCE * line_size(from, to);
-            samples(from, to).all(|point| beyond(domain, point) > tolerance)
-        })
-        .map(|(i, _)| field_path(&format!("outlets[{i}]"), "from_m"))
-        .collect()
+    outlet_fields(scene, |from, to| {
+        let tolerance = DEPTH_TOLERANCE * line_size(from, to);
+        samples(from, to).all(|point| beyond(domain, point) > tolerance)
+    })
 }
 
 /// The outlets of `scene` that every inlet lies behind: each inlet's middle is strictly on the outlet's outer side
@@ -149,17 +142,22 @@ pub(crate) fn reversed_outlets(scene: &Scene) -> Vec<String> {
         return Vec::new();
     }
     let behind = |from: DVec2, to: DVec2, point: DVec2| (to - from).perp().dot(point - from) < 0.0;
+    outlet_fields(scene, |from, to| {
+        scene.inlets.iter().all(|inlet| {
+            let middle = DVec2::from_array(inlet.from_m).lerp(DVec2::from_array(inlet.to_m), 0.5);
+            behind(from, to, middle)
+        })
+    })
+}
+
+/// The fields (`outlets[0].from_m`) of the outlets of `scene` whose segment, from its `from_m` to its `to_m`, is
+/// `picked`, in scene order.
+fn outlet_fields(scene: &Scene, picked: impl Fn(DVec2, DVec2) -> bool) -> Vec<String> {
     scene
         .outlets
         .iter()
         .enumerate()
-        .filter(|(_, outlet)| {
-            let (from, to) = (DVec2::from_array(outlet.from_m), DVec2::from_array(outlet.to_m));
-            scene.inlets.iter().all(|inlet| {
-                let middle = DVec2::from_array(inlet.from_m).lerp(DVec2::from_array(inlet.to_m), 0.5);
-                behind(from, to, middle)
-            })
-        })
+        .filter(|(_, outlet)| picked(DVec2::from_array(outlet.from_m), DVec2::from_array(outlet.to_m)))
         .map(|(i, _)| field_path(&format!("outlets[{i}]"), "from_m"))
         .collect()
 }
