@@ -23,7 +23,7 @@ use crate::output::OutputDir;
 use crate::particle_state::csv::{DUMPS_DIR, dump_files, read_csv};
 use crate::particle_state::{ParticleShape, ParticleState};
 use crate::table::{Table, number};
-use gc2d_engine::{Bodies, BodyKind, ShapeKind, World};
+use gc2d_engine::{Bodies, BodyKind, ShapeKind, WallMotion, World};
 use gc2d_geometry::DVec2;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -187,7 +187,8 @@ pub struct MillReport {
     pub balls: usize,
     /// Ore grains (polygon particles) in the final state.
     pub ore_grains: usize,
-    /// Rotor revolutions in the window (from its angular velocity at the end).
+    /// Rotor revolutions in the window: the angle it turned through over 2π, from its motion law in `final.ckpt`
+    /// (angular velocity, spin-up ramp, time window), so a window that overlaps the spin-up counts the turns made.
     pub revolutions: f64,
     /// Blade hits per revolution.
     pub blade_hits_per_revolution: f64,
@@ -393,6 +394,17 @@ fn read_dumps(run_dir: &Path, end: f64, slack: f64, balls: &BallIds) -> Result<V
     Ok(dumps)
 }
 
+/// The rotor's revolutions from `from` to `to` s: the angle its motion law (angular velocity, spin-up ramp, time
+/// window; in the checkpoint) turns it through over 2π, the largest of the run's turning walls. Its angular velocity
+/// at the end times the window's length counted a linear spin-up's revolutions twice.
+fn revolutions_turned(world: &World, from: f64, to: f64) -> f64 {
+    let turned = |motion: &WallMotion| match motion {
+        WallMotion::Rotating(rotation) => (rotation.angle(to) - rotation.angle(from)).abs(),
+        _ => 0.0,
+    };
+    world.moving_walls().iter().map(|wall| turned(&wall.motion)).fold(0.0, f64::max) / std::f64::consts::TAU
+}
+
 /// `t` with as many decimals as resolve `tolerance` (a tenth of it), trailing zeros cut: a row's time without the
 /// round-off tail of its sum of steps (0.038 for 0.03799999999988285 with a half step of 3.5e-6).
 fn to_tolerance(t: f64, tolerance: f64) -> String {
@@ -534,7 +546,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
         .filter(|&i| bodies.kind[i] == BodyKind::Wall)
         .map(|i| bodies.angular_velocity[i].abs())
         .fold(0.0, f64::max);
-    let revolutions = rotor_speed * span / std::f64::consts::TAU;
+    let revolutions = revolutions_turned(&world, start, end);
     let blade_hits: usize = classes.iter().filter(|c| c.class.ends_with("–blade")).map(|c| c.collisions).sum();
     let blade_hits_per_revolution = if revolutions > 0.0 { blade_hits as f64 / revolutions } else { f64::NAN };
 

@@ -287,3 +287,27 @@ fn a_start_at_a_frame_takes_the_frame_whose_time_is_a_hair_below_it() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// QA P2-8: the revolutions in the window were the rotor's angular velocity at the end times the window's length, 2×
+/// too many over a linear spin-up. With ω reached after T = 0.5 s the rotor has turned ω·t²/(2T) at t ≤ T and
+/// ω·(t − T/2) after it.
+#[test]
+fn revolutions_count_the_turns_the_rotor_made_during_its_spin_up() {
+    let (dir, world) = run_dir("spin-up", 0.5);
+    let end = world.time();
+    let turns = |t: f64| OMEGA / std::f64::consts::TAU * if t <= 0.5 { t * t } else { t - 0.25 };
+    for (warm_up, blade_hits) in [(0.0, 2.0), (0.3, 1.0), (0.6, 0.0)] {
+        let report = analyze_mill(&dir, &MillOptions { warm_up_s: Some(warm_up), ..MillOptions::default() }).unwrap();
+        let expected = turns(end) - turns(warm_up);
+        assert!(
+            (report.revolutions - expected).abs() < 1e-9,
+            "from {warm_up} s: {} against {expected}",
+            report.revolutions
+        );
+        assert!((report.blade_hits_per_revolution - blade_hits / expected).abs() < 1e-9, "from {warm_up} s");
+    }
+    // From 0: 7.5 turns, not the 10 of ω_end × 1 s; from 0.3 s: 6.6, not 7.
+    let from_zero = turns(end) - turns(0.0);
+    assert!((from_zero - 7.5).abs() < 1e-9 && (turns(end) - turns(0.3) - 6.6).abs() < 1e-9);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
