@@ -50,9 +50,12 @@ impl Default for FeedpipeOptions {
 pub struct OutletThroughput {
     /// The outlet's name.
     pub outlet: String,
-    /// Particles it removed over the whole run.
-    pub removed: usize,
-    /// Particles per second in the window.
+    /// Particles it removed in the window, the count its rate is built from: those at or after the window's start,
+    /// less the removal that opens a default window (it marks the start; N removals from it span N − 1 intervals).
+    pub removed_in_window: usize,
+    /// Particles it removed over the whole run, the window's warm-up included.
+    pub removed_total: usize,
+    /// Particles per second in the window: `removed_in_window` over the window's length.
     pub particles_per_second: f64,
     /// Mass per second in the window, kg/s (kg/(m·s) per unit thickness).
     pub mass_per_second: f64,
@@ -359,7 +362,8 @@ pub fn feedpipe_report(
         let windowed: Vec<&&Passage> = mine.iter().filter(|p| counted(p.left_s)).collect();
         outlets.push(OutletThroughput {
             outlet: name.clone(),
-            removed: mine.len(),
+            removed_in_window: windowed.len(),
+            removed_total: mine.len(),
             particles_per_second: windowed.len() as f64 / duration,
             // A fold from +0 (a float sum starts from −0, which an empty window kept and feedpipe.json showed).
             mass_per_second: windowed.iter().fold(0.0, |sum, p| sum + p.mass) / duration,

@@ -73,6 +73,10 @@ fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
     assert_eq!(outlet["outlet"], "top");
     let rate = outlet["particles_per_second"].as_f64().unwrap();
     assert!((rate - 6.0 / 1.334).abs() < 0.01 && (rate - RATE).abs() < 1.0, "{rate}");
+    // QA P2-1: `removed` was the run's 7 while the rate counts 6 in the window; both are named now.
+    let removals = std::fs::read_to_string(out.join("transits.csv")).unwrap().lines().count() - 1;
+    assert_eq!((outlet["removed_in_window"].as_u64(), outlet["removed_total"].as_u64()), (Some(6), Some(7)));
+    assert_eq!(removals, 7);
     let slip = report["mean_slip_m_s"][0].as_f64().unwrap();
     assert!((slip + w_t).abs() < 1e-6, "slip {slip} against −w_t = {}", -w_t);
     for bin in report["profile"].as_array().unwrap() {
@@ -195,7 +199,10 @@ fn at_a_step_time_a_hair_below_the_warm_up(out: &std::path::Path) {
     let from = left[2] + hair;
     let report = analyse_from(out, from);
     let end = report["window_s"][1].as_f64().unwrap();
-    let rate = report["outlets"][0]["particles_per_second"].as_f64().unwrap();
+    let outlet = &report["outlets"][0];
+    let rate = outlet["particles_per_second"].as_f64().unwrap();
     let expected = (left.len() - 2) as f64 / (end - from);
+    let counts = (outlet["removed_in_window"].as_u64().unwrap(), outlet["removed_total"].as_u64().unwrap());
+    assert_eq!(counts, ((left.len() - 2) as u64, left.len() as u64));
     assert!((rate - expected).abs() < 1e-9 * expected, "{rate} against {expected}: {} removals", left.len() - 2);
 }
