@@ -2,8 +2,9 @@
 //! `timeseries.csv`, `dumps/` (per-particle state) and `final.ckpt` (the scene's outlets and fluid).
 //!
 //! **The pipe's frame.** The flow direction is the first outlet's outward normal (the direction a particle crosses
-//! it in); the cross-section runs along the outlet segment, from its `from` end (0) to its `to` end (its length).
-//! Profiles are binned across that section, whatever the particle's position along the pipe.
+//! it in); the cross-section runs along the outlet segment, from its `from` end (0) to its `to` end (its length),
+//! widened over the other outlets on its line that face the same way (a top outlet given in parts). Profiles are
+//! binned across that section, whatever the particle's position along the pipe; particles beside it are counted.
 //!
 //! **Window.** Averages start at the warm-up time: by default the first removal at an outlet (the pipe has filled);
 //! they end at the run's last row. A removal or dump within half a time step of either end counts as inside.
@@ -109,8 +110,14 @@ pub struct FeedpipeReport {
     pub outlets: Vec<OutletThroughput>,
     /// Inlet-to-outlet transit times; `None` when no particle made the passage in the window.
     pub transit_times: Option<TransitTimes>,
+    /// The section the profile spans, from its 0 end to its other end, m: the first outlet, widened over the outlets
+    /// on its line that face the same way.
+    pub section_m: [[f64; 2]; 2],
     /// The profile across the section.
     pub profile: Vec<ProfileBin>,
+    /// Particle samples of the window's dumps beside the section (beyond its ends, across the pipe), which the
+    /// profile leaves out; they count in the mean slip.
+    pub samples_outside_section: usize,
     /// Mean slip over every particle sample in the window, along the pipe and across it, m/s.
     pub mean_slip_m_s: [f64; 2],
     /// Dumps in the window.
@@ -137,6 +144,25 @@ impl PipeFrame {
         Self { origin: from, across, width: (to - from).length(), along: -across.perp() }
     }
 
+    /// The frame widened over outlet `from` → `to` where it lies on the section's line and faces the same way (a top
+    /// outlet given as two halves): the section then runs from the farther `from` end to the farther `to` end, the gap
+    /// between the outlets included. Another outlet leaves the frame as it is.
+    pub fn widened(self, from: DVec2, to: DVec2) -> Self {
+        let scale = self.width.max((to - from).length());
+        let on_line = [from, to].iter().all(|&p| (p - self.origin).dot(self.along).abs() <= 1e-9 * scale);
+        if !on_line || (to - from).normalize_or_zero().dot(self.across) < 1.0 - 1e-9 {
+            return self;
+        }
+        let ends = [0.0, self.width, self.section_coordinate(from), self.section_coordinate(to)];
+        let (low, high) = ends.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &e| (l.min(e), h.max(e)));
+        Self { origin: self.origin + self.across * low, width: high - low, ..self }
+    }
+
+    /// The section's ends, m: its `from` end (section coordinate 0) and its other end.
+    pub fn ends(&self) -> [[f64; 2]; 2] {
+        [self.origin.to_array(), (self.origin + self.across * self.width).to_array()]
+    }
+
     /// The position of `p` along the section, m (0 at the outlet's `from` end).
     pub fn section_coordinate(&self, p: DVec2) -> f64 {
         (p - self.origin).dot(self.across)
@@ -157,17 +183,18 @@ pub const MAX_BINS: usize = 10_000;
 
 /// The profile across the section of `frame`, in `bins` bins, from the particle samples of `dumps` (each dump a list
 /// of particle states at one time) with the fluid velocity `fluid(x, t)`; `fluid_at_bin(s)` gives the fluid's velocity
-/// along the pipe at section coordinate s for the fluid-profile column.
+/// along the pipe at section coordinate s for the fluid-profile column. Also returns the mean slip along and across
+/// the pipe over every sample, and the number of samples beside the section (left out of the bins).
 pub fn profile(
     frame: &PipeFrame,
     bins: usize,
     dumps: &[Vec<ParticleState>],
     fluid: &dyn Fn(DVec2, f64) -> DVec2,
     fluid_at_bin: &dyn Fn(f64) -> f64,
-) -> (Vec<ProfileBin>, [f64; 2]) {
+) -> (Vec<ProfileBin>, [f64; 2], usize) {
     let width = frame.width / bins as f64;
     let mut sums = vec![BinSums::default(); bins];
-    let (mut slip_sum, mut samples) = (DVec2::ZERO, 0usize);
+    let (mut slip_sum, mut samples, mut outside) = (DVec2::ZERO, 0usize, 0usize);
     for dump in dumps {
         for p in dump {
             let x = DVec2::new(p.x_m, p.y_m);
@@ -178,6 +205,7 @@ pub fn profile(
             let s = frame.section_coordinate(x);
             let k = (s / width).floor();
             if !(k >= 0.0 && (k as usize) < bins) {
+                outside += 1;
                 continue;
             }
             let bin = &mut sums[k as usize];
@@ -206,7 +234,7 @@ pub fn profile(
         })
         .collect();
     let mean_slip = if samples == 0 { DVec2::NAN } else { slip_sum / samples as f64 };
-    (profile, [mean_slip.dot(frame.along), mean_slip.dot(frame.across)])
+    (profile, [mean_slip.dot(frame.along), mean_slip.dot(frame.across)], outside)
 }
 
 /// The transit-time statistics of `times` (s); `None` for none.
@@ -312,7 +340,12 @@ pub fn feedpipe_report(
     let first_outlet = world.outlets().first().ok_or_else(|| {
         AnalysisError::NotEnoughData("the run's scene has no outlet: a feed-pipe analysis needs one".into())
     })?;
-    let frame = PipeFrame::of_outlet(first_outlet.outlet().from, first_outlet.outlet().to);
+    let frame = world
+        .outlets()
+        .iter()
+        .fold(PipeFrame::of_outlet(first_outlet.outlet().from, first_outlet.outlet().to), |frame, state| {
+            frame.widened(state.outlet().from, state.outlet().to)
+        });
     let transits_path = run_dir.join("transits.csv");
     let passages = read_transits(&transits_path, &world)?;
     // Each outlet's rows against its own count in the final state: rows lost or added (a file edited, or of another
@@ -397,14 +430,17 @@ pub fn feedpipe_report(
         .map_or(0.0, |i| (0.5 * (i.inlet().from + i.inlet().to) - frame.origin).dot(frame.along) * 0.5);
     let fluid_at_bin =
         |s: f64| fluid_at(frame.origin + frame.across * s + frame.along * middle_shift, end).dot(frame.along);
-    let (profile, mean_slip_m_s) = profile(&frame, options.bins, &dumps, &fluid_at, &fluid_at_bin);
+    let (profile, mean_slip_m_s, samples_outside_section) =
+        profile(&frame, options.bins, &dumps, &fluid_at, &fluid_at_bin);
     let report = FeedpipeReport {
         window_s: [start, end],
         // Adding +0 turns a component of −0 (a turned unit vector's) into 0 for the JSON.
         flow_direction: (frame.along + DVec2::ZERO).to_array(),
         outlets,
         transit_times: transit,
+        section_m: frame.ends(),
         profile,
+        samples_outside_section,
         mean_slip_m_s,
         dumps: dumps.len(),
     };
@@ -541,8 +577,8 @@ mod tests {
         let dumps =
             vec![vec![at(0.0, 0.05, 0.3, 0.0, 2.0), at(0.0, -0.05, 0.5, 0.0, 1.0)], vec![at(1.0, 0.02, 0.6, 0.5, 4.0)]];
         let fluid = |x: DVec2, _t: f64| DVec2::new(0.0, 10.0 * x.x + 5.0);
-        let (bins, mean_slip) = profile(&frame, 2, &dumps, &fluid, &|s: f64| 10.0 * (0.1 - s) + 5.0);
-        assert_eq!((bins[0].samples, bins[1].samples), (2, 1));
+        let (bins, mean_slip, outside) = profile(&frame, 2, &dumps, &fluid, &|s: f64| 10.0 * (0.1 - s) + 5.0);
+        assert_eq!((bins[0].samples, bins[1].samples, outside), (2, 1, 0));
         assert!((bins[0].concentration_per_m - 2.0 / 2.0 / 0.1).abs() < 1e-12);
         assert!((bins[1].concentration_per_m - 1.0 / 2.0 / 0.1).abs() < 1e-12);
         assert!((bins[0].particle_velocity_m_s - 3.0).abs() < 1e-12);
@@ -554,6 +590,33 @@ mod tests {
         // −(0 + 0 + 0.5)/3.
         assert!((mean_slip[0] - (2.0 - 5.5 + 1.0 - 4.5 + 4.0 - 5.2) / 3.0).abs() < 1e-12);
         assert!((mean_slip[1] + 0.5 / 3.0).abs() < 1e-12);
+    }
+
+    /// QA P2-4: a top outlet given as two halves took the section from the first half only, and the profile dropped
+    /// the particles beside it without a word.
+    #[test]
+    fn the_section_spans_the_outlets_on_its_line_and_counts_the_samples_beside_it() {
+        let (right, middle, left) = (DVec2::new(0.03, 1.0), DVec2::new(0.0, 1.0), DVec2::new(-0.03, 1.0));
+        let whole = PipeFrame::of_outlet(right, left);
+        let halves = PipeFrame::of_outlet(right, middle).widened(middle, left);
+        assert_eq!((halves.origin, halves.across, halves.along), (whole.origin, whole.across, whole.along));
+        assert!((halves.width - 0.06).abs() < 1e-15);
+        // Given the other way round, the section runs from the farther `from` end all the same.
+        let reversed = PipeFrame::of_outlet(middle, left).widened(right, middle);
+        assert_eq!((reversed.origin, reversed.width), (halves.origin, halves.width));
+        // An outlet off the line, or across it the other way (a bottom outlet), leaves the section as it is.
+        let first = PipeFrame::of_outlet(right, middle);
+        for (from, to) in [(DVec2::new(0.0, 0.0), DVec2::new(-0.03, 0.0)), (left, middle)] {
+            assert_eq!(first.widened(from, to), first);
+        }
+        // On the first half only, the particle at x = −0.015 lies beside the section: counted, not binned.
+        let dumps = vec![vec![at(0.0, 0.015, 0.5, 0.0, 1.0), at(0.0, -0.015, 0.5, 0.0, 3.0)]];
+        let fluid = |_: DVec2, _: f64| DVec2::ZERO;
+        let (bins, slip, outside) = profile(&first, 1, &dumps, &fluid, &|_| 0.0);
+        assert_eq!((bins[0].samples, bins[0].particle_velocity_m_s, outside, slip[0]), (1, 1.0, 1, 2.0));
+        let (bins, _, outside) = profile(&halves, 2, &dumps, &fluid, &|_| 0.0);
+        let binned: Vec<(usize, f64)> = bins.iter().map(|b| (b.samples, b.particle_velocity_m_s)).collect();
+        assert_eq!((binned, outside), (vec![(1, 1.0), (1, 3.0)], 0));
     }
 
     #[test]

@@ -4,8 +4,8 @@
 use crate::outputs::run_scene;
 use clap::ValueEnum;
 use gc2d_analysis::{
-    AnalysisError, AnalyzeOptions, BallIds, FeedpipeOptions, MillOptions, Report, SceneKind, analyze_feedpipe,
-    analyze_mill, analyze_run,
+    AnalysisError, AnalyzeOptions, BallIds, FeedpipeOptions, FeedpipeReport, MillOptions, Report, SceneKind,
+    analyze_feedpipe, analyze_mill, analyze_run,
 };
 use gc2d_engine::World;
 use serde::Deserialize;
@@ -90,7 +90,9 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
         }
         AnalysisKind::Feedpipe => {
             let options = FeedpipeOptions { warm_up_s: settings.warm_up_s, bins: settings.bins };
-            serde_json::to_string_pretty(&analyze_feedpipe(run_dir, &options).map_err(failed)?)
+            let report = analyze_feedpipe(run_dir, &options).map_err(failed)?;
+            warnings.extend(beside_the_section(&report));
+            serde_json::to_string_pretty(&report)
         }
         AnalysisKind::Auto | AnalysisKind::Pile | AnalysisKind::Silo => {
             let scene = match kind {
@@ -135,6 +137,25 @@ pub fn mill_balls(run_dir: &Path) -> (BallIds, Option<String>) {
         _ => BallIds::Range(0..0),
     };
     (balls, None)
+}
+
+/// A warning where particle samples of the feed pipe's dumps lie beside the section its profiles span (beyond the
+/// ends of its outlets on one line: an outlet narrower than the pipe): the profiles leave them out.
+fn beside_the_section(report: &FeedpipeReport) -> Option<String> {
+    let outside = report.samples_outside_section;
+    let binned: usize = report.profile.iter().map(|bin| bin.samples).sum();
+    let [from, to] = report.section_m.map(|p| p.map(crate::console::rounded));
+    (outside > 0).then(|| {
+        format!(
+            "{outside} of the {} particle samples in the window lie beside the section the profiles span, ({}, {}) \
+             to ({}, {}) m along the outlets: the profiles leave them out (the mean slip counts them)",
+            outside + binned,
+            from[0],
+            from[1],
+            to[0],
+            to[1]
+        )
+    })
 }
 
 /// A warning where the grid cell asked for (`--grid`, m) would give more than

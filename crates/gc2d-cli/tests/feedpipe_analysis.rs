@@ -206,3 +206,71 @@ fn at_a_step_time_a_hair_below_the_warm_up(out: &std::path::Path) {
     assert_eq!(counts, ((left.len() - 2) as u64, left.len() as u64));
     assert!((rate - expected).abs() < 1e-9 * expected, "{rate} against {expected}: {} removals", left.len() - 2);
 }
+
+/// The particle samples `(x, y)` of the dumps in `out` between `from` and `to` s (within half of the scene's step).
+fn dump_samples(out: &std::path::Path, from: f64, to: f64) -> Vec<(f64, f64)> {
+    let mut samples = Vec::new();
+    for entry in std::fs::read_dir(out.join("dumps")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "csv") {
+            continue;
+        }
+        for row in std::fs::read_to_string(&path).unwrap().lines().skip(1) {
+            let fields: Vec<f64> = row.split(',').map(|f| f.parse().unwrap_or(f64::NAN)).collect();
+            if fields[0] >= from - 0.5e-4 && fields[0] <= to + 0.5e-4 {
+                samples.push((fields[4], fields[5]));
+            }
+        }
+    }
+    samples
+}
+
+/// QA P2-4: the profiles spanned the first outlet only; a top outlet given as two halves lost the particles beside
+/// the first half without a word. The section now spans the outlets on one line, and samples beside it are counted
+/// and warned about.
+#[test]
+fn the_profiles_span_a_top_outlet_given_in_two_halves() {
+    let split = |left_y: &str| {
+        scene().replace("end_time_s: 2.0", "end_time_s: 1.0").replace(
+            r#"outlets: [(name: "top", from_m: (0.25, 1.0), to_m: (-0.25, 1.0))]"#,
+            &format!(
+                r#"outlets: [(name: "right", from_m: (0.25, 1.0), to_m: (0.0, 1.0)),
+                             (name: "left", from_m: (0.0, {left_y}), to_m: (-0.25, {left_y}))]"#
+            ),
+        )
+    };
+    let analyse = |text: &str| {
+        let dir = tempfile::tempdir().unwrap();
+        let out = run(dir.path(), text);
+        let assert = Command::cargo_bin("gc2d-rs")
+            .unwrap()
+            .args(["analyze", out.to_str().unwrap(), "--kind", "feedpipe", "--bins", "5"])
+            .assert()
+            .success();
+        let report: serde_json::Value = serde_json::from_slice(&assert.get_output().stdout).unwrap();
+        let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+        let window = [report["window_s"][0].as_f64().unwrap(), report["window_s"][1].as_f64().unwrap()];
+        let samples = dump_samples(&out, window[0], window[1]);
+        (report, stderr, samples, dir)
+    };
+    let binned = |report: &serde_json::Value| -> u64 {
+        report["profile"].as_array().unwrap().iter().map(|b| b["samples"].as_u64().unwrap()).sum()
+    };
+
+    // On one line: the whole 0.5 m section, every sample binned.
+    let (report, stderr, samples, _dir) = analyse(&split("1.0"));
+    assert!(!samples.is_empty());
+    assert_eq!(report["section_m"], serde_json::json!([[0.25, 1.0], [-0.25, 1.0]]));
+    assert_eq!((binned(&report), report["samples_outside_section"].as_u64()), (samples.len() as u64, Some(0)));
+    assert!(!stderr.contains("beside the section"), "{stderr}");
+
+    // The left half 1 mm higher is another line: the section is the right half, x from 0.25 to 0, and the samples at
+    // x ≤ 0 are counted beside it, with a warning.
+    let (report, stderr, samples, _dir) = analyse(&split("1.001"));
+    let beside = samples.iter().filter(|(x, _)| !(*x > 0.0 && *x <= 0.25)).count();
+    assert!(beside > 0, "the feed spreads over both halves");
+    assert_eq!(report["samples_outside_section"].as_u64(), Some(beside as u64));
+    assert_eq!(binned(&report) as usize + beside, samples.len());
+    let warning = format!("{beside} of the {} particle samples in the window lie beside the section", samples.len());
+    assert!(stderr.contains(&warning) && stderr.contains("(0.25, 1) to (0, 1) m"), "{stderr}");
+}
