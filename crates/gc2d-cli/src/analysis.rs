@@ -1,20 +1,21 @@
 //! The scene-type analyses of a finished run, as `gc2d-rs analyze --kind …` and a sweep's collection run them: one
 //! name per kind, the file each writes, and one call that runs it.
 
-use crate::outputs::run_scene;
+use crate::outputs::{SCENE_COPY, run_scene};
 use clap::ValueEnum;
 use gc2d_analysis::{
     AnalysisError, AnalyzeOptions, BallIds, FeedpipeOptions, FeedpipeReport, MillOptions, Report, SceneKind,
     analyze_feedpipe, analyze_mill, analyze_run,
 };
 use gc2d_engine::World;
+use gc2d_scene::Scene;
 use serde::Deserialize;
 use std::path::Path;
 
 /// What a run is, for its analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Deserialize)]
 pub enum AnalysisKind {
-    /// Decide from the wall forces.
+    /// A mill or a feed pipe by the run's scene, else a pile or a silo by the wall forces.
     Auto,
     /// A free heap on a floor.
     Pile,
@@ -40,6 +41,20 @@ impl AnalysisKind {
             AnalysisKind::Mill => "analysis/mill.json",
             AnalysisKind::Feedpipe => "analysis/feedpipe.json",
         }
+    }
+}
+
+/// The analysis `--kind auto` stands for in `run_dir`: the mill's where the run's `scene.ron` has a mill, the feed
+/// pipe's where it has outlets, else `Auto` itself (the pile and silo analyses, which decide from the wall forces).
+/// Without a readable `scene.ron`, `Auto`. Given kinds are kept. A mill run analysed as a pile gave a heap's numbers.
+pub fn resolved_kind(run_dir: &Path, kind: AnalysisKind) -> AnalysisKind {
+    if kind != AnalysisKind::Auto {
+        return kind;
+    }
+    match Scene::from_path(run_dir.join(SCENE_COPY)) {
+        Ok(scene) if scene.mill.is_some() => AnalysisKind::Mill,
+        Ok(scene) if !scene.outlets.is_empty() => AnalysisKind::Feedpipe,
+        _ => AnalysisKind::Auto,
     }
 }
 

@@ -88,7 +88,8 @@ enum Command {
     Analyze {
         /// The run directory (written by `gc2d-rs run`).
         run: PathBuf,
-        /// What the run is: a pile, a silo, a ball mill, a feed pipe, or (pile or silo) decide from the wall forces.
+        /// What the run is: a pile, a silo, a ball mill, a feed pipe, or auto: a mill or a feed pipe by the run's
+        /// scene.ron, else a pile or a silo by the wall forces.
         #[arg(long, value_enum, default_value_t = AnalysisKind::Auto)]
         kind: AnalysisKind,
         /// Half-width of the pressure window, m [default: about 15 contacts per window].
@@ -932,6 +933,17 @@ fn analyze(
     warm_up: Option<f64>,
     bins: Option<usize>,
 ) -> Result<u8, CommandFailure> {
+    let kind = match gc2d_cli::analysis::resolved_kind(run, kind) {
+        resolved if resolved != kind => {
+            console::err(&format!(
+                "Analysing {} as a {} run, as its scene.ron says (--kind chooses another analysis).",
+                run.display(),
+                resolved.name()
+            ));
+            resolved
+        }
+        kind => kind,
+    };
     let given = [
         ("--window", window.is_some()),
         ("--grid", grid.is_some()),

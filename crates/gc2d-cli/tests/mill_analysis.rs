@@ -35,6 +35,14 @@ fn a_mill_run_is_analysed_into_collision_classes_and_a_power_balance() {
     let output = gc2d().arg("analyze").arg(out.path()).args(["--kind", "mill", "--warm-up", "0.005"]).output().unwrap();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    // Without --kind the run's scene.ron makes it a mill's analysis (QA P2-10 c: it ran the pile analysis).
+    let auto = gc2d().arg("analyze").arg(out.path()).args(["--warm-up", "0.005"]).output().unwrap();
+    assert!(
+        String::from_utf8_lossy(&auto.stderr).contains("as a mill run"),
+        "{}",
+        String::from_utf8_lossy(&auto.stderr)
+    );
+    assert_eq!(serde_json::from_slice::<serde_json::Value>(&auto.stdout).unwrap(), report);
     let classes = report["classes"].as_array().unwrap();
     let names: Vec<&str> = classes.iter().map(|c| c["class"].as_str().unwrap()).collect();
     assert!(
