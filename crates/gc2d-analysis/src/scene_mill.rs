@@ -440,15 +440,15 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
         )));
     }
     let series = Table::read(&run_dir.join("timeseries.csv"))?;
-    let what = "timeseries.csv";
-    let time = series.column("time_s", what)?;
+    let series_file = "timeseries.csv";
+    let time = series.column("time_s", series_file)?;
     let dumps = read_dumps(run_dir, end, slack, &options.balls)?;
 
     // The median-speed series: the balls' per dump, else the time series' column.
     let (median_series, source): (Vec<(f64, f64)>, _) = if dumps.len() >= 8 {
         (dumps.iter().map(|d| (d.time, d.median_speed())).collect(), "dumps")
     } else {
-        let median = series.column("median_speed_m_s", what)?;
+        let median = series.column("median_speed_m_s", series_file)?;
         (series.rows.iter().map(|r| (number(&r[time]), number(&r[median]))).collect(), "timeseries")
     };
     let (times, medians): (Vec<f64>, Vec<f64>) = median_series.iter().copied().unzip();
@@ -486,14 +486,14 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
 
     // Collisions.
     let events = Table::read(&events_path)?;
-    let what = "events.csv";
+    let events_file = "events.csv";
     let (begin, a, b, speed) = (
-        events.column("begin_time_s", what)?,
-        events.column("a", what)?,
-        events.column("b", what)?,
-        events.column("impact_normal_speed_m_s", what)?,
+        events.column("begin_time_s", events_file)?,
+        events.column("a", events_file)?,
+        events.column("b", events_file)?,
+        events.column("impact_normal_speed_m_s", events_file)?,
     );
-    let point_columns = events.column("begin_x_m", what).ok().zip(events.column("begin_y_m", what).ok());
+    let point_columns = events.column("begin_x_m", events_file).ok().zip(events.column("begin_y_m", events_file).ok());
     let mut by_class: BTreeMap<String, (Vec<f64>, f64)> = BTreeMap::new();
     let (mut all_speeds, mut all_energy, mut ore_energies, mut points) = (Vec::new(), 0.0, Vec::new(), Vec::new());
     for (k, row) in events.rows.iter().enumerate() {
@@ -557,14 +557,16 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
             / (number(&last[time]) - number(&first[time]))
     };
     let dissipation = [
-        series.column("dissipated_normal_damping_j", what)?,
-        series.column("dissipated_tangential_damping_j", what)?,
-        series.column("dissipated_sliding_j", what)?,
+        series.column("dissipated_normal_damping_j", series_file)?,
+        series.column("dissipated_tangential_damping_j", series_file)?,
+        series.column("dissipated_sliding_j", series_file)?,
     ];
-    let power_in = change(&[series.column("work_in_j", what)?]);
+    let power_in = change(&[series.column("work_in_j", series_file)?]);
     let dissipation_w = change(&dissipation);
-    let (torque, work) =
-        (change(&[series.column("rotor_work_torque_j", what)?]), change(&[series.column("rotor_work_j", what)?]));
+    let (torque, work) = (
+        change(&[series.column("rotor_work_torque_j", series_file)?]),
+        change(&[series.column("rotor_work_j", series_file)?]),
+    );
     let power = MillPower {
         mean_power_torque_w: torque,
         mean_power_work_w: work,

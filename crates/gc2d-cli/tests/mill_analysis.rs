@@ -43,6 +43,15 @@ fn a_mill_run_is_analysed_into_collision_classes_and_a_power_balance() {
         String::from_utf8_lossy(&auto.stderr)
     );
     assert_eq!(serde_json::from_slice::<serde_json::Value>(&auto.stdout).unwrap(), report);
+    // A time series without a power column is named as the file that lacks it (the message said events.csv).
+    let series_path = out.path().join("timeseries.csv");
+    let series = std::fs::read_to_string(&series_path).unwrap();
+    std::fs::write(&series_path, series.replacen("rotor_work_j", "renamed", 1)).unwrap();
+    let lacking =
+        gc2d().arg("analyze").arg(out.path()).args(["--kind", "mill", "--warm-up", "0.005"]).output().unwrap();
+    let message = String::from_utf8_lossy(&lacking.stderr);
+    assert!(message.contains("timeseries.csv has no column `rotor_work_j`"), "{message}");
+    std::fs::write(&series_path, series).unwrap();
     let classes = report["classes"].as_array().unwrap();
     let names: Vec<&str> = classes.iter().map(|c| c["class"].as_str().unwrap()).collect();
     assert!(
