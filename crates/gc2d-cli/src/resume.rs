@@ -72,10 +72,16 @@ pub fn run_directory_of(from: &Path) -> Option<PathBuf> {
     if from.is_dir() {
         return Some(from.to_path_buf());
     }
-    let folder = from.parent()?;
-    let folder = if folder.file_name().is_some_and(|name| name == "checkpoints") { folder.parent()? } else { folder };
+    let folder = folder_holding(from)?;
     let is_run = ["timeseries.csv", "segments.csv"].iter().any(|file| folder.join(file).is_file());
     is_run.then(|| folder.to_path_buf())
+}
+
+/// The folder a checkpoint file's run would be: the one it lies in, or the one above where it lies under
+/// `checkpoints/`.
+fn folder_holding(checkpoint: &Path) -> Option<&Path> {
+    let folder = checkpoint.parent()?;
+    if folder.file_name().is_some_and(|name| name == "checkpoints") { folder.parent() } else { Some(folder) }
 }
 
 /// Why `scene` (read from `scene_path`) cannot continue the run in `run_dir`: it is not the scene that run started
@@ -131,11 +137,7 @@ pub fn not_a_state_of_the_run_in(out: &Path, path: &Path, world: &World) -> Opti
         return None;
     }
     let canonical = |p: &Path| p.canonicalize().ok();
-    let folder = path.parent().map(|folder| match folder.file_name() {
-        Some(name) if name == "checkpoints" => folder.parent().unwrap_or(folder),
-        _ => folder,
-    });
-    if folder.and_then(canonical).is_some_and(|folder| canonical(out) == Some(folder)) {
+    if folder_holding(path).and_then(canonical).is_some_and(|folder| canonical(out) == Some(folder)) {
         return None;
     }
     let steps = world.steps();
@@ -309,21 +311,17 @@ pub fn remove_temporary_files(out: &Path) {
     for name in ["final.ckpt", "segments.csv", "summary.json"] {
         let _ = std::fs::remove_file(temporary_path(&out.join(name)));
     }
-    if let Ok(entries) = std::fs::read_dir(out.join("checkpoints")) {
-        for entry in entries.flatten() {
-            let name = entry.file_name();
-            if name.to_str().and_then(|n| n.strip_suffix(".tmp")).and_then(checkpoint_step).is_some() {
-                let _ = std::fs::remove_file(entry.path());
-            }
-        }
-    }
+    remove_files_named(&out.join("checkpoints"), |name| name.strip_suffix(".tmp").and_then(checkpoint_step).is_some());
     // A picture is written as `frame-<k>.png.tmp` and renamed too.
-    if let Ok(entries) = std::fs::read_dir(out.join("frames")) {
-        for entry in entries.flatten() {
-            let name = entry.file_name();
-            if name.to_str().is_some_and(|n| n.starts_with("frame-") && n.ends_with(".png.tmp")) {
-                let _ = std::fs::remove_file(entry.path());
-            }
+    remove_files_named(&out.join("frames"), |name| name.starts_with("frame-") && name.ends_with(".png.tmp"));
+}
+
+/// Removes the files in `folder` whose names are `temporary`, leaving any that cannot be removed.
+fn remove_files_named(folder: &Path, temporary: impl Fn(&str) -> bool) {
+    let Ok(entries) = std::fs::read_dir(folder) else { return };
+    for entry in entries.flatten() {
+        if entry.file_name().to_str().is_some_and(&temporary) {
+            let _ = std::fs::remove_file(entry.path());
         }
     }
 }
