@@ -66,7 +66,12 @@ impl StateDumps {
 
     /// The dumps' folder as a [`NumberedFolder`].
     pub fn folder(&self) -> NumberedFolder<'_> {
-        NumberedFolder { dir: &self.dir, prefix: "particles_", flag: "--dump-every", format_flag: "--dump-format" }
+        Self::folder_at(&self.dir)
+    }
+
+    /// The dumps' folder `dir` (a run's `<out>/dumps/`) as a [`NumberedFolder`], for a part that writes none.
+    pub fn folder_at(dir: &Path) -> NumberedFolder<'_> {
+        NumberedFolder { dir, prefix: "particles_", flag: "--dump-every", format_flag: "--dump-format" }
     }
 
     /// The interval and formats the dumps are written with.

@@ -3,8 +3,8 @@
 //! `final.ckpt`, only its periodic checkpoints; naming the directory spares the user finding the newest one.
 
 use crate::console;
+use crate::dumps::StateDumps;
 use crate::earlier_run::holds_a_run;
-use crate::numbered_files::NumberedFolder;
 use crate::outputs::SCENE_COPY;
 use gc2d_analysis::particle_state::csv::DUMPS_DIR;
 use gc2d_engine::World;
@@ -66,15 +66,14 @@ pub fn load_newest_state(from: &Path, purpose: &str) -> Result<ResumePoint, Stri
 }
 
 /// The run directory that `--resume FROM` continues by default: FROM itself where it is a directory; for a checkpoint
-/// file, the run directory that holds it (as `final.ckpt` or under `checkpoints/`), recognised by the time series or
-/// the segments a run writes there. `None` for a checkpoint kept outside a run directory.
+/// file, the run directory that holds it (as `final.ckpt` or under `checkpoints/`), recognised as a run's by
+/// [`holds_a_run`]. `None` for a checkpoint kept outside a run directory.
 pub fn run_directory_of(from: &Path) -> Option<PathBuf> {
     if from.is_dir() {
         return Some(from.to_path_buf());
     }
     let folder = folder_holding(from)?;
-    let is_run = ["timeseries.csv", "segments.csv"].iter().any(|file| folder.join(file).is_file());
-    is_run.then(|| folder.to_path_buf())
+    holds_a_run(folder).then(|| folder.to_path_buf())
 }
 
 /// The folder a checkpoint file's run would be: the one it lies in, or the one above where it lies under
@@ -201,7 +200,7 @@ pub fn refuse_silently_stopped_outputs(out: &Path, asked: &ResumedOutputs) -> Re
         ));
     }
     let dumps_dir = out.join(DUMPS_DIR);
-    let dumps = NumberedFolder { dir: &dumps_dir, prefix: "particles_", flag: "--dump-every", format_flag: "" };
+    let dumps = StateDumps::folder_at(&dumps_dir);
     if !asked.dumps
         && !asked.dump_interval_given
         && let Some(earlier) = dumps.recorded()?
@@ -341,5 +340,19 @@ mod tests {
         assert_eq!(checkpoint_step("checkpoint-0001909091.ckpt.tmp"), None);
         assert_eq!(checkpoint_step("final.ckpt"), None);
         assert_eq!(checkpoint_step("checkpoint-.ckpt"), None);
+    }
+
+    #[test]
+    fn a_checkpoint_belongs_to_a_run_directory_only_where_a_run_lies() {
+        let dir = tempfile::tempdir().unwrap();
+        let checkpoint = dir.path().join("checkpoints").join("checkpoint-0000000010.ckpt");
+        std::fs::create_dir_all(checkpoint.parent().unwrap()).unwrap();
+        // The user's own table of that name is not a run's time series.
+        std::fs::write(dir.path().join("timeseries.csv"), "a,b\n1,2\n").unwrap();
+        assert_eq!(run_directory_of(&checkpoint), None);
+        assert_eq!(run_directory_of(&dir.path().join("final.ckpt")), None);
+        std::fs::write(dir.path().join("segments.csv"), "").unwrap();
+        assert_eq!(run_directory_of(&checkpoint).as_deref(), Some(dir.path()));
+        assert_eq!(run_directory_of(&dir.path().join("final.ckpt")).as_deref(), Some(dir.path()));
     }
 }
