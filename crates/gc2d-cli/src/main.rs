@@ -202,9 +202,9 @@ struct RunArgs {
     live: Option<String>,
     /// Write every finished contact episode to <out>/events.csv (impact speeds, largest overlap, dissipated energy,
     /// impulses, contact point; docs/model.md, "Contact events") [default for a scene with a mill].
-    #[arg(long, overrides_with = "no_events")]
+    #[arg(long, conflicts_with = "no_events")]
     events: bool,
-    /// Do not write events.csv (a mill scene writes it unless told so).
+    /// Do not write events.csv (a mill scene writes it unless told so); not with --events.
     #[arg(long)]
     no_events: bool,
     /// Write the state of every particle (position, angle, velocities, forces, contacts) every this many simulated

@@ -253,6 +253,18 @@ fn a_resume_does_not_silently_stop_the_events_or_dumps_of_the_parts_before() {
 }
 
 #[test]
+fn events_and_no_events_together_are_refused() {
+    // QA P2-10 k: the later flag won, and a mill run then told the user to add the --events it had been given.
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--events", "--no-events", "--out"])
+        .arg(out.path())
+        .assert()
+        .code(2)
+        .stderr(contains("'--events' cannot be used with '--no-events'"));
+    assert!(!out.path().join("timeseries.csv").exists());
+}
+
+#[test]
 fn a_checkpoint_continued_in_a_new_directory_writes_its_scene_there() {
     // QA R9: the new directory had every output but scene.ron, so it did not say what made it and `export` left the
     // particles' origins and materials empty.
