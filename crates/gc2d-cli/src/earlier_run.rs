@@ -4,6 +4,7 @@
 
 use crate::numbered_files::CADENCE_FILE;
 use crate::outputs::TIME_SERIES_COLUMNS;
+use crate::sinks::FRAMES_DIR;
 use crate::transits::TRANSITS_FILE;
 use gc2d_analysis::particle_state::csv::DUMPS_DIR;
 use std::io;
@@ -14,7 +15,8 @@ const RUN_FILES: [&str; 6] =
     ["final.ckpt", "summary.json", "segments.csv", "timeseries.csv", "events.csv", TRANSITS_FILE];
 
 /// Folders a run writes, each with the start of the names of the files it writes there.
-const RUN_FOLDERS: [(&str, &str); 3] = [("checkpoints", "checkpoint-"), (DUMPS_DIR, "particles"), ("frames", "frame-")];
+const RUN_FOLDERS: [(&str, &str); 3] =
+    [("checkpoints", "checkpoint-"), (DUMPS_DIR, "particles"), (FRAMES_DIR, "frame-")];
 
 /// Whether `dir` holds a run of gc2d-rs: its `segments.csv`, or a `timeseries.csv` that starts with a run's header
 /// (runs older than `segments.csv` wrote only that). Only such a directory's output files are a run's to replace.
@@ -104,7 +106,7 @@ mod tests {
     fn only_the_files_a_run_writes_are_removed() {
         let out = tempfile::tempdir().unwrap();
         let dir = out.path();
-        for folder in ["checkpoints", "dumps", "frames", "analysis"] {
+        for folder in ["checkpoints", "dumps", FRAMES_DIR, "analysis"] {
             std::fs::create_dir(dir.join(folder)).unwrap();
         }
         let run_files =

@@ -216,7 +216,8 @@ struct RunArgs {
     /// dump with dumps/particles.pvd for ParaView); docs/export.md [default: csv].
     #[arg(long, value_enum, value_delimiter = ',')]
     dump_format: Option<Vec<ExportFormat>>,
-    /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/).
+    /// Also draw a PNG picture every this many simulated seconds (into <out>/frames/); 0 draws none (a resumed part
+    /// then lets the earlier parts' pictures end at the checkpoint).
     #[arg(long, allow_hyphen_values = true)]
     png_every: Option<f64>,
     /// What the particle colours show in recordings and pictures.
@@ -301,19 +302,23 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
             record.with_extension("resumed.mcap").display()
         )));
     }
-    if let Some(interval) = args.dump_every
-        && !(interval.is_finite() && interval >= 0.0)
+    for (flag, interval, none) in
+        [("--dump-every", args.dump_every, "dumps"), ("--png-every", args.png_every, "pictures")]
+    {
+        if let Some(interval) = interval
+            && !(interval.is_finite() && interval >= 0.0)
+        {
+            return Err(CommandFailure::input(format!(
+                "{flag} must be a time in seconds (0: no {none}), got {interval}"
+            )));
+        }
+    }
+    if let Some(interval) = args.checkpoint_every
+        && !(interval.is_finite() && interval > 0.0)
     {
         return Err(CommandFailure::input(format!(
-            "--dump-every must be a time in seconds (0: no dumps), got {interval}"
+            "--checkpoint-every must be a positive time in seconds, got {interval}"
         )));
-    }
-    for (flag, interval) in [("--checkpoint-every", args.checkpoint_every), ("--png-every", args.png_every)] {
-        if let Some(interval) = interval
-            && !(interval.is_finite() && interval > 0.0)
-        {
-            return Err(CommandFailure::input(format!("{flag} must be a positive time in seconds, got {interval}")));
-        }
     }
     // The whole run loop executes on a worker of this pool: the engine's parallel sections then start from inside
     // the pool instead of handing every section over from the main thread and sleeping until it is done (which cost
@@ -419,8 +424,8 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     };
     // The outputs numbered on a cadence: a resumed part on another interval, or with other formats, than the earlier
     // part's is refused here, before the run directory is touched.
-    let mut pictures = args.png_every.map(|interval| PngFrames {
-        dir: out.join("frames"),
+    let mut pictures = args.png_every.filter(|&interval| interval > 0.0).map(|interval| PngFrames {
+        dir: out.join(gc2d_cli::sinks::FRAMES_DIR),
         interval,
         options: PngOptions {
             colour_by: args.colour_by.into(),
@@ -451,6 +456,8 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
             events_stopped: args.no_events,
             dumps: dumps.is_some(),
             dump_interval_given: args.dump_every.is_some(),
+            pictures: pictures.is_some(),
+            picture_interval_given: args.png_every.is_some(),
         };
         gc2d_cli::resume::refuse_silently_stopped_outputs(&out, &asked).map_err(CommandFailure::input)?;
         let folders =
@@ -819,7 +826,7 @@ fn refuse_cadences_below_the_step(args: &RunArgs, scene: &Scene, dt: f64) -> Res
             args.checkpoint_every.is_none().then_some(scene.run.checkpoint_interval_s).flatten(),
         ),
         ("--dump-every", args.dump_every.filter(|&interval| interval > 0.0)),
-        ("--png-every", args.png_every),
+        ("--png-every", args.png_every.filter(|&interval| interval > 0.0)),
     ];
     match cadences.into_iter().find_map(|(name, interval)| interval.filter(|&t| t < dt).map(|t| (name, t))) {
         Some((name, interval)) => Err(CommandFailure::input(format!(

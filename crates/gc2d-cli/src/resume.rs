@@ -6,6 +6,7 @@ use crate::console;
 use crate::dumps::StateDumps;
 use crate::earlier_run::holds_a_run;
 use crate::outputs::SCENE_COPY;
+use crate::sinks::{FRAMES_DIR, PngFrames};
 use gc2d_analysis::particle_state::csv::DUMPS_DIR;
 use gc2d_engine::World;
 use gc2d_scene::Scene;
@@ -185,11 +186,16 @@ pub struct ResumedOutputs {
     pub dumps: bool,
     /// `--dump-every` was given (0 stops the dumps at the checkpoint).
     pub dump_interval_given: bool,
+    /// It draws pictures.
+    pub pictures: bool,
+    /// `--png-every` was given (0 stops the pictures at the checkpoint).
+    pub picture_interval_given: bool,
 }
 
-/// Refuses a resumed part that would leave an output of the earlier parts (`events.csv`, the dumps) ending at the
-/// checkpoint without being asked to: a resume without `--events` or `--dump-every`, the options the first part was
-/// given, would silently cut that output short of the run. `--no-events` and `--dump-every 0` stop them on purpose.
+/// Refuses a resumed part that would leave an output of the earlier parts (`events.csv`, the dumps, the pictures)
+/// ending at the checkpoint without being asked to: a resume without `--events`, `--dump-every` or `--png-every`, the
+/// options the first part was given, would silently cut that output short of the run. `--no-events`,
+/// `--dump-every 0` and `--png-every 0` stop them on purpose.
 pub fn refuse_silently_stopped_outputs(out: &Path, asked: &ResumedOutputs) -> Result<(), String> {
     let events = out.join("events.csv");
     if !asked.events && !asked.events_stopped && events.is_file() {
@@ -211,6 +217,18 @@ pub fn refuse_silently_stopped_outputs(out: &Path, asked: &ResumedOutputs) -> Re
             dumps_dir.display(),
             earlier.interval,
             if earlier.formats.is_empty() { "csv" } else { &earlier.formats }
+        ));
+    }
+    let frames_dir = out.join(FRAMES_DIR);
+    if !asked.pictures
+        && !asked.picture_interval_given
+        && let Some(earlier) = PngFrames::folder_at(&frames_dir).recorded()?
+    {
+        return Err(format!(
+            "{} holds the pictures of the run up to the checkpoint, and this part would draw none: add --png-every {} \
+             to continue them to the end (or --png-every 0 to let them end at the checkpoint)",
+            frames_dir.display(),
+            earlier.interval
         ));
     }
     Ok(())
@@ -312,7 +330,7 @@ pub fn remove_temporary_files(out: &Path) {
     }
     remove_files_named(&out.join("checkpoints"), |name| name.strip_suffix(".tmp").and_then(checkpoint_step).is_some());
     // A picture is written as `frame-<k>.png.tmp` and renamed too.
-    remove_files_named(&out.join("frames"), |name| name.starts_with("frame-") && name.ends_with(".png.tmp"));
+    remove_files_named(&out.join(FRAMES_DIR), |name| name.starts_with("frame-") && name.ends_with(".png.tmp"));
 }
 
 /// Removes the files in `folder` whose names are `temporary`, leaving any that cannot be removed.

@@ -29,6 +29,9 @@ impl FrameSink for Recording {
     }
 }
 
+/// The folder of a run's pictures, under its output directory.
+pub const FRAMES_DIR: &str = "frames";
+
 /// Writes `<dir>/frame-<k>.png` on its cadence, k the picture's place on it (taken at k·interval), so that a
 /// resumed run numbers its pictures on from where the earlier part stopped instead of overwriting them from 0. Every
 /// picture shows one region, so that the frames have one size and scale (a movie needs both): the options' view, or
@@ -46,7 +49,12 @@ pub struct PngFrames {
 impl PngFrames {
     /// The pictures' folder as a [`NumberedFolder`].
     pub fn folder(&self) -> NumberedFolder<'_> {
-        NumberedFolder { dir: &self.dir, prefix: "frame-", flag: "--png-every", format_flag: "--png-every" }
+        Self::folder_at(&self.dir)
+    }
+
+    /// The pictures' folder `dir` (a run's `<out>/frames/`) as a [`NumberedFolder`], for a part that draws none.
+    pub fn folder_at(dir: &Path) -> NumberedFolder<'_> {
+        NumberedFolder { dir, prefix: "frame-", flag: "--png-every", format_flag: "--png-every" }
     }
 
     /// The interval the pictures are taken on, and the region they show once it is known.

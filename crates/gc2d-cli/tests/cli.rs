@@ -253,6 +253,27 @@ fn a_resume_does_not_silently_stop_the_events_or_dumps_of_the_parts_before() {
 }
 
 #[test]
+fn a_resume_does_not_silently_stop_the_pictures_of_the_parts_before() {
+    // Resumed without --png-every, a run's frames ended at the checkpoint without a word; there was no --png-every 0.
+    let out = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.02", "--png-every", "0.01", "--out"]).arg(out.path()).assert().success();
+    let resume = |args: &[&str]| {
+        let mut command = run_tiny_pile(&["--until", "0.03"]);
+        command.args(args).arg("--resume").arg(out.path());
+        command
+    };
+    resume(&[])
+        .assert()
+        .code(2)
+        .stderr(contains("add --png-every 0.01").and(contains("--png-every 0 to let them end")));
+    resume(&["--png-every", "0"]).assert().success();
+    let frames = std::fs::read_dir(out.path().join("frames")).unwrap().flatten();
+    let pictures = frames.filter(|entry| entry.file_name().to_string_lossy().ends_with(".png")).count();
+    assert_eq!(pictures, 3, "the pictures at 0, 0.01 and 0.02 s stay, and no more are drawn");
+    run_tiny_pile(&["--png-every", "-1", "--out"]).arg(out.path()).assert().code(2).stderr(contains("0: no pictures"));
+}
+
+#[test]
 fn events_and_no_events_together_are_refused() {
     // QA P2-10 k: the later flag won, and a mill run then told the user to add the --events it had been given.
     let out = tempfile::tempdir().unwrap();
