@@ -123,6 +123,25 @@ fn one_second_of_falling_heptagons_reads_back_frame_by_frame() {
     check_with_reference_reader(&python, &path, &expect);
 }
 
+#[test]
+fn the_same_run_recorded_twice_gives_the_same_bytes() {
+    // The mcap crate before 0.26 wrote the summary's schema and channel records in a HashMap's random order, so two
+    // recordings of one run differed in a few hundred bytes and `cmp` could not check a recording's determinism.
+    let dir = scratch_dir("twice");
+    let recordings: Vec<Vec<u8>> = ["a.mcap", "b.mcap"]
+        .iter()
+        .map(|name| {
+            let path = dir.join(name);
+            let mut world = falling_heptagons(12);
+            let mut recorder = Recorder::create(&path, RecordOptions::default(), &run_info()).unwrap();
+            run_recorded(&mut world, &mut recorder, 0.1, |_, _| {});
+            recorder.finish().unwrap();
+            std::fs::read(&path).unwrap()
+        })
+        .collect();
+    assert!(recordings[0] == recordings[1], "the two recordings of one run differ");
+}
+
 /// Environment variable that turns [`child_records_until_killed`] into the recording child of
 /// [`a_run_killed_mid_way_leaves_a_readable_file`]; its value is the recording's path.
 const CHILD_ENV: &str = "GC2D_RECORD_KILL_CHILD";
