@@ -16,18 +16,22 @@ pub fn quantile(sorted: &[f64], q: f64) -> f64 {
 /// A histogram of non-negative values over [0, largest] with ⌈√N⌉ equal bins, area-normalised (thesis §16.3).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Histogram {
-    /// Bin edges (one more than the densities).
+    /// Bin edges (one more than the densities; none without values).
     pub bin_edges: Vec<f64>,
-    /// Probability densities per bin (the histogram's area is 1; all 0 without values).
+    /// Probability densities per bin (the histogram's area is 1; none without values).
     pub densities: Vec<f64>,
-    /// Centre of the fullest bin (the lowest of equally full ones).
+    /// Centre of the fullest bin (the lowest of equally full ones); NaN (null in JSON) without values.
     pub mode: f64,
 }
 
 impl Histogram {
-    /// The histogram of `sorted` (ascending, non-negative) values.
+    /// The histogram of `sorted` (ascending, non-negative) values. Without values it has no bins and no mode: a bin
+    /// over [0, the smallest positive number] gave sentinel numbers (2.2e-308) in the reports.
     pub fn of(sorted: &[f64]) -> Self {
         let n = sorted.len();
+        if n == 0 {
+            return Self { bin_edges: Vec::new(), densities: Vec::new(), mode: f64::NAN };
+        }
         let bins = (n as f64).sqrt().ceil().max(1.0) as usize;
         let top = sorted.last().copied().unwrap_or(0.0).max(f64::MIN_POSITIVE);
         let width = top / bins as f64;
@@ -38,7 +42,7 @@ impl Histogram {
         let fullest = counts.iter().enumerate().max_by_key(|&(k, &c)| (c, std::cmp::Reverse(k))).map_or(0, |(k, _)| k);
         Self {
             bin_edges: (0..=bins).map(|k| k as f64 * width).collect(),
-            densities: counts.iter().map(|&c| c as f64 / (n.max(1) as f64 * width)).collect(),
+            densities: counts.iter().map(|&c| c as f64 / (n as f64 * width)).collect(),
             mode: (fullest as f64 + 0.5) * width,
         }
     }
@@ -68,7 +72,7 @@ impl SpeedDistribution {
         let histogram = Histogram::of(&speeds);
         Self {
             samples: speeds.len(),
-            mode_m_s: if speeds.is_empty() { f64::NAN } else { histogram.mode },
+            mode_m_s: histogram.mode,
             median_m_s: quantile(&speeds, 0.5),
             p90_m_s: quantile(&speeds, 0.9),
             mean_m_s: speeds.iter().sum::<f64>() / speeds.len() as f64,
@@ -205,6 +209,19 @@ mod tests {
         assert!((d.mode_m_s - 2.0 / 3.0).abs() < 1e-12);
         assert_eq!(d.median_m_s, 0.9);
         assert!((d.p90_m_s - 3.92).abs() < 1e-12);
+    }
+
+    /// QA P2-10 j: an empty sample gave a bin over [0, 2.2e-308] and a mode of 1.1e-308.
+    #[test]
+    fn an_empty_sample_has_no_bins_and_no_mode() {
+        let d = SpeedDistribution::of(Vec::new());
+        assert!(d.histogram.bin_edges.is_empty() && d.histogram.densities.is_empty());
+        assert!(d.histogram.mode.is_nan() && d.mode_m_s.is_nan() && d.median_m_s.is_nan());
+        let json = serde_json::to_string(&d).unwrap();
+        assert_eq!(
+            json,
+            r#"{"samples":0,"mode_m_s":null,"median_m_s":null,"p90_m_s":null,"mean_m_s":null,"histogram":{"bin_edges":[],"densities":[],"mode":null}}"#
+        );
     }
 
     #[test]

@@ -309,10 +309,11 @@ pub fn stress_energy_spectrum(mut energies: Vec<f64>, span: f64) -> StressEnergy
     energies.retain(|&e| e > 0.0);
     energies.sort_by(f64::total_cmp);
     let n = energies.len();
-    let bins = (n as f64).sqrt().ceil().max(1.0) as usize;
+    // Without events, no bins: a decade from 1 J to 10 J stood in for the missing range.
+    let bins = (n as f64).sqrt().ceil() as usize;
     let (mut lo, mut hi) = match (energies.first(), energies.last()) {
         (Some(a), Some(b)) => (a.log10(), b.log10()),
-        _ => (0.0, 1.0),
+        _ => (0.0, 0.0),
     };
     if hi - lo < 1e-9 {
         (lo, hi) = (lo - 0.5, hi + 0.5);
@@ -329,8 +330,8 @@ pub fn stress_energy_spectrum(mut energies: Vec<f64>, span: f64) -> StressEnergy
         median_j: quantile(&energies, 0.5),
         mean_j: energies.iter().sum::<f64>() / n as f64,
         energy_per_second_w: energies.iter().sum::<f64>() / span,
-        bin_edges_j: (0..=bins).map(|k| 10f64.powf(lo + k as f64 * width)).collect(),
-        densities_per_decade: counts.iter().map(|&c| c as f64 / (n.max(1) as f64 * width)).collect(),
+        bin_edges_j: if n == 0 { Vec::new() } else { (0..=bins).map(|k| 10f64.powf(lo + k as f64 * width)).collect() },
+        densities_per_decade: counts.iter().map(|&c| c as f64 / (n as f64 * width)).collect(),
         counts,
     }
 }
@@ -656,10 +657,7 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
         .iter()
         .chain([&report.all_classes])
         .map(|c| {
-            format!(
-                "{},{},{},{},{},{},{},{},{},{},{},{}",
-                c.class,
-                c.collisions,
+            let numbers = [
                 c.per_second,
                 c.per_ball_per_second,
                 c.mode_m_s,
@@ -669,8 +667,12 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
                 c.fractions_above[0],
                 c.fractions_above[1],
                 c.fractions_above[2],
-                c.normal_energy_per_second_w
-            )
+                c.normal_energy_per_second_w,
+            ];
+            // An empty class has no mode or quartiles: an empty field, as `OutputDir::write_csv` writes them.
+            let fields: Vec<String> =
+                numbers.iter().map(|x| if x.is_finite() { x.to_string() } else { String::new() }).collect();
+            format!("{},{},{}", c.class, c.collisions, fields.join(","))
         })
         .collect();
     out.write_text(

@@ -311,3 +311,33 @@ fn revolutions_count_the_turns_the_rotor_made_during_its_spin_up() {
     assert!((from_zero - 7.5).abs() < 1e-9 && (turns(end) - turns(0.3) - 6.6).abs() < 1e-9);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The analysis directory's `name` as text.
+fn analysis_file(dir: &Path, name: &str) -> String {
+    std::fs::read_to_string(dir.join("analysis").join(name)).unwrap()
+}
+
+/// QA P2-10 j: a window without collisions wrote a 330-character mode and NaN quartiles into `mill_collisions.csv`
+/// and 2.2e-308 bin edges into `mill.json`; an empty stress-energy spectrum had bins from 1 J to 10 J.
+#[test]
+fn empty_classes_give_null_and_empty_fields_not_sentinels() {
+    let (dir, _) = run_dir("no-collisions", 0.0);
+    let header = std::fs::read_to_string(dir.join("events.csv")).unwrap().lines().next().unwrap().to_owned();
+    std::fs::write(dir.join("events.csv"), header + "\n").unwrap();
+    let report = analyze_mill(&dir, &MillOptions::default()).unwrap();
+    assert!(report.classes.is_empty() && report.all_classes.collisions == 0);
+    let collisions = analysis_file(&dir, "mill_collisions.csv");
+    assert_eq!(collisions.lines().nth(1), Some("all,0,0,0,,,,,0,0,0,0"), "{collisions}");
+    let json: serde_json::Value = serde_json::from_str(&analysis_file(&dir, "mill.json")).unwrap();
+    let all = &json["all_classes"];
+    assert!(all["mode_m_s"].is_null() && all["quartiles_m_s"].as_array().unwrap().iter().all(|q| q.is_null()));
+    assert_eq!(
+        (all["bin_edges_m_s"].as_array().map(Vec::len), all["densities"].as_array().map(Vec::len)),
+        (Some(0), Some(0))
+    );
+    let stress = &json["stress_energy"];
+    assert_eq!((stress["events"].as_u64(), stress["bin_edges_j"].as_array().map(Vec::len)), (Some(0), Some(0)));
+    assert!(stress["median_j"].is_null());
+    assert!(!analysis_file(&dir, "mill.json").contains("e-308"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
