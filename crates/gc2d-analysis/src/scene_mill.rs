@@ -20,7 +20,7 @@ use crate::mill_speeds::{
     Autocorrelation, Histogram, SpeedDistribution, WarmUpCut, autocorrelation, quantile, warm_up_cut,
 };
 use crate::output::OutputDir;
-use crate::particle_state::csv::{DUMPS_DIR, dump_files, read_csv};
+use crate::particle_state::csv::{DUMPS_DIR, dump_files, missing_dumps, read_csv, unreadable_dumps};
 use crate::particle_state::{ParticleShape, ParticleState};
 use crate::table::{Table, number};
 use gc2d_engine::{Bodies, BodyKind, ShapeKind, WallMotion, World};
@@ -170,10 +170,11 @@ pub struct BallSpeeds {
     pub dumps: usize,
     /// Every ball in every dump.
     pub all: SpeedDistribution,
-    /// Balls in the outer ring (r > R − 2d) above the centre.
-    pub upper_outer: SpeedDistribution,
-    /// Balls in the outer ring below the centre.
-    pub lower_outer: SpeedDistribution,
+    /// Balls in the outer ring (r > R − 2d) above the centre; `None` without a circular chamber (a wavy or polygonal
+    /// one), which has no R in the final state.
+    pub upper_outer: Option<SpeedDistribution>,
+    /// Balls in the outer ring below the centre; `None` without a circular chamber.
+    pub lower_outer: Option<SpeedDistribution>,
 }
 
 /// What [`analyze_mill`] computed, written as `mill.json`.
@@ -219,6 +220,9 @@ pub struct MillReport {
     /// The median-speed series over the whole run: (time s, median |v| m/s).
     #[serde(skip)]
     pub median_series: Vec<(f64, f64)>,
+    /// What the user should know before trusting the numbers: dumps the analysis cannot read or that are missing, a
+    /// chamber without the outer ring and the maps (also printed by `gc2d-rs analyze`).
+    pub warnings: Vec<String>,
     /// The files written into the analysis directory.
     pub files: Vec<String>,
 }
@@ -382,17 +386,24 @@ impl BallDump {
     }
 }
 
-/// The run's dumps up to `end` (dumps a longer earlier run left behind are not read).
-fn read_dumps(run_dir: &Path, end: f64, slack: f64, balls: &BallIds) -> Result<Vec<BallDump>, AnalysisError> {
-    let mut dumps = Vec::new();
-    for (_, path) in dump_files(&run_dir.join(DUMPS_DIR))? {
+/// The run's dumps up to `end` (dumps a longer earlier run left behind are not read), with a warning where dumps are
+/// missing from their numbering between the first and the last of them ([`missing_dumps`]).
+fn read_dumps(
+    run_dir: &Path,
+    end: f64,
+    slack: f64,
+    balls: &BallIds,
+) -> Result<(Vec<BallDump>, Option<String>), AnalysisError> {
+    let (mut dumps, mut indices) = (Vec::new(), Vec::new());
+    for (index, path) in dump_files(&run_dir.join(DUMPS_DIR))? {
         if let Some(dump) = BallDump::of(&read_csv(&path)?, balls)
             && dump.time <= end + slack
         {
             dumps.push(dump);
+            indices.push(index);
         }
     }
-    Ok(dumps)
+    Ok((dumps, missing_dumps(&indices)))
 }
 
 /// The rotor's revolutions from `from` to `to` s: the angle its motion law (angular velocity, spin-up ramp, time
@@ -443,7 +454,8 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let series = Table::read(&run_dir.join("timeseries.csv"))?;
     let series_file = "timeseries.csv";
     let time = series.column("time_s", series_file)?;
-    let dumps = read_dumps(run_dir, end, slack, &options.balls)?;
+    let (dumps, missing) = read_dumps(run_dir, end, slack, &options.balls)?;
+    let mut warnings: Vec<String> = unreadable_dumps(&run_dir.join(DUMPS_DIR))?.into_iter().chain(missing).collect();
 
     // The median-speed series: the balls' per dump, else the time series' column.
     let (median_series, source): (Vec<(f64, f64)>, _) = if dumps.len() >= 8 {
@@ -595,22 +607,32 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let window_dumps: Vec<&BallDump> = dumps.iter().filter(|d| in_window(d.time)).collect();
     let chamber = chamber_of(&world, &options.balls);
     let samples: Vec<(DVec2, f64)> = window_dumps.iter().flat_map(|d| d.balls.iter().copied()).collect();
+    if chamber.is_none() && !window_dumps.is_empty() {
+        warnings.push(
+            "the chamber is not a circle (a wavy or polygonal wall, which the final state gives no radius for): the \
+             outer-ring ball speeds (upper_outer, lower_outer), the radial profile and the sector maps are not \
+             defined and are left out (null)"
+                .into(),
+        );
+    }
     let ball_speeds = (!window_dumps.is_empty()).then(|| {
         let outer = |upper: bool| {
-            let Some(c) = chamber else { return Vec::new() };
-            let centre = DVec2::from(c.centre_m);
-            samples
-                .iter()
-                .filter(|(p, _)| (*p - centre).length() > c.radius_m - 2.0 * c.ball_diameter_m)
-                .filter(|(p, _)| (p.y >= centre.y) == upper)
-                .map(|s| s.1)
-                .collect()
+            chamber.map(|c| {
+                let centre = DVec2::from(c.centre_m);
+                let speeds = samples
+                    .iter()
+                    .filter(|(p, _)| (*p - centre).length() > c.radius_m - 2.0 * c.ball_diameter_m)
+                    .filter(|(p, _)| (p.y >= centre.y) == upper)
+                    .map(|s| s.1)
+                    .collect();
+                SpeedDistribution::of(speeds)
+            })
         };
         BallSpeeds {
             dumps: window_dumps.len(),
             all: SpeedDistribution::of(samples.iter().map(|s| s.1).collect()),
-            upper_outer: SpeedDistribution::of(outer(true)),
-            lower_outer: SpeedDistribution::of(outer(false)),
+            upper_outer: outer(true),
+            lower_outer: outer(false),
         }
     });
     let radial = chamber.filter(|_| !samples.is_empty()).map(|c| {
@@ -638,6 +660,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
         collision_points_known: point_columns.is_some(),
         sectors,
         median_series,
+        warnings,
         files: Vec::new(),
     })
 }
@@ -740,7 +763,11 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
         )?;
     }
     if let Some(s) = &report.ball_speeds {
-        let parts = [("all", &s.all), ("upper_outer", &s.upper_outer), ("lower_outer", &s.lower_outer)];
+        let parts: Vec<(&str, &SpeedDistribution)> =
+            [("all", Some(&s.all)), ("upper_outer", s.upper_outer.as_ref()), ("lower_outer", s.lower_outer.as_ref())]
+                .into_iter()
+                .filter_map(|(name, d)| Some((name, d?)))
+                .collect();
         let rows: Vec<String> = parts
             .iter()
             .flat_map(|(name, d)| {

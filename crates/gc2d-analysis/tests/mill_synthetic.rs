@@ -19,8 +19,9 @@ const D: f64 = 0.005;
 const OMEGA: f64 = 20.0 * std::f64::consts::PI;
 
 /// Bodies 0 chamber, 1 blade, 2 hub, 3 and 4 balls, 5 and 6 ore grains; nothing touches. The blade turns at
-/// [`OMEGA`] after a linear spin-up of `spin_up` s from rest.
-fn world(spin_up: f64) -> World {
+/// [`OMEGA`] after a linear spin-up of `spin_up` s from rest. The chamber is an inner circle of radius [`R`], or with
+/// `circular` false a square wall far away (as a wavy chamber, a wall without a radius).
+fn world(spin_up: f64, circular: bool) -> World {
     let config = WorldConfig {
         time_step: 1e-3,
         integrator: Default::default(),
@@ -39,7 +40,12 @@ fn world(spin_up: f64) -> World {
     };
     let mut world = World::new(config).unwrap();
     let origin = Pose::new(DVec2::ZERO, 0.0);
-    world.add_wall(BodyShape::InnerCircle { radius: R }, origin, DVec2::ZERO, WallMotion::Static);
+    if circular {
+        world.add_wall(BodyShape::InnerCircle { radius: R }, origin, DVec2::ZERO, WallMotion::Static);
+    } else {
+        let far = Pose::new(DVec2::new(1.0, 0.0), 0.0);
+        world.add_wall(regular_polygon(4, 0.01).unwrap(), far, DVec2::ZERO, WallMotion::Static);
+    }
     let rotation =
         Rotation { pivot: DVec2::ZERO, angular_velocity: OMEGA, window: TimeWindow::new(0.0, f64::INFINITY), spin_up };
     world.add_wall(
@@ -72,9 +78,9 @@ fn event(text: &mut String, begin: f64, a: u32, b: u32, speed: f64, at: DVec2) {
     let _ = writeln!(text, "{begin},{begin},{a},{b},x,x,m,m,{speed:e},0,0,0,0,0,,0,{:e},{:e}", at.x, at.y);
 }
 
-/// A run directory `gc2d-mill-synthetic-<name>-<pid>` of [`world`]`(spin_up)` run to 1 s.
+/// A run directory `gc2d-mill-synthetic-<name>-<pid>` of [`world`]`(spin_up, true)` run to 1 s.
 fn run_dir(name: &str, spin_up: f64) -> (PathBuf, World) {
-    let mut world = world(spin_up);
+    let mut world = world(spin_up, true);
     world.run_until(1.0).unwrap();
     let dir = std::env::temp_dir().join(format!("gc2d-mill-synthetic-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -189,8 +195,8 @@ fn a_hand_made_mill_run_gives_the_known_statistics() {
     let speeds = report.ball_speeds.as_ref().unwrap();
     assert_eq!((speeds.dumps, speeds.all.samples), (71, 142));
     assert_eq!((speeds.all.median_m_s, speeds.all.mean_m_s, speeds.all.p90_m_s), (2.0, 2.0, 3.0));
-    assert_eq!((speeds.upper_outer.samples, speeds.upper_outer.median_m_s), (71, 1.0));
-    assert_eq!((speeds.lower_outer.samples, speeds.lower_outer.median_m_s), (71, 3.0));
+    let (upper, lower) = (speeds.upper_outer.as_ref().unwrap(), speeds.lower_outer.as_ref().unwrap());
+    assert_eq!((upper.samples, upper.median_m_s, lower.samples, lower.median_m_s), (71, 1.0, 71, 3.0));
     assert_eq!(report.median_speed_m_s, [2.0, 0.0]);
     assert!(report.autocorrelation.is_none(), "a constant series has no autocorrelation");
 
@@ -317,6 +323,62 @@ fn analysis_file(dir: &Path, name: &str) -> String {
     std::fs::read_to_string(dir.join("analysis").join(name)).unwrap()
 }
 
+/// QA P2-10 d: a run whose dumps are only Parquet (`--dump-format parquet`) gave `"ball_speeds": null` without a word.
+#[test]
+fn dumps_in_formats_the_analysis_cannot_read_are_warned_about() {
+    let (dir, _) = run_dir("parquet", 0.0);
+    let dumps = dir.join("dumps");
+    for (_, path) in gc2d_analysis::particle_state::csv::dump_files(&dumps).unwrap() {
+        std::fs::rename(&path, path.with_extension("parquet")).unwrap();
+    }
+    let report = analyze_mill(&dir, &MillOptions::default()).unwrap();
+    assert!(report.ball_speeds.is_none());
+    assert_eq!(report.warnings.len(), 1, "{:?}", report.warnings);
+    let warning = &report.warnings[0];
+    assert!(
+        warning.contains("dumps in formats the analysis cannot read (101 in parquet, without a CSV copy)")
+            && warning.contains("run with `--dump-format csv` (csv is what `analyze` reads"),
+        "{warning}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&analysis_file(&dir, "mill.json")).unwrap();
+    assert_eq!(json["warnings"][0].as_str(), Some(warning.as_str()));
+    // With a CSV copy of every dump there is nothing to say.
+    let (both, _) = run_dir("parquet-and-csv", 0.0);
+    std::fs::write(both.join("dumps/particles_000003.parquet"), "").unwrap();
+    assert_eq!(analyze_mill(&both, &MillOptions::default()).unwrap().warnings, Vec::<String>::new());
+    std::fs::remove_dir_all(&dir).unwrap();
+    std::fs::remove_dir_all(&both).unwrap();
+}
+
+/// QA P2-10 h: a dump file deleted from the numbered sequence was skipped without a word.
+#[test]
+fn dumps_missing_from_the_numbering_are_named() {
+    let (dir, _) = run_dir("missing", 0.0);
+    std::fs::remove_file(dir.join("dumps").join(dump_file_name(50))).unwrap();
+    let report = analyze_mill(&dir, &MillOptions::default()).unwrap();
+    assert_eq!(
+        report.warnings,
+        ["dumps/particles_000050.csv is missing from the numbered dumps (deleted, or lost): the dump-based \
+          statistics use the 100 others"]
+    );
+    assert_eq!(report.ball_speeds.as_ref().unwrap().dumps, 70);
+    // Several: counted, the first few named.
+    for k in [40, 41, 42, 43, 44, 45, 60] {
+        std::fs::remove_file(dir.join("dumps").join(dump_file_name(k))).unwrap();
+    }
+    let report = analyze_mill(&dir, &MillOptions::default()).unwrap();
+    let warning = &report.warnings[0];
+    assert!(
+        warning.starts_with(
+            "8 dump files are missing from the numbered dumps (deleted, or lost): dumps/particles_000040.csv, \
+             dumps/particles_000041.csv, dumps/particles_000042.csv, dumps/particles_000043.csv, \
+             dumps/particles_000044.csv, …; the dump-based statistics use the 93 others"
+        ),
+        "{warning}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// QA P2-10 j: a window without collisions wrote a 330-character mode and NaN quartiles into `mill_collisions.csv`
 /// and 2.2e-308 bin edges into `mill.json`; an empty stress-energy spectrum had bins from 1 J to 10 J.
 #[test]
@@ -339,5 +401,27 @@ fn empty_classes_give_null_and_empty_fields_not_sentinels() {
     assert_eq!((stress["events"].as_u64(), stress["bin_edges_j"].as_array().map(Vec::len)), (Some(0), Some(0)));
     assert!(stress["median_j"].is_null());
     assert!(!analysis_file(&dir, "mill.json").contains("e-308"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// QA P2-10 j: a wavy chamber (no inner circle in the final state) gave outer-ring speeds of 0 samples with sentinel
+/// bins and no word; they are not defined without the chamber's radius: null, with a warning that says why.
+#[test]
+fn a_chamber_that_is_not_a_circle_has_no_outer_ring_and_says_so() {
+    let (dir, _) = run_dir("not-circular", 0.0);
+    let mut world = world(0.0, false);
+    world.run_until(1.0).unwrap();
+    world.save_checkpoint_file(dir.join("final.ckpt")).unwrap();
+    let report = analyze_mill(&dir, &MillOptions::default()).unwrap();
+    let speeds = report.ball_speeds.as_ref().unwrap();
+    assert_eq!(speeds.all.samples, 142);
+    assert!(speeds.upper_outer.is_none() && speeds.lower_outer.is_none());
+    assert!(report.chamber.is_none() && report.radial_profile.is_none());
+    assert_eq!(report.warnings.len(), 1, "{:?}", report.warnings);
+    assert!(report.warnings[0].starts_with("the chamber is not a circle"), "{}", report.warnings[0]);
+    let json: serde_json::Value = serde_json::from_str(&analysis_file(&dir, "mill.json")).unwrap();
+    assert!(json["ball_speeds"]["upper_outer"].is_null() && json["ball_speeds"]["lower_outer"].is_null());
+    let rows = analysis_file(&dir, "mill_ball_speeds.csv");
+    assert!(rows.lines().skip(1).all(|l| l.starts_with("all,")), "{rows}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -101,6 +101,7 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
             warnings.extend(warning);
             let options = MillOptions { warm_up_s: settings.warm_up_s, balls };
             let report = analyze_mill(run_dir, &options).map_err(failed)?;
+            warnings.extend(report.warnings.iter().cloned());
             serde_json::to_string_pretty(&report)
         }
         AnalysisKind::Feedpipe => {

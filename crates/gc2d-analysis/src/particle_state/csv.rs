@@ -123,6 +123,77 @@ pub fn dump_files(dir: &Path) -> Result<Vec<(u64, PathBuf)>, AnalysisError> {
     Ok(files)
 }
 
+/// How many missing file names a warning lists before it gives only their count.
+const MISSING_LISTED: usize = 5;
+
+/// A warning where dump files are missing from the numbered sequence between the first and the last of `indices`
+/// (ascending, the dumps an analysis read): it names the missing files (the first [`MISSING_LISTED`] and their
+/// count where there are more). The dumps before the first and after the last one read are not judged: a run resumed
+/// into a new directory starts its numbering late, and one that ended between two dumps has no further one.
+pub fn missing_dumps(indices: &[u64]) -> Option<String> {
+    let missing: Vec<u64> =
+        indices.windows(2).flat_map(|pair| pair[0].saturating_add(1)..pair[1]).take(MISSING_LISTED + 1).collect();
+    let total: u64 = indices.windows(2).map(|pair| pair[1].saturating_sub(pair[0]).saturating_sub(1)).sum();
+    let names: Vec<String> =
+        missing.iter().take(MISSING_LISTED).map(|&k| format!("{DUMPS_DIR}/{}", dump_file_name(k))).collect();
+    match total {
+        0 => None,
+        1 => Some(format!(
+            "{} is missing from the numbered dumps (deleted, or lost): the dump-based statistics use the {} others",
+            names[0],
+            indices.len()
+        )),
+        _ => Some(format!(
+            "{total} dump files are missing from the numbered dumps (deleted, or lost): {}{}; the dump-based \
+             statistics use the {} others",
+            names.join(", "),
+            if total > MISSING_LISTED as u64 { ", …" } else { "" },
+            indices.len()
+        )),
+    }
+}
+
+/// A warning where the dumps directory `dir` holds dumps only in formats the analyses cannot read (Parquet, VTK:
+/// `particles_<k>.parquet`, `.vtu` without a `particles_<k>.csv`): it counts them per format and says that
+/// `--dump-format csv` writes the CSV dumps the analyses read. `None` where every dump has its CSV file.
+pub fn unreadable_dumps(dir: &Path) -> Result<Option<String>, AnalysisError> {
+    let entries = match std::fs::read_dir(dir) {
+        Ok(entries) => entries,
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(None),
+        Err(source) => return Err(AnalysisError::Io { path: dir.to_path_buf(), source }),
+    };
+    let readable: std::collections::BTreeSet<u64> = dump_files(dir)?.into_iter().map(|(k, _)| k).collect();
+    // The formats as `--dump-format` names them, by the files' extensions.
+    let mut unreadable: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
+    for entry in entries.filter_map(Result::ok) {
+        let Ok(name) = entry.file_name().into_string() else { continue };
+        let Some((index, extension)) = name.strip_prefix("particles_").and_then(|rest| rest.split_once('.')) else {
+            continue;
+        };
+        let format = match extension {
+            "parquet" => "parquet",
+            "vtu" => "vtk",
+            _ => continue,
+        };
+        if index.parse::<u64>().is_ok_and(|k| !readable.contains(&k)) {
+            *unreadable.entry(format).or_default() += 1;
+        }
+    }
+    if unreadable.is_empty() {
+        return Ok(None);
+    }
+    let counts: Vec<String> = unreadable.iter().map(|(format, n)| format!("{n} in {format}")).collect();
+    let formats: Vec<&str> = unreadable.keys().copied().collect();
+    Ok(Some(format!(
+        "{} holds dumps in formats the analysis cannot read ({}, without a CSV copy), so they are left out of the \
+         statistics from the dumps: run with `--dump-format csv` (csv is what `analyze` reads; \
+         `--dump-format csv,{}` writes both) to make them usable",
+        dir.display(),
+        counts.join(", "),
+        formats.join(",")
+    )))
+}
+
 /// A CSV field: as it is, or quoted (with quotes doubled) when it holds a comma, a quote or a line break. The one
 /// quoting rule of the run's CSV outputs (dumps, events, exports).
 pub fn quoted(text: &str) -> std::borrow::Cow<'_, str> {
@@ -202,5 +273,18 @@ mod tests {
         let error = read_csv(&path).unwrap_err().to_string();
         assert!(error.contains("particles_000012.csv:1") && error.contains("header"), "{error}");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// QA P2-10 h: a gap in the numbering is named; the numbering before the first dump read (a run resumed into a
+    /// new directory) is not judged.
+    #[test]
+    fn gaps_between_the_dumps_read_are_named() {
+        assert_eq!(missing_dumps(&[]), None);
+        assert_eq!(missing_dumps(&[5, 6, 7]), None);
+        let one = missing_dumps(&[0, 1, 3]).unwrap();
+        assert!(one.starts_with("dumps/particles_000002.csv is missing") && one.ends_with("use the 3 others"), "{one}");
+        let many = missing_dumps(&[0, 20]).unwrap();
+        assert!(many.starts_with("19 dump files are missing"), "{many}");
+        assert!(many.contains("particles_000005.csv, …; the dump-based statistics use the 2 others"), "{many}");
     }
 }

@@ -1,0 +1,61 @@
+//! `gc2d-rs analyze` says what it cannot use (QA P2-10 d): dumps in formats it cannot read. The warning is on stderr
+//! and in the report's `warnings`.
+
+use assert_cmd::Command;
+use std::path::{Path, PathBuf};
+
+/// Writes the scene `text` into `dir` and runs it with `args`; returns the run directory.
+fn run(dir: &Path, text: &str, args: &[&str]) -> PathBuf {
+    let scene_path = dir.join("scene_under_test.ron");
+    std::fs::write(&scene_path, text).unwrap();
+    let out = dir.join("run");
+    Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .arg("run")
+        .arg(&scene_path)
+        .args(["--quiet", "--out"])
+        .arg(&out)
+        .args(args)
+        .assert()
+        .success();
+    out
+}
+
+/// `analyze RUN --kind KIND`: the report (stdout) and stderr.
+fn analyze(run: &Path, kind: &str) -> (serde_json::Value, String) {
+    let output = Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .args(["analyze", run.to_str().unwrap(), "--kind", kind])
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    (serde_json::from_slice(&output.stdout).unwrap(), String::from_utf8(output.stderr).unwrap())
+}
+
+/// QA P2-10 d: `analyze --kind mill` of a run dumped only as Parquet gave `"ball_speeds": null` without a word.
+#[test]
+fn a_mill_run_dumped_only_as_parquet_is_told_to_dump_csv() {
+    let scene = r#"Scene(
+    mass_model: SphereEquivalent,
+    run: (time_step_s: 5e-7, end_time_s: 0.004, frames_per_second: 1000),
+    materials: [(name: "steel", density_kg_m3: 7850, youngs_modulus_pa: 196.2e9, poisson_ratio: 0.3)],
+    interactions: [(materials: ("steel", "steel"), law: Hertz(damping: Restitution(0.8)))],
+    mill: (
+        chamber_radius_m: 0.073,
+        rotor: (rpm: 1700, hub_radius_m: 0.008, tip_radius_m: 0.058, blade_width_m: 0.008, arms_rad: [0.0]),
+        balls: (count: 4, radius_m: 0.0025, speed_m_s: 1.0),
+    ),
+)"#;
+    let dir = tempfile::tempdir().unwrap();
+    let out = run(dir.path(), scene, &["--events", "--dump-format", "parquet"]);
+    let (report, stderr) = analyze(&out, "mill");
+    assert!(report["ball_speeds"].is_null());
+    let warning = report["warnings"][0].as_str().unwrap_or_default();
+    assert!(
+        warning.contains("holds dumps in formats the analysis cannot read (5 in parquet, without a CSV copy)")
+            && warning.contains("run with `--dump-format csv` (csv is what `analyze` reads"),
+        "{report}"
+    );
+    assert!(stderr.contains(&format!("warning: {warning}")), "{stderr}");
+}
