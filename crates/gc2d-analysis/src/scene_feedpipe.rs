@@ -21,7 +21,7 @@ use crate::figures::{Labels, Mark, SERIES_COLOURS, Series, bar_chart, line_chart
 use crate::mill_speeds::{Histogram, quantile};
 use crate::output::OutputDir;
 use crate::particle_state::ParticleState;
-use crate::particle_state::csv::{DUMPS_DIR, dump_files, read_csv};
+use crate::particle_state::csv::{DUMPS_DIR, dump_files, missing_dumps, read_csv, unreadable_dumps};
 use crate::table::{Table, number};
 use gc2d_engine::World;
 use gc2d_geometry::DVec2;
@@ -122,6 +122,9 @@ pub struct FeedpipeReport {
     pub mean_slip_m_s: [f64; 2],
     /// Dumps in the window.
     pub dumps: usize,
+    /// What the user should know before trusting the numbers: a window that could not start at the first removal,
+    /// dumps the analysis cannot read or that are missing (also printed by `gc2d-rs analyze`).
+    pub warnings: Vec<String>,
 }
 
 /// The pipe's frame: where the section starts, its unit direction and length, and the flow direction.
@@ -368,6 +371,15 @@ pub fn feedpipe_report(
     let end = times.last().copied().unwrap_or(world.time());
     let first_removal = passages.iter().map(|p| p.left_s).fold(f64::INFINITY, f64::min);
     let start = options.warm_up_s.unwrap_or(if first_removal.is_finite() { first_removal } else { 0.0 });
+    let mut warnings = Vec::new();
+    if options.warm_up_s.is_none() && !first_removal.is_finite() {
+        warnings.push(
+            "no particle has left through an outlet yet (transits.csv has no passage), so the window cannot start at \
+             the first removal, as it does by default: it falls back to the whole run (window_s from 0 s), while the \
+             pipe is still filling (give --warm-up T to choose the window)"
+                .into(),
+        );
+    }
     if options.warm_up_s.is_some() && !(start.is_finite() && start >= 0.0 && start < end) {
         return Err(AnalysisError::InvalidParameter(format!(
             "the warm-up {start} s must lie between 0 and the run's end, {end} s"
@@ -414,13 +426,16 @@ pub fn feedpipe_report(
             .collect(),
     );
 
-    let mut dumps = Vec::new();
-    for (_, path) in dump_files(&run_dir.join(DUMPS_DIR))? {
+    let (mut dumps, mut indices) = (Vec::new(), Vec::new());
+    for (index, path) in dump_files(&run_dir.join(DUMPS_DIR))? {
         let states = read_csv(&path)?;
         if states.first().is_some_and(|s| in_window(s.time_s)) {
             dumps.push(states);
+            indices.push(index);
         }
     }
+    warnings.extend(unreadable_dumps(&run_dir.join(DUMPS_DIR))?);
+    warnings.extend(missing_dumps(&indices));
     let fluid = world.fluid();
     let fluid_at = |x: DVec2, t: f64| fluid.and_then(|f| f.field.velocity(x, t).ok()).unwrap_or(DVec2::NAN);
     // The section halfway between the first inlet's midpoint and the outlet, for the fluid profile.
@@ -443,6 +458,7 @@ pub fn feedpipe_report(
         samples_outside_section,
         mean_slip_m_s,
         dumps: dumps.len(),
+        warnings,
     };
     Ok((report, rates))
 }

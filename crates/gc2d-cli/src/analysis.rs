@@ -107,6 +107,7 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
         AnalysisKind::Feedpipe => {
             let options = FeedpipeOptions { warm_up_s: settings.warm_up_s, bins: settings.bins };
             let report = analyze_feedpipe(run_dir, &options).map_err(failed)?;
+            warnings.extend(report.warnings.iter().cloned());
             warnings.extend(beside_the_section(&report));
             serde_json::to_string_pretty(&report)
         }

@@ -1,5 +1,5 @@
-//! `gc2d-rs analyze` says what it cannot use (QA P2-10 d): dumps in formats it cannot read. The warning is on stderr
-//! and in the report's `warnings`.
+//! `gc2d-rs analyze` says what it cannot use or had to assume (QA P2-10 d, g): dumps in formats it cannot read, and a
+//! feed-pipe window that falls back to the whole run. Each warning is on stderr and in the report's `warnings`.
 
 use assert_cmd::Command;
 use std::path::{Path, PathBuf};
@@ -58,4 +58,43 @@ fn a_mill_run_dumped_only_as_parquet_is_told_to_dump_csv() {
         "{report}"
     );
     assert!(stderr.contains(&format!("warning: {warning}")), "{stderr}");
+}
+
+/// QA P2-10 g: `analyze --kind feedpipe` of a run in which nothing has left yet took the whole run as its window
+/// without a word.
+#[test]
+fn a_feed_pipe_without_a_removal_yet_says_its_window_is_the_whole_run() {
+    let scene = r#"Scene(
+    mass_model: SphereEquivalent,
+    run: (time_step_s: 1e-4, end_time_s: 0.1, frames_per_second: 20, max_impact_speed_m_s: 2.0),
+    materials: [(name: "styrofoam", density_kg_m3: 15, youngs_modulus_pa: 1e5)],
+    interactions: [(materials: ("styrofoam", "styrofoam"), law: Hertz(damping: Restitution(0.5)))],
+    inlets: [(name: "feed", from_m: (-0.2, 0.0), to_m: (0.2, 0.0), rate_per_s: 20, velocity_m_s: (0.0, 1.0),
+              shape: (semi_axes_m: (0.02, 0.02), disk: true))],
+    outlets: [(name: "top", from_m: (0.25, 1.0), to_m: (-0.25, 1.0))],
+    fluid: (density_kg_m3: 1.25, field: Uniform((0.0, 5.0))),
+)"#;
+    let dir = tempfile::tempdir().unwrap();
+    let out = run(dir.path(), scene, &[]);
+    let (report, stderr) = analyze(&out, "feedpipe");
+    assert_eq!(report["window_s"][0].as_f64(), Some(0.0));
+    assert_eq!(report["outlets"][0]["removed_total"].as_u64(), Some(0));
+    let warning = report["warnings"][0].as_str().unwrap_or_default();
+    assert!(
+        warning.starts_with("no particle has left through an outlet yet")
+            && warning.contains("it falls back to the whole run")
+            && warning.contains("give --warm-up T"),
+        "{report}"
+    );
+    assert!(stderr.contains(&format!("warning: {warning}")), "{stderr}");
+    // A window given with --warm-up is no fallback.
+    let output = Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .args(["analyze", out.to_str().unwrap(), "--kind", "feedpipe", "--warm-up", "0.02"])
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(report["warnings"].as_array().map(Vec::len), Some(0), "{report}");
 }
