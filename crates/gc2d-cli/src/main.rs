@@ -188,6 +188,11 @@ struct RunArgs {
     /// output cadences, seed, name and view is refused: the checkpoint's state would go on, ignoring the change.
     #[arg(long)]
     resume: Option<PathBuf>,
+    /// Let --resume go back to a checkpoint earlier than the run directory's newest state: the later checkpoints,
+    /// final.ckpt and the rows, events, dumps and frames after the checkpoint are removed. Without it such a resume is
+    /// refused, naming them.
+    #[arg(long, requires = "resume")]
+    go_back: bool,
     /// Use this random seed instead of the scene's run.seed: one member of an ensemble of runs that differ only in
     /// their random numbers (shapes, sources). Not with --resume: a resumed run goes on with the seed and the random
     /// state its checkpoint holds.
@@ -377,6 +382,11 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         (None, Some(run_dir)) => run_dir.clone(),
         (None, None) => default_out_dir(&args.scene),
     };
+    // The states of the run in `out` further on than the checkpoint, which a resume going back removes.
+    let later_checkpoints = match &resumed_from {
+        Some(from) => gc2d_cli::resume::later_checkpoints(&out, from, world.steps()),
+        None => Vec::new(),
+    };
     if let Some(from) = &resumed_from {
         // A checkpoint kept outside a run directory goes on in the scene's default directory only where that holds
         // no run: going on there would cut back a run that has nothing to do with the checkpoint.
@@ -393,6 +403,8 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         if let Some(why) = gc2d_cli::resume::not_a_state_of_the_run_in(&out, from, &world) {
             return Err(CommandFailure::input(why));
         }
+        gc2d_cli::resume::refuse_going_back(&out, &later_checkpoints, world.time(), args.go_back)
+            .map_err(CommandFailure::input)?;
         console::err(&format!(
             "Resuming from {} at t = {:.6} s (step {}).",
             from.display(),
@@ -485,9 +497,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
             .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", copy.display())))?;
     }
     let resumed = args.resume.is_some();
-    if let Some(from) = &resumed_from {
-        gc2d_cli::resume::remove_later_checkpoints(&out, from, world.steps()).map_err(CommandFailure::input)?;
-    }
+    gc2d_cli::resume::remove_later_checkpoints(&later_checkpoints).map_err(CommandFailure::input)?;
     if let Some(p) = &mut pictures {
         p.prepare(&world, resumed).map_err(CommandFailure::input)?;
         // Without a view of the scene's, its domain or the earlier part's pictures, the first picture sets the region.

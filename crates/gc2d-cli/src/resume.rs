@@ -282,13 +282,10 @@ fn highest_numbered_checkpoint(folder: &Path) -> Result<Option<(u64, PathBuf)>, 
     Ok(newest)
 }
 
-/// Removes the checkpoints of the run directory `out` that are further on than `steps`, the state a resumed run
-/// continues from: `final.ckpt` and `checkpoints/checkpoint-<step>.ckpt` of a part the user went back from (resuming
-/// from an earlier checkpoint). They belong to the abandoned stretch of the run, as its later rows, dumps and frames
-/// do, and `--resume DIR`, `export` and `snapshot` would otherwise take one of them for the run's newest state.
-/// `resumed_from` (the checkpoint loaded) is never removed, nor loaded again. Returns how many were removed; an error
-/// names a file that could not be removed.
-pub fn remove_later_checkpoints(out: &Path, resumed_from: &Path, steps: u64) -> Result<usize, String> {
+/// The checkpoints of the run directory `out` that are further on than `steps`, the state a resumed run continues
+/// from: `final.ckpt` and `checkpoints/checkpoint-<step>.ckpt` of a stretch a resume from an earlier checkpoint goes
+/// back from. `resumed_from` (the checkpoint loaded) is never among them.
+pub fn later_checkpoints(out: &Path, resumed_from: &Path, steps: u64) -> Vec<PathBuf> {
     let mut later: Vec<PathBuf> = Vec::new();
     let final_checkpoint = out.join("final.ckpt");
     let same = |a: &Path, b: &Path| a.canonicalize().ok().is_some_and(|a| b.canonicalize().ok() == Some(a));
@@ -299,17 +296,44 @@ pub fn remove_later_checkpoints(out: &Path, resumed_from: &Path, steps: u64) -> 
         later.push(final_checkpoint);
     }
     if let Ok(entries) = std::fs::read_dir(out.join("checkpoints")) {
-        later.extend(
-            entries
-                .flatten()
-                .filter(|e| e.file_name().to_str().and_then(checkpoint_step).is_some_and(|step| step > steps))
-                .map(|e| e.path()),
-        );
+        let mut numbered: Vec<PathBuf> = entries
+            .flatten()
+            .filter(|e| e.file_name().to_str().and_then(checkpoint_step).is_some_and(|step| step > steps))
+            .map(|e| e.path())
+            .collect();
+        numbered.sort();
+        later.extend(numbered);
     }
-    for path in &later {
+    later
+}
+
+/// Refuses, unless `go_back` is given, a resume from a checkpoint earlier than the states the run directory `out`
+/// holds (`later`, from [`later_checkpoints`]): going back to it removes them, with the rows, events, dumps and
+/// frames after it, which may be hours of a finished run's work.
+pub fn refuse_going_back(out: &Path, later: &[PathBuf], time: f64, go_back: bool) -> Result<(), String> {
+    if go_back || later.is_empty() {
+        return Ok(());
+    }
+    let named: Vec<String> = later.iter().take(LISTED_DIFFERENCES).map(|path| path.display().to_string()).collect();
+    let rest = later.len() - named.len();
+    Err(format!(
+        "{} holds later states of the run than the checkpoint ({}{}): going back to t = {time:.6} s would remove them, \
+         and the rows, events, dumps and frames after it. Add --go-back to do so, or give --out a new directory to \
+         go on from the checkpoint there and keep the run as it is",
+        out.display(),
+        named.join(", "),
+        if rest > 0 { format!(" and {rest} more") } else { String::new() }
+    ))
+}
+
+/// Removes `later` ([`later_checkpoints`]): they belong to the abandoned stretch of the run, as its later rows, dumps
+/// and frames do, and `--resume DIR`, `export` and `snapshot` would otherwise take one of them for the run's newest
+/// state. An error names a file that could not be removed.
+pub fn remove_later_checkpoints(later: &[PathBuf]) -> Result<(), String> {
+    for path in later {
         std::fs::remove_file(path).map_err(|e| format!("cannot remove {}: {e}", path.display()))?;
     }
-    Ok(later.len())
+    Ok(())
 }
 
 /// `<path>.tmp`: where a checkpoint, `segments.csv` or `summary.json` is written before it is renamed over `path`.

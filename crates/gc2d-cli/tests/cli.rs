@@ -167,7 +167,19 @@ fn resuming_from_an_earlier_checkpoint_rewrites_the_later_rows_of_the_series() {
         .collect();
     checkpoints.sort();
     assert_eq!(checkpoints.len(), 2, "{checkpoints:?}");
-    run_tiny_pile(&["--resume"]).arg(&checkpoints[0]).arg("--out").arg(split.path()).assert().success();
+    // Going back past the run's later states removes them: only with --go-back (QA: a finished run lost its final
+    // state, later checkpoints, dumps and events without a word).
+    let before = std::fs::read(&series_path).unwrap();
+    run_tiny_pile(&["--resume"])
+        .arg(&checkpoints[0])
+        .arg("--out")
+        .arg(split.path())
+        .assert()
+        .code(2)
+        .stderr(contains("holds later states of the run").and(contains("checkpoint-")).and(contains("--go-back")));
+    assert_eq!(std::fs::read(&series_path).unwrap(), before, "the refusal touched the run");
+    assert!(checkpoints[1].is_file() && split.path().join("final.ckpt").is_file());
+    run_tiny_pile(&["--go-back", "--resume"]).arg(&checkpoints[0]).arg("--out").arg(split.path()).assert().success();
     let expected = std::fs::read_to_string(whole.path().join("timeseries.csv")).unwrap();
     assert_eq!(std::fs::read_to_string(&series_path).unwrap(), expected);
 }
@@ -209,7 +221,7 @@ fn a_checkpoint_of_another_run_is_not_continued_in_a_run_directory() {
     let kept = tempfile::tempdir().unwrap();
     let copy = kept.path().join("settled.ckpt");
     std::fs::copy(&periodic_checkpoints(seed_one.path())[0], &copy).unwrap();
-    run_tiny_pile(&["--resume"]).arg(&copy).arg("--out").arg(seed_one.path()).assert().success();
+    run_tiny_pile(&["--go-back", "--resume"]).arg(&copy).arg("--out").arg(seed_one.path()).assert().success();
     let branch = tempfile::tempdir().unwrap();
     run_tiny_pile(&["--resume"]).arg(foreign).arg("--out").arg(branch.path()).assert().success();
 }
@@ -720,7 +732,7 @@ fn a_resumed_run_numbers_its_pictures_on() {
     let earlier = out.path().join("earlier.ckpt");
     run_tiny_pile(&["--until", "0.015", "--out"]).arg(out.path().join("early")).assert().success();
     std::fs::copy(out.path().join("early/final.ckpt"), &earlier).unwrap();
-    part("0.015").arg("--resume").arg(&earlier).arg("--out").arg(out.path()).assert().success();
+    part("0.015").arg("--go-back").arg("--resume").arg(&earlier).arg("--out").arg(out.path()).assert().success();
     assert_eq!(frames(), ["frame-00000.png"]);
 }
 
@@ -792,7 +804,7 @@ fn resuming_from_an_earlier_checkpoint_removes_the_later_ones() {
     // At 0, 0.01 and 0.02 s.
     assert_eq!(names().len(), 3, "{:?}", names());
     let earlier = checkpoints.join(&names()[1]);
-    run_tiny_pile(&["--until", "0.013", "--resume"]).arg(&earlier).assert().success();
+    run_tiny_pile(&["--until", "0.013", "--go-back", "--resume"]).arg(&earlier).assert().success();
     assert_eq!(names(), ["checkpoint-0000000000.ckpt", earlier.file_name().unwrap().to_str().unwrap()]);
     run_tiny_pile(&["--until", "0.03", "--resume"])
         .arg(out.path())
@@ -883,12 +895,16 @@ fn thousands_of_threads_are_refused() {
 
 #[test]
 fn a_cadence_that_is_not_a_positive_time_is_refused() {
-    for (flag, value) in [("--checkpoint-every", "0"), ("--png-every", "nan"), ("--checkpoint-every", "inf")] {
+    for (flag, value) in [("--checkpoint-every", "0"), ("--checkpoint-every", "inf")] {
         run_tiny_pile(&[flag, value])
             .assert()
             .code(2)
             .stderr(contains(format!("{flag} must be a positive time in seconds")));
     }
+    run_tiny_pile(&["--png-every", "nan"])
+        .assert()
+        .code(2)
+        .stderr(contains("--png-every must be a time in seconds (0: no pictures), got NaN"));
     // A negative time is refused by the same check, not by clap's tip to write `-- -1`.
     for (flag, value, message) in [
         ("--checkpoint-every", "-1", "--checkpoint-every must be a positive time in seconds, got -1"),

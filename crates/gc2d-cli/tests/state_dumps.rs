@@ -208,7 +208,7 @@ fn parquet_and_vtk_dumps_with_their_collection_are_the_same_for_any_thread_count
         gc2d()
             .arg("run")
             .arg(&scene)
-            .args(["--quiet", "--until", "0.006", "--resume"])
+            .args(["--quiet", "--until", "0.006", "--go-back", "--resume"])
             .arg(&checkpoint)
             .arg("--out")
             .arg(&two)
