@@ -1,5 +1,5 @@
-//! Local packing density in a test rectangle (reference §5.6, eqs. 2.43–2.45), and the grid of test rectangles that
-//! the density and stress maps share.
+//! Local packing density in a test rectangle (reference §5.6, eqs. 2.43–2.45), and the grid of square test areas
+//! that the density and stress maps share.
 //!
 //! α_i a_i is the exact area of particle i inside the rectangle (convex clipping). The simple density (2.44) divides
 //! Σ α_i a_i by the rectangle area; the corrected one (2.45) divides by the area A_k of the convex hull of the
@@ -10,40 +10,60 @@ use crate::snapshot::Snapshot;
 use gc2d_geometry::{DVec2, OverlapPolygon};
 use serde::Serialize;
 
-/// A regular grid of test rectangles covering `region`.
+/// A regular grid of square test areas covering a region.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Grid {
-    /// The covered area.
+    /// The area the cells cover: the region asked for, its width exactly, its height rounded up to a whole number of
+    /// cells (the top row reaches past the region's top by less than one cell).
     pub region: Rect,
     /// Columns.
     pub nx: usize,
     /// Rows.
     pub ny: usize,
+    /// Side of the square cells, m.
+    pub side: f64,
+    /// True when the side asked for would have given more than [`MAX_GRID_CELLS_PER_AXIS`] cells along an axis: the
+    /// cells are then larger than asked.
+    pub capped: bool,
 }
 
 /// No grid has more cells than this along one axis.
 pub const MAX_GRID_CELLS_PER_AXIS: usize = 1000;
 
 impl Grid {
-    /// The grid whose cells are as close as possible to `cell_size` (a whole number of cells, at least one, at most
-    /// [`MAX_GRID_CELLS_PER_AXIS`] per axis).
+    /// The grid of square cells whose side is `cell_size` rounded so that a whole number of columns spans the
+    /// region's width. The rows, of the same side, start at the region's bottom; the top one reaches past its top.
+    /// At most [`MAX_GRID_CELLS_PER_AXIS`] cells along each axis: a smaller side asked for gets larger squares
+    /// ([`Grid::capped`]). Squares cannot tile a region of any aspect ratio, hence the overhang at the top.
     pub fn with_cell_size(region: Rect, cell_size: f64) -> Self {
         let size = region.size();
-        let count = |extent: f64| {
-            if cell_size > 0.0 && extent > 0.0 && (extent / cell_size).is_finite() {
-                ((extent / cell_size).round() as usize).clamp(1, MAX_GRID_CELLS_PER_AXIS)
-            } else {
-                1
+        let (width, height) = (size.x.max(0.0), size.y.max(0.0));
+        let most = MAX_GRID_CELLS_PER_AXIS as f64;
+        let smallest = width.max(height) / most;
+        let asked = if cell_size > 0.0 && cell_size.is_finite() { cell_size } else { width.max(height) };
+        let capped = asked < smallest;
+        let wanted = if asked.max(smallest) > 0.0 { asked.max(smallest) } else { 1.0 };
+        // Rows needed for `side`, with a tolerance so that an exact fit does not get an extra row from rounding.
+        let rows = |side: f64| (height / side * (1.0 - 1e-9)).ceil().max(1.0);
+        let (nx, side) = if width > 0.0 {
+            let mut nx = (width / wanted).round().clamp(1.0, most);
+            if rows(width / nx) > most {
+                nx = (width / wanted).floor().max(1.0);
             }
+            (nx as usize, width / nx)
+        } else {
+            (1, wanted)
         };
-        Self { region, nx: count(size.x), ny: count(size.y) }
+        let ny = rows(side).min(most) as usize;
+        let min = DVec2::new(region.min.x - 0.5 * (nx as f64 * side - width), region.min.y);
+        let covered = Rect::new(min, min + side * DVec2::new(nx as f64, ny as f64));
+        Self { region: covered, nx, ny, side, capped }
     }
 
     /// The cell in column `i`, row `j` (row 0 at the bottom).
     pub fn cell(&self, i: usize, j: usize) -> Rect {
-        let step = self.region.size() / DVec2::new(self.nx.max(1) as f64, self.ny.max(1) as f64);
-        let min = self.region.min + step * DVec2::new(i as f64, j as f64);
-        Rect::new(min, min + step)
+        let min = self.region.min + self.side * DVec2::new(i as f64, j as f64);
+        Rect::new(min, min + DVec2::splat(self.side))
     }
 
     /// All cells, row by row from the bottom, each with its (column, row).

@@ -74,11 +74,15 @@ pub struct PileReport {
     pub area_whole_degrees: Option<f64>,
     /// Floor pressure, when the pile stands on a floor.
     pub floor: Option<FloorPressureReport>,
-    /// Side of the test areas asked for (or chosen), m.
+    /// Side of the square test areas used, m: the side asked for (or chosen) rounded so that a whole number of
+    /// columns spans the region's width, or larger where [`Self::grid_capped`].
     pub grid_cell: f64,
-    /// Columns and rows of the test areas: the region over the cell side, at most
-    /// [`crate::density::MAX_GRID_CELLS_PER_AXIS`] each (a smaller cell asked for gets larger areas).
+    /// Columns and rows of the test areas, at most [`crate::density::MAX_GRID_CELLS_PER_AXIS`] each; the top row
+    /// reaches past the region's top.
     pub grid_size: [usize; 2],
+    /// True when the side asked for would have given more than [`crate::density::MAX_GRID_CELLS_PER_AXIS`] areas
+    /// along an axis, so the areas are larger than asked.
+    pub grid_capped: bool,
     /// Test areas with particles (density map).
     pub density_cells: usize,
     /// Test areas with a stress (stress map).
@@ -152,8 +156,9 @@ pub fn analyze_pile(
         area_right_degrees: repose.area_right_degrees,
         area_whole_degrees: repose.area_whole_degrees,
         floor,
-        grid_cell: cell,
+        grid_cell: grid.side,
         grid_size: [grid.nx, grid.ny],
+        grid_capped: grid.capped,
         density_cells: densities.iter().filter(|d| d.particles > 0).count(),
         stress_cells: stresses.len(),
     })

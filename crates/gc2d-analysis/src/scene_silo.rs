@@ -41,11 +41,15 @@ pub struct SiloReport {
     pub right_wall_forces: usize,
     /// Mean floor pressure (2.36) over the floor faces, N/m.
     pub floor_mean_pressure: f64,
-    /// Side of the test areas asked for (or chosen), m.
+    /// Side of the square test areas used, m: the side asked for (or chosen) rounded so that a whole number of
+    /// columns spans the region's width, or larger where [`Self::grid_capped`].
     pub grid_cell: f64,
-    /// Columns and rows of the test areas: the region over the cell side, at most
-    /// [`crate::density::MAX_GRID_CELLS_PER_AXIS`] each (a smaller cell asked for gets larger areas).
+    /// Columns and rows of the test areas, at most [`crate::density::MAX_GRID_CELLS_PER_AXIS`] each; the top row
+    /// reaches past the region's top.
     pub grid_size: [usize; 2],
+    /// True when the side asked for would have given more than [`crate::density::MAX_GRID_CELLS_PER_AXIS`] areas
+    /// along an axis, so the areas are larger than asked.
+    pub grid_capped: bool,
     /// k = Σσ_xx / Σσ_zz over the rows of test areas (used in the fit).
     pub k: f64,
     /// Mean of the row values k(z) = σ_xx/σ_zz (rows with σ_zz > 0).
@@ -215,8 +219,9 @@ pub fn analyze_silo(
             &wall_forces(snapshot, floor_selection),
             face_length(snapshot, floor_selection),
         ),
-        grid_cell: cell,
+        grid_cell: grid.side,
         grid_size: [grid.nx, grid.ny],
+        grid_capped: grid.capped,
         k,
         k_mean,
         k_std,

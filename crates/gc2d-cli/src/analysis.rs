@@ -176,18 +176,23 @@ fn beside_the_section(report: &FeedpipeReport) -> Option<String> {
 }
 
 /// A warning where the grid cell asked for (`--grid`, m) would give more than
-/// [`gc2d_analysis::density::MAX_GRID_CELLS_PER_AXIS`] test areas along an axis: the maps use that many, larger
-/// than asked.
+/// [`gc2d_analysis::density::MAX_GRID_CELLS_PER_AXIS`] test areas along an axis: the maps use larger squares, whose
+/// side (the report's `grid_cell`) and count it names, with the rows of `density_grid.csv` that gives.
 fn coarser_grid(report: &Report, cell: f64) -> Option<String> {
-    let size = report.pile.as_ref().map(|p| p.grid_size).or(report.silo.as_ref().map(|s| s.grid_size))?;
+    let (side, size, capped) = match (&report.pile, &report.silo) {
+        (Some(pile), _) => (pile.grid_cell, pile.grid_size, pile.grid_capped),
+        (None, Some(silo)) => (silo.grid_cell, silo.grid_size, silo.grid_capped),
+        (None, None) => return None,
+    };
     let most = gc2d_analysis::density::MAX_GRID_CELLS_PER_AXIS;
-    size.contains(&most).then(|| {
+    capped.then(|| {
         format!(
             "--grid {} m would give more than {most} test areas along an axis: the density and stress maps use \
-             {} × {} areas, larger than asked",
+             {} × {} squares of {} m (grid_cell), larger than asked; density_grid.csv has a row for each",
             crate::console::rounded(cell),
             size[0],
-            size[1]
+            size[1],
+            crate::console::rounded(side)
         )
     })
 }
