@@ -32,8 +32,11 @@ pub struct StateDumps {
 }
 
 impl StateDumps {
-    /// Dumps into `<out>/dumps/` every `interval` s in `formats`; `materials` names the material ids.
-    pub fn new(out: &Path, interval: f64, materials: Vec<String>, formats: Vec<ExportFormat>) -> Self {
+    /// Dumps into `<out>/dumps/` every `interval` s in `formats` (each once, in a fixed order, however the option
+    /// listed them); `materials` names the material ids.
+    pub fn new(out: &Path, interval: f64, materials: Vec<String>, mut formats: Vec<ExportFormat>) -> Self {
+        formats.sort();
+        formats.dedup();
         Self { dir: out.join(DUMPS_DIR), interval, materials, formats }
     }
 

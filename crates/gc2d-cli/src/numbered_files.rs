@@ -56,6 +56,12 @@ impl FolderCadence {
     }
 }
 
+/// The formats of a cadence record as a set: an earlier version recorded them in the order and with the repeats the
+/// option was given (`parquet,csv`, `csv,csv`).
+fn format_set(formats: &str) -> std::collections::BTreeSet<&str> {
+    formats.split(',').map(str::trim).filter(|name| !name.is_empty()).collect()
+}
+
 /// A folder of numbered files: `<dir>/<prefix><k>.<extension>`.
 pub struct NumberedFolder<'a> {
     /// The folder.
@@ -84,7 +90,7 @@ impl NumberedFolder<'_> {
                 earlier.interval
             ));
         }
-        if !earlier.formats.is_empty() && earlier.formats != ours.formats {
+        if !earlier.formats.is_empty() && format_set(&earlier.formats) != format_set(&ours.formats) {
             return Err(format!(
                 "{} holds files in {}, and this part would write {}, so that no format would cover the whole run: \
                  resume with `{} {}`, or into a new --out",
@@ -143,6 +149,7 @@ impl NumberedFolder<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dumps::StateDumps;
 
     fn cadence(interval: f64, formats: &str) -> FolderCadence {
         FolderCadence { interval, formats: formats.to_owned(), region: None }
@@ -172,6 +179,25 @@ mod tests {
         assert!(refused.contains("interval of 0.01 s") && refused.contains("`--dump-every 0.01`"), "{refused}");
         let refused = folder.refuse_other_cadence(&cadence(0.01, "parquet")).unwrap_err();
         assert!(refused.contains("holds files in csv,vtk") && refused.contains("`--dump-format csv,vtk`"), "{refused}");
+    }
+
+    #[test]
+    fn formats_recorded_in_another_order_or_twice_are_the_same_formats() {
+        // QA docs 19: `parquet,csv` resumed with `csv,parquet`, and `csv,csv` with `csv`, were refused as other formats.
+        let dir = tempfile::tempdir().unwrap();
+        let folder = StateDumps::folder_at(dir.path());
+        folder.record(&cadence(0.01, "parquet,csv")).unwrap();
+        folder.refuse_other_cadence(&cadence(0.01, "csv,parquet")).unwrap();
+        folder.record(&cadence(0.01, "csv,csv")).unwrap();
+        folder.refuse_other_cadence(&cadence(0.01, "csv")).unwrap();
+        assert!(folder.refuse_other_cadence(&cadence(0.01, "csv,vtk")).is_err());
+    }
+
+    #[test]
+    fn the_dumps_record_each_format_once_in_one_order() {
+        use crate::export::ExportFormat::{Csv, Parquet};
+        let dumps = StateDumps::new(Path::new("out"), 0.01, Vec::new(), vec![Parquet, Csv, Csv]);
+        assert_eq!(dumps.cadence().formats, "parquet,csv");
     }
 
     #[test]

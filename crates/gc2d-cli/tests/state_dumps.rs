@@ -236,7 +236,7 @@ fn parquet_and_vtk_dumps_with_their_collection_are_the_same_for_any_thread_count
     assert_eq!(other.status.code(), Some(2));
     let message = String::from_utf8_lossy(&other.stderr);
     assert!(
-        message.contains("holds files in csv,parquet,vtk") && message.contains("`--dump-format csv,parquet,vtk`"),
+        message.contains("holds files in parquet,csv,vtk") && message.contains("`--dump-format parquet,csv,vtk`"),
         "{message}"
     );
     // Another interval is refused, naming the one the files are numbered on.

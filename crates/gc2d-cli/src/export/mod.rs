@@ -17,7 +17,7 @@ use std::fs::File;
 use std::path::{Path, PathBuf};
 
 /// The formats `export` and the dumps of `run --dump-every` write.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, clap::ValueEnum)]
 pub enum ExportFormat {
     /// Apache Parquet tables (export: particles.parquet and contacts.parquet; dumps: particles_<k>.parquet).
     Parquet,
