@@ -579,3 +579,31 @@ fn start_overlaps_name_the_piece_and_the_particle_as_the_outputs_do() {
     assert_eq!((error.kind(), error.path()), (ErrorKind::Overlap, "blocks[0]"), "{}", error.render_plain());
     assert!(error.message().contains("`blocks[0] #1` and `walls[0] #1`"), "{}", error.message());
 }
+
+/// The located error of `text` as `bad.ron`, with its kind, path and file:line:column checked.
+fn located_error(text: &str, kind: ErrorKind, path: &str, line_column: (usize, usize)) -> SceneError {
+    let error = error_of(text);
+    assert_eq!((error.kind(), error.path()), (kind, path), "{}", error.render_plain());
+    let location = error.location().cloned().expect("located");
+    assert_eq!((location.line, location.column), line_column, "{}", error.render_plain());
+    error
+}
+
+#[test]
+fn a_checkpoint_interval_below_the_given_time_step_is_located_at_its_field() {
+    let text = "Scene(run: (time_step_s: 1e-5, checkpoint_interval_s: 1e-7, end_time_s: 0.001))";
+    let error = located_error(text, ErrorKind::Value, "run.checkpoint_interval_s", (1, 55));
+    assert!(error.message().starts_with("1e-7 s is shorter than the time step, 1e-5 s: "), "{}", error.message());
+    assert!(error.render_plain().contains("give at least the time step, 1e-5 s"), "{}", error.render_plain());
+}
+
+#[test]
+fn a_checkpoint_interval_below_the_automatic_time_step_is_located_at_its_field() {
+    let text = "Scene(\n    run: (checkpoint_interval_s: 1e-9),\n    particles: [(shape: Disk(radius_m: 0.01))],\n)";
+    let error = located_error(text, ErrorKind::Value, "run.checkpoint_interval_s", (2, 34));
+    assert!(error.message().starts_with("1e-9 s is shorter than the time step, "), "{}", error.message());
+    assert!(error.message().contains("chosen from the particles"), "{}", error.message());
+    // One of a step or more passes.
+    let fine = "Scene(run: (time_step_s: 1e-5, checkpoint_interval_s: 1e-5, end_time_s: 0.001))";
+    Scene::from_str(fine, "fine.ron").unwrap().build().unwrap();
+}

@@ -329,6 +329,11 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
         Some(b) if error.kind() == ErrorKind::TimeStep => error.with_related(limiting_note(b)),
         _ => error,
     })?;
+    if let Some(error) =
+        safety::checkpoints_below_the_step(scene.run.checkpoint_interval_s, time_step, scene.run.time_step_s.is_none())
+    {
+        return Err(error);
+    }
 
     // A scene that allows unsafe time steps experiments with instability: its particles may start as fast as it says,
     // and the engine stops the run where they outrun their step.

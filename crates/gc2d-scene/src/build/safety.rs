@@ -1,6 +1,7 @@
 //! Load-time safety: the stable time step of the scene's particles (including those its sources will insert) and
 //! the overlap of the initial bodies (reference §3.6, §10.4).
 
+use crate::checks::number;
 use crate::error::{ErrorKind, SceneError};
 use gc2d_engine::safety::{ParticleInertia, particle_time_steps, travel_in_step};
 use gc2d_engine::{BodyShape, ContactModel, MassModel, ParticleRecipe, ShapeKind, shape_view};
@@ -181,6 +182,30 @@ pub fn choose_time_step(
         .with_label("too large")),
         _ => Ok(dt),
     }
+}
+
+/// A `run.checkpoint_interval_s` of `interval` shorter than the time step `time_step` (`automatic`: chosen by the
+/// build): it would write a checkpoint at every step, and a unit slip such as 1e-9 fills the disk. `None` for no
+/// interval or one of at least a step.
+pub(crate) fn checkpoints_below_the_step(interval: Option<f64>, time_step: f64, automatic: bool) -> Option<SceneError> {
+    let interval = interval.filter(|&interval| interval < time_step)?;
+    let chosen = if automatic { " (chosen from the particles, as `time_step_s` is left out)" } else { "" };
+    Some(
+        SceneError::value(
+            "run.checkpoint_interval_s",
+            format!(
+                "{} s is shorter than the time step, {} s{chosen}: a checkpoint would be written at every step",
+                number(interval),
+                number(time_step)
+            ),
+        )
+        .with_label("shorter than a step")
+        .with_help(format!(
+            "give at least the time step, {} s (the unit is seconds of simulated time), or leave the field out for no \
+             periodic checkpoints",
+            number(time_step)
+        )),
+    )
 }
 
 /// x rounded down to two significant digits (x > 0).
