@@ -57,6 +57,9 @@ pub fn load_newest_state(from: &Path, purpose: &str) -> Result<ResumePoint, Stri
         (point, None) => point,
     };
     newest.ok_or_else(|| {
+        if let Some(running) = crate::run_lock::still_running_without_checkpoint(from) {
+            return format!("cannot {purpose} {}: {running}", from.display());
+        }
         format!(
             "cannot {purpose} {}: the directory holds neither final.ckpt nor checkpoints/checkpoint-<step>.ckpt \
              (give a run's output directory or a checkpoint file; runs write periodic checkpoints with \
@@ -382,6 +385,20 @@ mod tests {
         assert_eq!(checkpoint_step("checkpoint-0001909091.ckpt.tmp"), None);
         assert_eq!(checkpoint_step("final.ckpt"), None);
         assert_eq!(checkpoint_step("checkpoint-.ckpt"), None);
+    }
+
+    #[test]
+    fn a_run_directory_without_a_checkpoint_says_whether_a_run_is_still_writing_it() {
+        // QA docs 8: a run in progress was asked whether it was a run directory at all.
+        let dir = tempfile::tempdir().unwrap();
+        let running = crate::run_lock::lock_run_directory(dir.path()).unwrap();
+        let error = load_newest_state(dir.path(), "draw").err().unwrap();
+        assert!(error.contains("a gc2d-rs run is still writing") && error.contains("no checkpoint yet"), "{error}");
+        let export = crate::export::export(dir.path(), None, &[], &dir.path().join("export")).unwrap_err();
+        assert!(export.starts_with("cannot export: a gc2d-rs run is still writing"), "{export}");
+        drop(running);
+        let error = load_newest_state(dir.path(), "draw").err().unwrap();
+        assert!(error.contains("holds neither final.ckpt"), "{error}");
     }
 
     #[test]

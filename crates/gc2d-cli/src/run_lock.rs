@@ -58,6 +58,19 @@ pub fn lock_run_directory(out: &Path) -> Result<RunLock, String> {
     Ok(RunLock { _file: file })
 }
 
+/// Why a run directory `dir` without a checkpoint has none, where the reason is a run still writing it (it writes
+/// `final.ckpt` when it ends, periodic checkpoints only with `--checkpoint-every`); `None` where no run holds it, so
+/// that the caller's own message (not a run directory?) stands.
+pub fn still_running_without_checkpoint(dir: &Path) -> Option<String> {
+    is_locked(dir).then(|| {
+        format!(
+            "a gc2d-rs run is still writing {} and has written no checkpoint yet (final.ckpt comes when it ends; \
+             periodic ones only with --checkpoint-every)",
+            dir.display()
+        )
+    })
+}
+
 /// True when another process holds the lock of the run directory `out` now; false where it is free, where it has no
 /// lock file, and where the system has no flock. Takes the lock only for the moment of the test.
 pub fn is_locked(out: &Path) -> bool {

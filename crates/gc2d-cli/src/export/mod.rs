@@ -83,6 +83,8 @@ fn choose(run: &Path, at: Option<f64>, warnings: &mut Vec<String>) -> Result<(Pa
         (final_path, world)
     } else if let Some((_, path)) = numbered.last() {
         (path.clone(), load(path)?)
+    } else if let Some(running) = crate::run_lock::still_running_without_checkpoint(run) {
+        return Err(format!("cannot export: {running}"));
     } else {
         return Err(format!(
             "{} holds no checkpoint (final.ckpt or checkpoints/checkpoint-<step>.ckpt): is it a run directory written \
