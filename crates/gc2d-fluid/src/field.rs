@@ -21,12 +21,29 @@ pub enum Outside {
 
 /// A loaded field was sampled off its mesh where the scene asked for [`Outside::Error`].
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("the fluid field of {file} was sampled at ({x}, {y}) m, outside its mesh", x = position.x, y = position.y)]
+#[error(
+    "the fluid field of {file} was sampled at ({x}, {y}) m, outside its mesh; to go on there, give the scene's \
+     `fluid.field: Vtk(…)` `outside: Nearest` (the value at the mesh's nearest point) or `outside: Zero` (fluid at \
+     rest) (docs/scene-format.md)",
+    x = short(position.x),
+    y = short(position.y)
+)]
 pub struct OutsideField {
     /// The field's source file.
     pub file: String,
     /// Where it was sampled, m.
     pub position: DVec2,
+}
+
+/// `value` to 9 significant digits, as short as they allow (`1.00000003`, `2.15688129e-10`, `0.3`): a position to a
+/// nanometre on a metre's scale, not the 17 digits, written out in full, that f64's own formatting gives.
+fn short(value: f64) -> String {
+    let rounded: f64 = format!("{value:.8e}").parse().unwrap_or(value);
+    if rounded == 0.0 || !rounded.is_finite() || (1e-4..1e9).contains(&rounded.abs()) {
+        format!("{rounded}")
+    } else {
+        format!("{rounded:e}")
+    }
 }
 
 /// A fluid velocity field u(x, t) in the plane, m/s. Evaluating it does not allocate (except to report an
@@ -115,5 +132,24 @@ mod tests {
         assert!(square("fields/air.vtk", 0.0).same_flow(&square("scenes/../fields/air.vtk", 0.0)));
         assert!(ramp(square("a.vtk", 0.0)).same_flow(&ramp(square("b.vtk", 0.0))));
         assert!(!square("fields/air.vtk", 0.0).same_flow(&square("fields/air.vtk", 0.5)));
+    }
+
+    /// A position off the mesh is written to 9 significant digits, not in f64's 26-digit positional notation, and
+    /// the message names the scene option that goes on there (QA docs 17 d).
+    #[test]
+    fn a_point_off_the_mesh_is_written_short_with_the_option_that_avoids_the_stop() {
+        let error =
+            OutsideField { file: "riser.vtk".into(), position: DVec2::new(2.1568812943736007e-10, 1.0000000277142587) };
+        assert!(
+            error.to_string().starts_with(
+                "the fluid field of riser.vtk was sampled at (2.15688129e-10, 1.00000003) m, outside its mesh; to go \
+                 on there, give the scene's `fluid.field: Vtk(…)` `outside: Nearest`"
+            ),
+            "{error}"
+        );
+        assert!(error.to_string().contains("or `outside: Zero` (fluid at rest)"), "{error}");
+        for (value, written) in [(0.3, "0.3"), (-0.05, "-0.05"), (0.0, "0"), (12345.678, "12345.678"), (3e12, "3e12")] {
+            assert_eq!(short(value), written);
+        }
     }
 }
