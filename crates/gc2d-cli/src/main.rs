@@ -908,7 +908,13 @@ fn snapshot(
     // A run directory's scene may name the region its pictures show (`view`), as the frames of `--png-every` do.
     let scene = if run.is_dir() { Scene::from_path(run.join(SCENE_COPY)).ok() } else { None };
     let view = scene.as_ref().and_then(|s| s.view);
-    if run.is_dir() && checkpoint != run.join("final.ckpt") && run.join("final.ckpt").is_file() {
+    // (A damaged final.ckpt, passed over with a warning, has no time to compare with.)
+    let final_checkpoint = run.join("final.ckpt");
+    if run.is_dir()
+        && checkpoint != final_checkpoint
+        && final_checkpoint.is_file()
+        && World::load_checkpoint_file(&final_checkpoint).is_ok()
+    {
         console::err(&format!(
             "note: drawing {}, the run's newest state, later than its final.ckpt",
             checkpoint.display()
@@ -985,7 +991,16 @@ fn analyze(
     }
     // A run killed without warning has periodic checkpoints and no final.ckpt, which the analyses read.
     let killed = !run.join("final.ckpt").exists() && run.join("checkpoints").is_dir();
-    let hint = if killed {
+    let damaged = run.join("final.ckpt").is_file()
+        && run.join("checkpoints").is_dir()
+        && World::load_checkpoint_file(run.join("final.ckpt")).is_err();
+    let hint = if damaged {
+        format!(
+            " (the run's periodic checkpoints are intact: `gc2d-rs run SCENE --resume {}` goes on from the newest \
+             of them to the run's end time and writes final.ckpt again)",
+            run.display()
+        )
+    } else if killed {
         format!(
             " (the run has no final.ckpt, only periodic checkpoints: it was stopped without warning; continue it with \
              `gc2d-rs run SCENE --resume {}` to write one)",
