@@ -51,8 +51,9 @@ impl Scene {
 }
 
 impl Scene {
-    /// The scene as RON text that [`Scene::from_str`] reads back to an equal scene (every field written, optional
-    /// values without `Some(…)` under an `implicit_some` header). For tools that write scenes, such as the gsi importer.
+    /// The scene as RON text that [`Scene::from_str`] reads back to an equal scene (every field written but the
+    /// optional sections and settings at their defaults, optional values without `Some(…)` under an `implicit_some`
+    /// header). For tools that write scenes, such as the gsi importer.
     pub fn to_ron_string(&self) -> Result<String, ron::Error> {
         let config = ron::ser::PrettyConfig::new().struct_names(true).extensions(Extensions::IMPLICIT_SOME);
         ron::ser::to_string_pretty(self, config)

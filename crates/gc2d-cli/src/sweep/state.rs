@@ -41,7 +41,7 @@ pub fn write_scene(point: &PointScene, sweep_file: &Path) -> Result<(), CommandF
     std::fs::create_dir_all(&point.dir)
         .map_err(|e| CommandFailure::failed(format!("cannot create {}: {e}", point.dir.display())))?;
     let header = format!(
-        "// Point {} of the sweep {}, as gc2d-rs {} made it from the base scene; every field is written.\n",
+        "// Point {} of the sweep {}, as gc2d-rs {} made it from the base scene; a field left out has its default (docs/scene-format.md).\n",
         point.name,
         sweep_file.display(),
         env!("CARGO_PKG_VERSION")
