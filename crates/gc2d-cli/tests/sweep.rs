@@ -282,6 +282,21 @@ fn sweep_error(body: &str) -> String {
     text.split(|c: char| c.is_whitespace() || c == '│').filter(|w| !w.is_empty()).collect::<Vec<_>>().join(" ")
 }
 
+/// A misspelled path names its parameter after the typo: the plot of the right name is reported too, but after the
+/// path's error and without suggesting the typo (QA docs 23: only the plot's error came, with "did you mean `muu`?").
+#[test]
+fn a_misspelled_path_is_reported_before_the_plot_it_breaks_which_does_not_suggest_the_typo() {
+    let error = sweep_error(
+        "    parameters: [(path: \"materials[0].muu\", values: List([0.3, 0.6]))],\n    plots: [(x: \"mu\", y: [\"time_s\"])],\n",
+    );
+    let path = error.find(
+        "`parameters[0].path`: `materials[0].muu` is not a field of the scene: unknown field `muu`, did you mean `mu`?",
+    );
+    let plot = error.find("`plots[0].x`: `mu` is not a parameter of this sweep (the parameters are muu)");
+    assert!(path.is_some() && plot.is_some() && path < plot, "{error}");
+    assert!(!error.contains("did you mean `muu`"), "{error}");
+}
+
 #[test]
 fn a_misspelled_path_is_located_in_the_sweep_file_with_the_nearest_field() {
     let error = sweep_error(

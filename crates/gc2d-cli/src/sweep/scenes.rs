@@ -29,7 +29,7 @@ pub struct PointScene {
     pub name: String,
     /// Its run directory.
     pub dir: PathBuf,
-    /// The scene as RON text with every field written, as `scene.ron` holds it.
+    /// The scene as RON text, as `scene.ron` holds it (fields at their defaults only where they are written out).
     pub text: String,
     /// The analysis its finished run gets before collecting: the sweep file's `analysis.kind`, else the mill's for a
     /// mill scene, else none.
@@ -55,10 +55,22 @@ pub fn point_scenes(sweep: &Sweep) -> Result<Vec<PointScene>, CommandFailure> {
     name_implicit_material(&mut base, sweep);
     let base_text =
         base.to_ron_string().map_err(|e| CommandFailure::failed(format!("cannot write the base scene: {e}")))?;
+    // The sweep file's mistakes found against the scene, and its plots', are reported together, the parameters'
+    // first: a misspelled path also names its parameter, so a plot's x spelled right would seem to be the mistake.
+    let mut errors = Vec::new();
+    let mut wrong_paths = Vec::new();
     for parameter in &sweep.parameters {
-        check_path(sweep, &base_text, parameter)?;
+        if let Err(error) = check_path(sweep, &base_text, parameter) {
+            errors.push(error);
+            wrong_paths.push(parameter.index);
+        }
     }
-    check_analysis_kind(sweep, &base)?;
+    errors.extend(check_analysis_kind(sweep, &base).err());
+    errors.extend(sweep.plot_error(&wrong_paths));
+    if !errors.is_empty() {
+        let reports: Vec<String> = errors.into_iter().map(|e| e.report).collect();
+        return Err(CommandFailure::input(reports.join("\n")));
+    }
     let points = sweep.points(base.run.seed);
     check_dir_name_lengths(sweep, &points)?;
     let mut seen: HashMap<String, usize> = HashMap::new();

@@ -183,7 +183,6 @@ impl Sweep {
         {
             return Err(error("analysis.warm_up_s".into(), format!("must be a time ≥ 0 in s, got {warm_up}")));
         }
-        check_plots(&file.plots, &parameters).map_err(|(field, message)| error(field, message))?;
         Ok(Self { path: path.to_path_buf(), source, scene, out, parameters, seeds, file })
     }
 
@@ -244,6 +243,14 @@ impl Sweep {
         ))
     }
 
+    /// The first mistake in the plots, located in the sweep file. A parameter in `wrong_paths` (its path is not in the
+    /// scene, reported on its own) is not offered as the "did you mean" of a plot's x: its name may carry the typo.
+    pub fn plot_error(&self, wrong_paths: &[usize]) -> Option<CommandFailure> {
+        check_plots(&self.file.plots, &self.parameters, wrong_paths)
+            .err()
+            .map(|(field, message)| self.field_error(&field, message))
+    }
+
     /// An error located at a parameter's `path` field in the sweep file.
     pub fn parameter_error(&self, parameter: &ParameterSpec, message: String, help: Option<String>) -> CommandFailure {
         let mut error =
@@ -272,8 +279,9 @@ fn lexically_tidy(path: &Path) -> PathBuf {
     if tidy.is_empty() { PathBuf::from(".") } else { tidy.iter().collect() }
 }
 
-/// The plots name a parameter with numbers for values on x, and their outputs at all.
-fn check_plots(plots: &[Plot], parameters: &[ParameterSpec]) -> Result<(), (String, String)> {
+/// The plots name a parameter with numbers for values on x, and their outputs at all. The parameters whose index is
+/// in `wrong_paths` are not suggested for a misspelled x.
+fn check_plots(plots: &[Plot], parameters: &[ParameterSpec], wrong_paths: &[usize]) -> Result<(), (String, String)> {
     for (k, plot) in plots.iter().enumerate() {
         if parameters.is_empty() {
             return Err((
@@ -302,8 +310,10 @@ fn check_plots(plots: &[Plot], parameters: &[ParameterSpec]) -> Result<(), (Stri
         }
         if !parameters.iter().any(|p| p.name == plot.x) {
             let names: Vec<&str> = parameters.iter().map(|p| p.name.as_str()).collect();
-            let hint =
-                gc2d_scene::error::suggest(&plot.x, &names).map_or(String::new(), |s| format!(", did you mean `{s}`?"));
+            let offered: Vec<&str> =
+                parameters.iter().filter(|p| !wrong_paths.contains(&p.index)).map(|p| p.name.as_str()).collect();
+            let hint = gc2d_scene::error::suggest(&plot.x, &offered)
+                .map_or(String::new(), |s| format!(", did you mean `{s}`?"));
             return Err((
                 format!("plots[{k}].x"),
                 format!(
