@@ -1,5 +1,6 @@
 //! Safety before speed: the time-step bound checked at load, and blow-up detection during the run (reference §3.6,
-//! §10.4). Every error names the time, the bodies involved and a time step to try.
+//! §10.4). Every error carries the time (the run's report says it, so the message does not repeat it) and names the
+//! bodies involved and a time step to try.
 
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::integrator::max_stable_time_step_elongated;
@@ -80,7 +81,7 @@ pub enum SafetyError {
     },
     /// A position, velocity or kinetic energy became NaN or infinite.
     #[error(
-        "the simulation blew up at t = {time:.6} s (step {step}): particle {body} has a position, velocity or kinetic energy \
+        "the simulation blew up: particle {body} has a position, velocity or kinetic energy \
          that is not a finite number; reduce the time step (try {suggested_dt:.3e} s)"
     )]
     NotFinite {
@@ -96,7 +97,7 @@ pub enum SafetyError {
     /// Two bodies overlap far more than elastic contacts ever do: one has tunnelled into the other (the time step is
     /// too large), or an impact pressed them together deeper than their contact allows (it is too soft).
     #[error(
-        "the simulation blew up at t = {time:.6} s (step {step}): bodies {a} and {b} overlap by {percent:.1} % of the \
+        "the simulation blew up: bodies {a} and {b} overlap by {percent:.1} % of the \
          smaller particle's {measure} (limit {limit_percent:.1} %); {}",
         overlap_advice(*.approach_per_step, *.approach_speed_m_s, *.suggested_dt)
     )]
@@ -129,7 +130,7 @@ pub enum SafetyError {
     /// A particle moved so far in one step that it could have passed through a thin wall or another particle
     /// unseen (no step ever sees an overlap when it jumps right across).
     #[error(
-        "the simulation blew up at t = {time:.6} s (step {step}): particle {body} moved {travel:.3e} m in one step, \
+        "the simulation blew up: particle {body} moved {travel:.3e} m in one step, \
          more than {limit_percent:.0} % of its inscribed radius {inscribed_radius:.3e} m, so it could pass through a \
          thin wall or another particle without ever overlapping it; reduce the time step (try {suggested_dt:.3e} s)"
     )]
@@ -168,22 +169,37 @@ pub enum SafetyError {
     },
     /// The total energy rose by more than the work put in can explain.
     #[error(
-        "the simulation blew up at t = {time:.6} s (step {step}): the energy rose by {gain:.3e} J more than the work \
-         done on the system explains ({percent:.0} % of the run's energy scale); reduce the time step \
-         (try {suggested_dt:.3e} s)"
+        "the simulation blew up: the energy rose by {gain:.3e} {energy_unit} more than the work done on the system \
+         explains ({percent:.0} % of the run's energy scale){}; reduce the time step (try {suggested_dt:.3e} s)",
+        most_energetic_in_words(*.most_energetic, energy_unit)
     )]
     EnergyJump {
         /// Simulated time, s.
         time: f64,
         /// Step number.
         step: u64,
-        /// Unexplained gain, J (per unit thickness).
+        /// Unexplained gain, in `energy_unit`.
         gain: f64,
+        /// The unit of the energies: `J/m` per unit thickness, `J` for sphere-equivalent masses.
+        energy_unit: &'static str,
+        /// The living particle with the most kinetic energy at the stop and that energy, in `energy_unit`: where a
+        /// blow-up is, as a rule (the ledger does not say which bodies gained the energy). `None` without particles.
+        most_energetic: Option<(u32, f64)>,
         /// The gain in percent of the energy scale.
         percent: f64,
         /// A time step to try, s.
         suggested_dt: f64,
     },
+}
+
+/// The part of an [`SafetyError::EnergyJump`] that names the particle with the most kinetic energy, if any.
+fn most_energetic_in_words(most_energetic: Option<(u32, f64)>, energy_unit: &str) -> String {
+    most_energetic.map_or(String::new(), |(body, kinetic)| {
+        format!(
+            "; the energy balance does not say which bodies gained it, but the particle with the most kinetic energy \
+             at the stop is body {body} ({kinetic:.3e} {energy_unit})"
+        )
+    })
 }
 
 /// An overlap that one step's approach makes less than this fraction of is blamed on the contact's softness, not on
@@ -219,7 +235,9 @@ impl SafetyError {
             SafetyError::UnsafeTimeStep { particle, .. } => vec![particle],
             SafetyError::NotFinite { body, .. } | SafetyError::ExcessiveTravel { body, .. } => vec![body],
             SafetyError::ExcessiveOverlap { a, b, .. } | SafetyError::InitialOverlap { a, b, .. } => vec![a, b],
-            SafetyError::EnergyJump { .. } => Vec::new(),
+            SafetyError::EnergyJump { most_energetic, .. } => {
+                most_energetic.map(|(body, _)| body).into_iter().collect()
+            }
         }
     }
 }
@@ -523,4 +541,32 @@ pub fn travel_in_step(velocity: DVec2, angular_velocity: f64, reach: f64, dt: f6
 pub fn suggested_time_step(dt: f64, stable_dt: Option<f64>) -> f64 {
     let quarter = dt / 4.0;
     stable_dt.map_or(quarter, |safe| quarter.min(safe / 2.0))
+}
+
+#[cfg(test)]
+mod message_tests {
+    use super::*;
+
+    /// An energy blow-up says the time only in the run's report, gives the energy in the scene's unit and names the
+    /// particle with the most kinetic energy, which the run's report then names as the scene does (QA docs 17).
+    #[test]
+    fn an_energy_blow_up_names_its_most_energetic_particle_in_the_scenes_unit_without_the_time() {
+        let error = SafetyError::EnergyJump {
+            time: 0.0486,
+            step: 486,
+            gain: 0.8273,
+            energy_unit: "J/m",
+            most_energetic: Some((12, 0.25)),
+            percent: 4400.0,
+            suggested_dt: 4.414e-6,
+        };
+        assert_eq!(
+            error.to_string(),
+            "the simulation blew up: the energy rose by 8.273e-1 J/m more than the work done on the system explains \
+             (4400 % of the run's energy scale); the energy balance does not say which bodies gained it, but the \
+             particle with the most kinetic energy at the stop is body 12 (2.500e-1 J/m); reduce the time step (try \
+             4.414e-6 s)"
+        );
+        assert_eq!(error.bodies(), [12]);
+    }
 }

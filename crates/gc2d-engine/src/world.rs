@@ -1542,6 +1542,11 @@ impl World {
                 time: self.time,
                 step: self.steps,
                 gain,
+                energy_unit: match self.config.mass_model {
+                    MassModel::PerUnitThickness => "J/m",
+                    MassModel::SphereEquivalent => "J",
+                },
+                most_energetic: most_energetic_particle(b),
                 percent: 100.0 * gain / scale,
                 suggested_dt: suggested(),
             }
@@ -1646,6 +1651,19 @@ fn force_history_after_loading() -> u8 {
     1
 }
 
+/// The living particle with the most kinetic energy and that energy (for the message of an energy blow-up).
+fn most_energetic_particle(b: &Bodies) -> Option<(u32, f64)> {
+    (0..b.len())
+        .filter(|&i| b.alive[i] && b.kind[i] == BodyKind::Particle)
+        .map(|i| (i as u32, kinetic_energy(b, i)))
+        .max_by(|x, y| x.1.total_cmp(&y.1))
+}
+
+/// Kinetic energy of particle `i`, translational and rotational.
+fn kinetic_energy(b: &Bodies, i: usize) -> f64 {
+    0.5 * b.mass[i] * b.velocity[i].length_squared() + 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i]
+}
+
 /// True when body `i`'s pose and velocities are finite and, for a particle, so is its kinetic energy (a finite
 /// velocity can still overflow ½mv², which would poison the ledger).
 fn state_is_finite(b: &Bodies, i: usize) -> bool {
@@ -1653,10 +1671,7 @@ fn state_is_finite(b: &Bodies, i: usize) -> bool {
         && b.pose[i].angle.is_finite()
         && b.velocity[i].is_finite()
         && b.angular_velocity[i].is_finite();
-    let energy_finite = b.kind[i] == BodyKind::Wall
-        || (0.5 * b.mass[i] * b.velocity[i].length_squared()
-            + 0.5 * b.angular_velocity[i].powi(2) / b.inverse_inertia[i])
-            .is_finite();
+    let energy_finite = b.kind[i] == BodyKind::Wall || kinetic_energy(b, i).is_finite();
     kinematics_finite && energy_finite
 }
 
