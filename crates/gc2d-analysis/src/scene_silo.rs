@@ -72,6 +72,9 @@ pub struct SiloReport {
     pub janssen_free_k: Option<JanssenFreeKFit>,
     /// Why the free-k fit was not done, otherwise.
     pub janssen_free_k_error: Option<String>,
+    /// Why the numbers may mean little: no side wall carrying a force, a fill too shallow for a wall-pressure
+    /// profile, a Janssen fit not done (also printed by `gc2d-rs analyze` on stderr).
+    pub warnings: Vec<String>,
 }
 
 /// Runs the silo analyses and writes their tables and figures.
@@ -101,9 +104,11 @@ pub fn analyze_silo(
     let heights = if left_profile.positions.is_empty() { &right_profile.positions } else { &left_profile.positions };
     let pressure_at =
         |k: usize, profile: &crate::pressure::PressureProfile| profile.pressure.get(k).copied().unwrap_or(0.0);
+    // A window centred above the fill surface (a fill shallower than b) is no point of the profile σ_xx(z).
     let wall_rows: Vec<(f64, f64, f64, f64, f64)> = heights
         .iter()
         .enumerate()
+        .filter(|&(_, &y)| fill_surface - y >= 0.0)
         .map(|(k, &y)| {
             let (pl, pr) = (pressure_at(k, &left_profile), pressure_at(k, &right_profile));
             (fill_surface - y, y, pl, pr, (pl + pr) / walls_with_forces)
@@ -141,9 +146,8 @@ pub fn analyze_silo(
     let (packing_fraction_mean, packing_fraction_std) = mean_std(rows.iter().map(|r| r[5]));
 
     let parameters = JanssenParameters { k, rho: bulk_density, g: snapshot.gravity, half_width };
-    let fit_points: Vec<&(f64, f64, f64, f64, f64)> = wall_rows.iter().filter(|r| r.0 >= 0.0).collect();
-    let depth: Vec<f64> = fit_points.iter().map(|r| r.0).collect();
-    let sigma: Vec<f64> = fit_points.iter().map(|r| r.4).collect();
+    let depth: Vec<f64> = wall_rows.iter().map(|r| r.0).collect();
+    let sigma: Vec<f64> = wall_rows.iter().map(|r| r.4).collect();
     // Without a side wall carrying force there is no wall pressure to fit (a pile analysed as a silo gave a "fit" of
     // zeros with μ_J at its bound).
     let no_walls = all.is_empty().then(|| {
@@ -166,6 +170,14 @@ pub fn analyze_silo(
         Ok(fit) => (Some(fit), None),
         Err(error) => (None, Some(error)),
     };
+    let warnings = silo_warnings(
+        all.is_empty(),
+        wall_rows.len(),
+        fill_height,
+        b,
+        janssen_error.as_deref(),
+        janssen_free_k_error.as_deref(),
+    );
     let fitted = |z: f64| janssen.map_or(f64::NAN, |f| parameters.sigma_xx(z, f.mu_j));
     let fitted_free_k = |z: f64| janssen_free_k.map_or(f64::NAN, |f| parameters.with_k(f.k).sigma_xx(z, f.mu_j));
     let table: Vec<Vec<f64>> =
@@ -233,7 +245,43 @@ pub fn analyze_silo(
         janssen_error,
         janssen_free_k,
         janssen_free_k_error,
+        warnings,
     })
+}
+
+/// Wall-pressure points below the fill surface that the Janssen fits need at the least.
+const FIT_POINTS: usize = 2;
+
+/// The warnings of a silo analysis: without side-wall forces every silo number means nothing; with fewer than
+/// [`FIT_POINTS`] wall-pressure points (`points`) the fill (`fill_height`, m) is too shallow for the pressure window
+/// of half-width `b`; otherwise each Janssen fit not done, with its error.
+fn silo_warnings(
+    no_walls: bool,
+    points: usize,
+    fill_height: f64,
+    b: f64,
+    janssen_error: Option<&str>,
+    free_k_error: Option<&str>,
+) -> Vec<String> {
+    if no_walls {
+        return vec![
+            "no side wall carries a force: the particles lean on no walls, so k, the wall pressure and the Janssen \
+             fits mean nothing (is it a silo? --kind pile analyses a heap)"
+                .to_owned(),
+        ];
+    }
+    if points < FIT_POINTS {
+        return vec![format!(
+            "the fill is {fill_height:.3e} m deep, against a pressure window 2b = {:.3e} m along the walls: {points} \
+             wall-pressure point(s) below the fill surface, too few for the Janssen fits (at least {FIT_POINTS}; a \
+             deeper fill, or a smaller --window b)",
+            2.0 * b
+        )];
+    }
+    [("the measured k", janssen_error), ("k free", free_k_error)]
+        .into_iter()
+        .filter_map(|(which, error)| error.map(|e| format!("no Janssen fit with {which}: {e}")))
+        .collect()
 }
 
 /// Mean height of the surface envelope between `left` and `right`, one particle diameter in from each wall.

@@ -124,7 +124,10 @@ pub fn analyze(run_dir: &Path, kind: AnalysisKind, settings: &AnalysisSettings) 
             };
             let report = analyze_run(run_dir, &options).map_err(failed)?;
             warnings.extend(pile_not_formed(&report));
-            warnings.extend(report.silo.as_ref().and_then(|silo| not_a_silo(silo.k)));
+            if let Some(silo) = &report.silo {
+                warnings.extend(silo.warnings.iter().cloned());
+                warnings.extend(not_a_silo(silo.k));
+            }
             warnings.extend(settings.grid_cell_m.and_then(|cell| coarser_grid(&report, cell)));
             serde_json::to_string_pretty(&report)
         }
