@@ -735,6 +735,15 @@ fn refuse_recording_over_other_files(path: &Path, scene_path: &Path, out: &Path)
     Ok(())
 }
 
+/// Creates the folders above an output file that do not exist yet, as `--out` creates a run directory.
+fn create_parent_folder(file: &Path) -> Result<(), CommandFailure> {
+    match file.parent().filter(|parent| !parent.as_os_str().is_empty()) {
+        Some(parent) => std::fs::create_dir_all(parent)
+            .map_err(|e| CommandFailure::input(format!("cannot create the folder {}: {e}", parent.display()))),
+        None => Ok(()),
+    }
+}
+
 fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) -> Result<Recording, CommandFailure> {
     let info = RunInfo {
         program_version: env!("CARGO_PKG_VERSION").into(),
@@ -751,6 +760,7 @@ fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) ->
         colour_by: args.colour_by.into(),
         ..RecordOptions::default()
     };
+    create_parent_folder(path)?;
     let recorder = Recorder::create(path, options, &info)
         .map_err(|e| CommandFailure::input(format!("cannot record to {}: {e}", path.display())))?;
     Ok(Recording { recorder: Some(recorder), interval })
@@ -936,6 +946,7 @@ fn snapshot(
         force_network: forces,
         ..PngOptions::default()
     };
+    create_parent_folder(&output)?;
     render_png(&world, &output, &options)
         .map_err(|e| CommandFailure::input(format!("cannot draw {}: {e}", output.display())))?;
     console::err(&format!(

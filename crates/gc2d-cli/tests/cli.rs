@@ -286,6 +286,24 @@ fn a_resume_does_not_silently_stop_the_pictures_of_the_parts_before() {
 }
 
 #[test]
+fn a_recording_and_a_snapshot_create_their_missing_folders_as_out_does() {
+    // QA docs 22: --out created its folders, --record and snapshot -o failed on them (leaving a run folder that held
+    // only its lock file).
+    let dir = tempfile::tempdir().unwrap();
+    let recording = dir.path().join("new/recordings/run.mcap");
+    run_tiny_pile(&["--until", "0.005", "--record"])
+        .arg(&recording)
+        .arg("--out")
+        .arg(dir.path().join("run"))
+        .assert()
+        .success();
+    assert!(recording.is_file());
+    let picture = dir.path().join("new/pictures/end.png");
+    gc2d().arg("snapshot").arg(dir.path().join("run")).arg("-o").arg(&picture).assert().success();
+    assert!(picture.is_file());
+}
+
+#[test]
 fn events_and_no_events_together_are_refused() {
     // QA P2-10 k: the later flag won, and a mill run then told the user to add the --events it had been given.
     let out = tempfile::tempdir().unwrap();
@@ -657,12 +675,14 @@ fn a_run_into_the_current_folder_says_so() {
 #[test]
 fn a_recording_that_cannot_start_leaves_the_run_directory_alone() {
     let out = tempfile::tempdir().unwrap();
-    let recording = out.path().join("missing/run.mcap");
+    // A file where the recording's folder would be (a missing folder is created, as --out's is).
+    std::fs::write(out.path().join("blocker"), "").unwrap();
+    let recording = out.path().join("blocker/run.mcap");
     run_tiny_pile(&["--until", "0.01", "--record", recording.to_str().unwrap(), "--out"])
         .arg(out.path())
         .assert()
         .code(2)
-        .stderr(contains("cannot record to"));
+        .stderr(contains("cannot create the folder").and(contains("blocker")));
     for file in ["scene.ron", "timeseries.csv", "segments.csv"] {
         assert!(!out.path().join(file).exists(), "{file} was written");
     }
