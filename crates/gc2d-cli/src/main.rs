@@ -529,9 +529,12 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     let checkpoint_interval = args.checkpoint_every.or(scene.run.checkpoint_interval_s);
     let mut checkpoints = checkpoint_interval.map(|interval| Checkpoints { dir: out.join("checkpoints"), interval });
     let segments_path = out.join("segments.csv");
+    // A checkpoint continued in a new directory carries on the chatter watch of the run it comes from.
+    let origin_segments = resumed_dir.as_ref().filter(|dir| !same_file(dir, &out)).map(|dir| dir.join("segments.csv"));
     let mut segments = SegmentLog::start(
         &segments_path,
         resumed_from.as_deref(),
+        origin_segments.as_deref(),
         pool.current_num_threads(),
         &world,
         checkpoint_interval.unwrap_or(frame_interval),

@@ -48,18 +48,24 @@ pub struct SegmentLog {
 
 impl SegmentLog {
     /// Starts this process's row in `path`. A fresh run (`resumed_from` = `None`) starts a new file; a resumed run
-    /// keeps the rows of the earlier processes (a missing or foreign file is started afresh). `interval` is the
-    /// simulated time between updates.
+    /// keeps the rows of the earlier processes (a missing or foreign file is started afresh). `origin` is the
+    /// `segments.csv` of the run a checkpoint continued in a new directory comes from: its chatter watch goes on from
+    /// there, as in the run's own directory. `interval` is the simulated time between updates.
     pub fn start(
         path: &Path,
         resumed_from: Option<&Path>,
+        origin: Option<&Path>,
         threads: usize,
         world: &World,
         interval: f64,
     ) -> io::Result<Self> {
         let slack = 0.5 * world.time_step();
         let rows = if resumed_from.is_some() { earlier_rows(path) } else { Vec::new() };
-        let largest = largest_up_to(&rows, world.time() + slack);
+        let origin_rows = match origin {
+            Some(origin) if resumed_from.is_some() && rows.is_empty() => earlier_rows(origin),
+            _ => Vec::new(),
+        };
+        let largest = largest_up_to(if rows.is_empty() { &origin_rows } else { &rows }, world.time() + slack);
         let earlier_rows: Vec<String> = rows.iter().map(|row| cut_back(row, world.time(), slack)).collect();
         let earlier_wall_s = earlier_rows.iter().filter_map(|row| wall_of(row)).sum();
         let started_unix_s = SystemTime::now().duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs());
@@ -304,7 +310,7 @@ mod tests {
         let text = std::fs::read_to_string(scene_path).unwrap();
         let world = gc2d_scene::Scene::from_str(&text, "tiny_pile.ron").unwrap().build().unwrap();
         std::fs::write(&path, format!("{SEGMENT_COLUMNS}\n1763766000,2,0,0,0,2.250,interrupted,,,\n")).unwrap();
-        let log = SegmentLog::start(&path, Some(Path::new("final.ckpt")), 1, &world, 1.0).unwrap();
+        let log = SegmentLog::start(&path, Some(Path::new("final.ckpt")), None, 1, &world, 1.0).unwrap();
         std::thread::sleep(std::time::Duration::from_millis(20));
         let (written, total) = log.finish(&world, "completed");
         written.unwrap();

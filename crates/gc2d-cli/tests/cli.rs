@@ -105,6 +105,19 @@ fn a_resumed_run_keeps_the_chatter_of_the_processes_before_it() {
     };
     let first = read()["chatter"]["largest_window"].clone();
     assert!(first["time_s"].as_f64().unwrap() <= 0.01, "{first}");
+    // Continued in a new directory, the checkpoint carries on its run's watch too (QA determinism 5: it started afresh).
+    let branch = tempfile::tempdir().unwrap();
+    gc2d()
+        .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.012", "--resume"])
+        .arg(out.path().join("final.ckpt"))
+        .arg("--out")
+        .arg(branch.path())
+        .assert()
+        .success();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(branch.path().join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["chatter"]["largest_window"], first, "{}", summary["chatter"]);
+    assert_eq!(summary["chatter"]["warned"], true, "{}", summary["chatter"]);
     gc2d()
         .args(["run", path.to_str().unwrap(), "--quiet", "--until", "0.012", "--resume"])
         .arg(out.path())
