@@ -37,6 +37,10 @@ pub enum AnalysisError {
     /// An input parameter is out of range (named with its value).
     #[error("invalid parameter: {0}")]
     InvalidParameter(String),
+    /// A file of the run holds what the run cannot have written (a line cut short, a field that must be a number and
+    /// is not, a row out of place): named with the file and the line.
+    #[error("damaged file: {0}")]
+    DamagedFile(String),
     /// There is too little data for the requested quantity.
     #[error("not enough data: {0}")]
     NotEnoughData(String),

@@ -357,7 +357,7 @@ pub fn feedpipe_report(
         let name = state.outlet().name.as_str();
         let rows = passages.iter().filter(|p| p.outlet == name).count() as u64;
         if rows != state.counters().removed {
-            return Err(AnalysisError::NotEnoughData(format!(
+            return Err(AnalysisError::DamagedFile(format!(
                 "{} has {rows} passages through outlet `{name}`, and the run's final state counts {} (the file is \
                  damaged, or of another run)",
                 transits_path.display(),

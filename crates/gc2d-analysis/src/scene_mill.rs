@@ -32,6 +32,10 @@ use std::path::Path;
 /// Speeds whose share the report gives, m/s.
 pub const SPEED_THRESHOLDS: [f64; 3] = [0.5, 1.0, 3.0];
 
+/// The columns of `events.csv` that hold names; every other one holds numbers (`wall_angular_impulse_n_m_s` is empty
+/// where no body is a wall turning about a pivot), checked in every row, read by the analysis or not.
+const EVENT_TEXT_COLUMNS: [&str; 6] = ["kind_a", "kind_b", "material_a", "material_b", "object_a", "object_b"];
+
 /// Options of [`analyze_mill`].
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct MillOptions {
@@ -499,6 +503,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
 
     // Collisions.
     let events = Table::read(&events_path)?;
+    events.check_numbers(&EVENT_TEXT_COLUMNS, &["wall_angular_impulse_n_m_s"])?;
     let events_file = "events.csv";
     let (begin, a, b, speed) = (
         events.column("begin_time_s", events_file)?,
@@ -513,7 +518,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
         let (ia, ib) = (events.number(k, a)? as usize, events.number(k, b)? as usize);
         let began = events.number(k, begin)?;
         if began > end + slack {
-            return Err(AnalysisError::NotEnoughData(format!(
+            return Err(AnalysisError::DamagedFile(format!(
                 "{}: an event begins at {began} s, after the run's end at {end} s (the file is damaged, or of \
                  another run)",
                 events_path.display()

@@ -24,7 +24,7 @@ impl Table {
         let text =
             std::fs::read_to_string(path).map_err(|source| AnalysisError::Io { path: path.to_path_buf(), source })?;
         let damaged = |line: usize, what: String| {
-            AnalysisError::NotEnoughData(format!(
+            AnalysisError::DamagedFile(format!(
                 "{}:{line}: {what} (the file is damaged: cut short or edited)",
                 path.display()
             ))
@@ -53,7 +53,7 @@ impl Table {
     pub fn number(&self, row: usize, column: usize) -> Result<f64, AnalysisError> {
         let field = &self.rows[row][column];
         field.parse().map_err(|_| {
-            AnalysisError::NotEnoughData(format!(
+            AnalysisError::DamagedFile(format!(
                 "{}:{}: `{field}` in column `{}` is not a number (the file is damaged: cut short or edited)",
                 self.path.display(),
                 self.lines[row],
@@ -64,11 +64,29 @@ impl Table {
 
     /// The error for row `row` holding what a run cannot have written (`what`): damage, naming the file and the line.
     pub fn damaged(&self, row: usize, what: &str) -> AnalysisError {
-        AnalysisError::NotEnoughData(format!(
+        AnalysisError::DamagedFile(format!(
             "{}:{}: {what} (the file is damaged, or of another run)",
             self.path.display(),
             self.lines[row]
         ))
+    }
+
+    /// Checks that every field is a number, but in the columns `text` (which hold names) and, where empty, in the
+    /// columns `may_be_empty`: the file's first field that is not is an error naming the file, the line and the
+    /// column, as [`Table::number`] gives, also in a column the analysis does not read.
+    pub fn check_numbers(&self, text: &[&str], may_be_empty: &[&str]) -> Result<(), AnalysisError> {
+        let checked: Vec<(usize, bool)> = (self.header.iter().enumerate())
+            .filter(|(_, name)| !text.contains(&name.as_str()))
+            .map(|(column, name)| (column, may_be_empty.contains(&name.as_str())))
+            .collect();
+        for (row, fields) in self.rows.iter().enumerate() {
+            for &(column, empty_allowed) in &checked {
+                if !(empty_allowed && fields[column].is_empty()) {
+                    self.number(row, column)?;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The index of column `name`, or an error naming the file's kind.

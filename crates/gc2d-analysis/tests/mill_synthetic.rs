@@ -3,7 +3,7 @@
 
 use gc2d_analysis::particle_state::csv::{dump_file_name, write_csv};
 use gc2d_analysis::particle_states;
-use gc2d_analysis::{MillOptions, analyze_mill};
+use gc2d_analysis::{AnalysisError, MillOptions, analyze_mill};
 use gc2d_contact::{ContactLaw, NormalElastic};
 use gc2d_engine::motion::Rotation;
 use gc2d_engine::schedules::GravitySchedule;
@@ -423,5 +423,35 @@ fn a_chamber_that_is_not_a_circle_has_no_outer_ring_and_says_so() {
     assert!(json["ball_speeds"]["upper_outer"].is_null() && json["ball_speeds"]["lower_outer"].is_null());
     let rows = analysis_file(&dir, "mill_ball_speeds.csv");
     assert!(rows.lines().skip(1).all(|l| l.starts_with("all,")), "{rows}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// QA docs 11: a field that is not a number in a column of `events.csv` the analysis does not read passed unseen, and
+/// a damaged file was labelled "not enough data".
+#[test]
+fn a_damaged_events_file_is_named_damaged_in_every_numeric_column() {
+    let (dir, _) = run_dir("damaged-events", 0.0);
+    let path = dir.join("events.csv");
+    let original = std::fs::read_to_string(&path).unwrap();
+    let mut lines: Vec<String> = original.lines().map(str::to_owned).collect();
+    let good = lines[2].clone();
+    for (column, bad) in [(1, "x0.4"), (11, "abc"), (0, "y0.4")] {
+        let mut fields: Vec<&str> = good.split(',').collect();
+        fields[column] = bad;
+        lines[2] = fields.join(",");
+        std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+        let name = lines[0].split(',').nth(column).unwrap();
+        match analyze_mill(&dir, &MillOptions::default()) {
+            Err(error @ AnalysisError::DamagedFile(_)) => {
+                let message = error.to_string();
+                assert!(message.starts_with("damaged file: "), "{message}");
+                assert!(
+                    message.contains(&format!("events.csv:3: `{bad}` in column `{name}` is not a number")),
+                    "{message}"
+                );
+            }
+            other => panic!("`{bad}` in `{name}`: {other:?}"),
+        }
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

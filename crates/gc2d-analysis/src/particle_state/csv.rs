@@ -64,7 +64,7 @@ pub fn write_csv<W: Write>(rows: &[ParticleState], mut out: W) -> io::Result<()>
 pub fn read_csv(path: &Path) -> Result<Vec<ParticleState>, AnalysisError> {
     let text =
         std::fs::read_to_string(path).map_err(|source| AnalysisError::Io { path: path.to_path_buf(), source })?;
-    let bad = |line: usize, what: String| AnalysisError::NotEnoughData(format!("{}:{line}: {what}", path.display()));
+    let bad = |line: usize, what: String| AnalysisError::DamagedFile(format!("{}:{line}: {what}", path.display()));
     let mut lines = text.lines().enumerate();
     let header = lines.next().map_or("", |(_, l)| l);
     if header != PARTICLE_STATE_COLUMNS.join(",") {
