@@ -236,6 +236,13 @@ impl SceneError {
         Some(first)
     }
 
+    /// The error with `count` more errors counted in its report's last line (found but never made).
+    pub(crate) fn with_omitted(mut self, count: usize) -> Self {
+        let omitted = self.omitted_errors() + count;
+        self.0.more = (omitted > 0).then_some(MoreErrors(omitted));
+        self
+    }
+
     /// The error rendered as miette's plain-text report (no colours), for logs and tests.
     pub fn render_plain(&self) -> String {
         let mut out = String::new();

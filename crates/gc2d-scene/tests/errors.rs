@@ -607,3 +607,29 @@ fn a_checkpoint_interval_below_the_automatic_time_step_is_located_at_its_field()
     let fine = "Scene(run: (time_step_s: 1e-5, checkpoint_interval_s: 1e-5, end_time_s: 0.001))";
     Scene::from_str(fine, "fine.ron").unwrap().build().unwrap();
 }
+
+#[test]
+fn a_block_whose_neighbours_overlap_gives_one_error_at_its_spacing() {
+    let text = "Scene(blocks: [(x_range_m: (0, 0.1), y_range_m: (0, 0.1), grid_spacing_m: (0.004, 0.004), \
+                shape: (semi_axes_m: (0.003, 0.003)))])";
+    let error = located_error(text, ErrorKind::Overlap, "blocks[0].grid_spacing_m", (1, 75));
+    assert!(error.message().starts_with("neighbouring particles of this block overlap"), "{}", error.message());
+    assert!(error.message().contains("its grid spacing is (0.004, 0.004) m"), "{}", error.message());
+    let report = error.render_plain();
+    assert!(report.contains("use a grid spacing of at least (0.006, 0.0052) m"), "{report}");
+    assert_eq!(report.matches("gc2d_scene::overlap").count(), 1, "{report}");
+}
+
+#[test]
+fn overlapping_pairs_list_the_first_20_errors_and_count_the_rest() {
+    let particles: Vec<String> = (0..25)
+        .flat_map(|k| {
+            [0.0, 0.001].map(|dx| format!("(shape: Disk(radius_m: 0.01), position_m: ({}, 0))", k as f64 * 0.1 + dx))
+        })
+        .collect();
+    let text = format!("Scene(particles: [{}])", particles.join(", "));
+    let error = error_of(&text);
+    assert_eq!(error.kind(), ErrorKind::Overlap);
+    assert_eq!(error.omitted_errors(), 5, "{}", error.render_plain());
+    assert!(error.render_plain().contains("… and 5 more errors not shown"), "{}", error.render_plain());
+}

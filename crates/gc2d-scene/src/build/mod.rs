@@ -35,7 +35,7 @@ use gc2d_engine::{
 use gc2d_geometry::{DVec2, Pose};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use safety::{PlacedBody, TimeStepBound};
+use safety::{BlockGrid, PlacedBody, TimeStepBound};
 use walls::PlacedWall;
 
 /// ChaCha8 stream of the build's draws (the World uses stream 0 for its sources).
@@ -356,10 +356,21 @@ fn build(scene: &Scene, options: BuildOptions) -> Result<Built, SceneError> {
     // The rule the engine applies before its first step (`SafetyLimits::max_initial_overlap_fraction`), so that a
     // scene `check` passes is never refused by `run` for its start.
     let initial_tolerance = SafetyLimits::default().max_initial_overlap_fraction;
-    if options.start_overlaps == StartOverlaps::Refuse
-        && let Some(error) = SceneError::combine(safety::overlap_errors(&placed, initial_tolerance))
-    {
-        return Err(error);
+    if options.start_overlaps == StartOverlaps::Refuse {
+        let blocks: Vec<BlockGrid> = scene
+            .blocks
+            .iter()
+            .enumerate()
+            .map(|(i, block)| BlockGrid {
+                path: format!("blocks[{i}]"),
+                spacing: block.grid_spacing_m,
+                grid: block.grid,
+            })
+            .collect();
+        let (errors, omitted) = safety::overlap_errors(&placed, initial_tolerance, &blocks);
+        if let Some(error) = SceneError::combine(errors) {
+            return Err(error.with_omitted(omitted));
+        }
     }
 
     let config = WorldConfig {

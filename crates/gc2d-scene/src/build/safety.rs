@@ -1,8 +1,11 @@
 //! Load-time safety: the stable time step of the scene's particles (including those its sources will insert) and
 //! the overlap of the initial bodies (reference §3.6, §10.4).
 
-use crate::checks::number;
+use crate::checks::{number, significant_digits};
+use crate::error::MAX_REPORTED_ERRORS;
 use crate::error::{ErrorKind, SceneError};
+use crate::schema::GridType;
+use crate::spans::field_path;
 use gc2d_engine::safety::{ParticleInertia, particle_time_steps, travel_in_step};
 use gc2d_engine::{BodyShape, ContactModel, MassModel, ParticleRecipe, ShapeKind, shape_view};
 use gc2d_geometry::{Aabb, DVec2, MassProperties, Pose, area_contact};
@@ -379,14 +382,23 @@ pub struct PlacedBody<'a> {
     pub path: &'a str,
 }
 
-/// Most overlaps reported at once.
-const MAX_REPORTED_OVERLAPS: usize = 8;
+/// A block's lattice, for the one error its overlapping neighbours give (see [`overlap_errors`]).
+pub struct BlockGrid {
+    /// The block's entry, `blocks[i]`: the path its particles carry.
+    pub path: String,
+    /// `grid_spacing_m`, (Δx, Δy).
+    pub spacing: [f64; 2],
+    /// The grid type, whose scatter (`RectGauss`, …) may bring neighbours together at any spacing.
+    pub grid: GridType,
+}
 
 /// Overlaps between particles, and between particles and walls, larger than `max_fraction` of the smaller
 /// particle's area (a particle outside a chamber, an inner-circle wall, overlaps it by its whole area), and walls that
-/// lie exactly on each other. Sweeps the bodies sorted by their lower x bound, so the cost is O(N log N) plus the
-/// pairs whose boxes overlap.
-pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneError> {
+/// lie exactly on each other. Two particles of one block of `blocks` that overlap give a single error at the block's
+/// `grid_spacing_m` (its spacing against its particles' size), and the block's particles are not looked at further.
+/// Returns at most [`MAX_REPORTED_ERRORS`] errors and the number of further ones found. Sweeps the bodies sorted by
+/// their lower x bound, so the cost is O(N log N) plus the pairs whose boxes overlap.
+pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64, blocks: &[BlockGrid]) -> (Vec<SceneError>, usize) {
     // Each body's name as the run's outputs give it (`walls[0] #1`, `blocks[0] #17`): made only for an error.
     let names = std::cell::OnceCell::new();
     let name = |k: usize| -> String { names.get_or_init(|| super::numbered(bodies.iter().map(|b| b.path)))[k].clone() };
@@ -398,21 +410,23 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
     let mut order: Vec<usize> = (0..bodies.len()).collect();
     order.sort_by(|&a, &b| boxes[a].min.x.total_cmp(&boxes[b].min.x).then(a.cmp(&b)));
     let mut active: Vec<usize> = Vec::new();
-    let mut errors = Vec::new();
+    // The particles of blocks already reported as overlapping their neighbours.
+    let mut excluded = vec![false; bodies.len()];
+    let mut report = Report::default();
     for &i in &order {
-        active.retain(|&j| boxes[j].max.x >= boxes[i].min.x);
+        active.retain(|&j| boxes[j].max.x >= boxes[i].min.x && !excluded[j]);
+        if excluded[i] {
+            continue;
+        }
         for &j in &active {
             let (a, b) = (i.min(j), i.max(j));
             if bodies[a].is_wall && bodies[b].is_wall {
                 if coincide(&bodies[a], &world[a], &bodies[b], &world[b]) {
-                    errors.push(coinciding_walls_error(&bodies[b], [name(a), name(b)]));
-                    if errors.len() == MAX_REPORTED_OVERLAPS {
-                        return errors;
-                    }
+                    report.add(|| coinciding_walls_error(&bodies[b], [name(a), name(b)]));
                 }
                 continue;
             }
-            if !boxes[a].overlaps(&boxes[b]) {
+            if excluded[j] || !boxes[a].overlaps(&boxes[b]) {
                 continue;
             }
             let (particle, other) = if bodies[a].is_wall { (b, a) } else { (a, b) };
@@ -420,38 +434,104 @@ pub fn overlap_errors(bodies: &[PlacedBody], max_fraction: f64) -> Vec<SceneErro
             let particle_areas = [a, b].into_iter().filter(|&k| !bodies[k].is_wall).map(|k| bodies[k].shape.area());
             let smaller = particle_areas.fold(f64::INFINITY, f64::min);
             let fraction = contact.area / smaller;
-            if fraction > max_fraction {
-                errors.push(overlap_error(
-                    [&bodies[a], &bodies[b]],
-                    [name(a), name(b)],
-                    contact.point,
-                    fraction,
-                    max_fraction,
-                ));
-                if errors.len() == MAX_REPORTED_OVERLAPS {
-                    return errors;
-                }
+            if fraction <= max_fraction {
+                continue;
             }
+            let block =
+                blocks.iter().find(|g| !bodies[a].is_wall && g.path == bodies[a].path && g.path == bodies[b].path);
+            let Some(block) = block else {
+                report.add(|| {
+                    overlap_error([&bodies[a], &bodies[b]], [name(a), name(b)], contact.point, fraction, max_fraction)
+                });
+                continue;
+            };
+            // Its neighbours overlap: one error for the block, whose particles are then left out.
+            let members: Vec<usize> = (0..bodies.len()).filter(|&k| bodies[k].path == block.path).collect();
+            let size = members.iter().fold(DVec2::ZERO, |size, &k| size.max(boxes[k].max - boxes[k].min));
+            for &k in &members {
+                excluded[k] = true;
+            }
+            let example = format!(
+                "`{}` and `{}` by {} % of the smaller one's area at ({:.4}, {:.4}) m",
+                name(b),
+                name(a),
+                percent(100.0 * fraction),
+                contact.point.x,
+                contact.point.y
+            );
+            report.add(|| block_overlap_error(block, size, &example));
+            break;
         }
-        active.push(i);
+        if !excluded[i] {
+            active.push(i);
+        }
     }
     // An inner-circle wall (a chamber) is solid everywhere outside its circle: a particle entirely outside its box
     // lies wholly in that solid, though the boxes do not meet.
     if max_fraction >= 1.0 {
-        return errors;
+        return (report.errors, report.omitted);
     }
     let chambers = (0..bodies.len()).filter(|&k| bodies[k].is_wall && bodies[k].shape.kind() == ShapeKind::InnerCircle);
     for chamber in chambers {
-        for particle in (0..bodies.len()).filter(|&k| !bodies[k].is_wall && !boxes[k].overlaps(&boxes[chamber])) {
+        for particle in
+            (0..bodies.len()).filter(|&k| !bodies[k].is_wall && !excluded[k] && !boxes[k].overlaps(&boxes[chamber]))
+        {
             let (a, b) = (chamber.min(particle), chamber.max(particle));
             let at = bodies[particle].pose.position;
-            errors.push(overlap_error([&bodies[a], &bodies[b]], [name(a), name(b)], at, 1.0, max_fraction));
-            if errors.len() == MAX_REPORTED_OVERLAPS {
-                return errors;
-            }
+            report.add(|| overlap_error([&bodies[a], &bodies[b]], [name(a), name(b)], at, 1.0, max_fraction));
         }
     }
-    errors
+    (report.errors, report.omitted)
+}
+
+/// The first [`MAX_REPORTED_ERRORS`] errors found, and a count of the others (which are never made).
+#[derive(Default)]
+struct Report {
+    errors: Vec<SceneError>,
+    omitted: usize,
+}
+
+impl Report {
+    fn add(&mut self, error: impl FnOnce() -> SceneError) {
+        if self.errors.len() < MAX_REPORTED_ERRORS {
+            self.errors.push(error());
+        } else {
+            self.omitted += 1;
+        }
+    }
+}
+
+/// The error at `block`'s `grid_spacing_m` where two of its neighbouring particles overlap (`example` names them):
+/// its spacing against `size`, the largest width and height of its particles, which a spacing of at least that keeps
+/// apart on a `Rect` or `Fcc` grid.
+fn block_overlap_error(block: &BlockGrid, size: DVec2, example: &str) -> SceneError {
+    let [dx, dy] = block.spacing;
+    let fits = format!("({}, {})", two_digits_up(size.x), two_digits_up(size.y));
+    let help = match block.grid {
+        GridType::Rect | GridType::Fcc => {
+            format!("use a grid spacing of at least {fits} m (the particles' width and height), or smaller particles")
+        }
+        scattered => format!(
+            "a `{scattered:?}` grid moves each particle by up to half a spacing, so that neighbours may meet at any \
+             spacing: use a `Rect` or `Fcc` grid with a spacing of at least {fits} m (the particles' width and height), \
+             or smaller particles"
+        ),
+    };
+    SceneError::new(
+        ErrorKind::Overlap,
+        field_path(&block.path, "grid_spacing_m"),
+        format!(
+            "neighbouring particles of this block overlap ({example}): its grid spacing is ({}, {}) m and its \
+             particles are up to {} m wide and {} m high. Bodies must not overlap at the start beyond round-off: the run would \
+             refuse them before its first step",
+            number(dx),
+            number(dy),
+            significant_digits(size.x, 3),
+            significant_digits(size.y, 3)
+        ),
+    )
+    .with_help(help)
+    .with_label("neighbours overlap")
 }
 
 /// True when two walls have the same outline at the same place (the same kind, radius and points, to round-off):
@@ -477,6 +557,14 @@ fn coinciding_walls_error(b: &PlacedBody, names: [String; 2]) -> SceneError {
     )
     .with_help("give each wall once (a mill's `rotor.arms_rad` lists each blade's angle once)")
     .with_label("given twice")
+}
+
+/// `x` (> 0) rounded up to two significant digits and written short: a spacing at least as large.
+fn two_digits_up(x: f64) -> String {
+    let unit = 10f64.powf(x.log10().floor() - 1.0);
+    // A width computed as 0.006000000000000001 asks for 0.006, not 0.0061.
+    let up = (x / unit - 1e-9).ceil() * unit;
+    significant_digits(if up >= x && up.is_finite() { up } else { x }, 2)
 }
 
 /// A percentage to two decimals, or to three significant digits below 0.01 %.
@@ -545,12 +633,12 @@ mod tests {
         };
         // The small square sticks 1 mm into the big one: overlap 1e-5 m² = 10 % of the small square.
         let bodies = [body(&big, 0.0, false, "a"), body(&small, 0.014, false, "b")];
-        let errors = overlap_errors(&bodies, 0.05);
+        let errors = overlap_errors(&bodies, 0.05, &[]).0;
         assert_eq!(errors.len(), 1);
         assert!(errors[0].message().contains("10.00 %"), "{}", errors[0].message());
-        assert!(overlap_errors(&bodies, 0.11).is_empty());
+        assert!(overlap_errors(&bodies, 0.11, &[]).0.is_empty());
         // Walls never count against each other.
         let walls = [body(&big, 0.0, true, "a"), body(&small, 0.014, true, "b")];
-        assert!(overlap_errors(&walls, 0.0).is_empty());
+        assert!(overlap_errors(&walls, 0.0, &[]).0.is_empty());
     }
 }
