@@ -497,9 +497,12 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
             .map_err(|e| CommandFailure::input(format!("cannot write {}: {e}", copy.display())))?;
     }
     let resumed = args.resume.is_some();
+    // The run directory of a checkpoint continued in a new one: what its pictures and chatter watch go on from.
+    let origin_dir = resumed_dir.as_ref().filter(|dir| !same_file(dir, &out));
     gc2d_cli::resume::remove_later_checkpoints(&later_checkpoints).map_err(CommandFailure::input)?;
     if let Some(p) = &mut pictures {
-        p.prepare(&world, resumed).map_err(CommandFailure::input)?;
+        let origin_frames = origin_dir.map(|dir| dir.join(gc2d_cli::sinks::FRAMES_DIR));
+        p.prepare(&world, resumed, origin_frames.as_deref()).map_err(CommandFailure::input)?;
         // Without a view of the scene's, its domain or the earlier part's pictures, the first picture sets the region.
         if p.options.view.is_none() {
             console::err(
@@ -530,7 +533,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
     let mut checkpoints = checkpoint_interval.map(|interval| Checkpoints { dir: out.join("checkpoints"), interval });
     let segments_path = out.join("segments.csv");
     // A checkpoint continued in a new directory carries on the chatter watch of the run it comes from.
-    let origin_segments = resumed_dir.as_ref().filter(|dir| !same_file(dir, &out)).map(|dir| dir.join("segments.csv"));
+    let origin_segments = origin_dir.map(|dir| dir.join("segments.csv"));
     let mut segments = SegmentLog::start(
         &segments_path,
         resumed_from.as_deref(),

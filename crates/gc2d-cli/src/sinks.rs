@@ -63,11 +63,16 @@ impl PngFrames {
     }
 
     /// Makes `frames/` ready for a part of the run that starts at `world`'s time, as [`crate::dumps::StateDumps::prepare`]
-    /// does `dumps/`; a resumed part without a view of its own shows the region the earlier part's pictures show.
-    pub fn prepare(&mut self, world: &World, resumed: bool) -> Result<(), String> {
+    /// does `dumps/`; a resumed part without a view of its own shows the region the earlier part's pictures show,
+    /// in this folder or, for a checkpoint continued in a new directory, in `origin` (its run's `frames/`).
+    pub fn prepare(&mut self, world: &World, resumed: bool, origin: Option<&Path>) -> Result<(), String> {
         let folder = self.folder();
         if resumed {
-            let earlier = folder.recorded()?.and_then(|cadence| cadence.region);
+            let origin_region = || {
+                let recorded = Self::folder_at(origin?).recorded().ok().flatten();
+                recorded.and_then(|cadence| cadence.region)
+            };
+            let earlier = folder.recorded()?.and_then(|cadence| cadence.region).or_else(origin_region);
             folder.remove_from(first_tick(self.interval, world.time(), 0.5 * world.time_step()))?;
             self.options.view = self.options.view.or(earlier);
         }

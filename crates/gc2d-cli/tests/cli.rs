@@ -317,6 +317,30 @@ fn a_recording_and_a_snapshot_create_their_missing_folders_as_out_does() {
 }
 
 #[test]
+fn a_checkpoint_continued_in_a_new_directory_draws_the_region_of_its_runs_pictures() {
+    // QA determinism 3: without a view, the new directory's first picture fitted its own region, so that its frames
+    // differed from the unsplit run's.
+    let whole = tempfile::tempdir().unwrap();
+    run_tiny_pile(&["--until", "0.03", "--png-every", "0.01", "--checkpoint-every", "0.02", "--out"])
+        .arg(whole.path())
+        .assert()
+        .success();
+    let branch = tempfile::tempdir().unwrap();
+    let checkpoint = periodic_checkpoints(whole.path())[0].clone();
+    run_tiny_pile(&["--until", "0.03", "--png-every", "0.01", "--resume"])
+        .arg(&checkpoint)
+        .arg("--out")
+        .arg(branch.path())
+        .assert()
+        .success()
+        .stderr(contains("neither a `view`").not());
+    let cadence = |dir: &Path| std::fs::read_to_string(dir.join("frames/.gc2d-cadence")).unwrap();
+    assert_eq!(cadence(branch.path()), cadence(whole.path()));
+    let frame = |dir: &Path| std::fs::read(dir.join("frames/frame-00003.png")).unwrap();
+    assert!(frame(branch.path()) == frame(whole.path()), "the last frame differs from the unsplit run's");
+}
+
+#[test]
 fn events_and_no_events_together_are_refused() {
     // QA P2-10 k: the later flag won, and a mill run then told the user to add the --events it had been given.
     let out = tempfile::tempdir().unwrap();
