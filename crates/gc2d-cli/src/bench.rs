@@ -128,7 +128,7 @@ pub fn bench(args: &BenchArgs) -> Result<u8, CommandFailure> {
             let mut ends = Vec::new();
             for &n in &threads {
                 let blew_up = |e| {
-                    CommandFailure::failed(format!("{} pile of {particles} blew up while measured: {e}", pile.name()))
+                    CommandFailure::failed(format!("{} pile of {particles} stopped while measured: {e}", pile.name()))
                 };
                 let mut world = World::load_checkpoint(settled_state.as_slice()).map_err(checkpoint_failure)?;
                 let measurement = measure(&mut world, n, steps, args.stages).map_err(blew_up)?;
@@ -326,7 +326,7 @@ fn settled(
     });
     bar.finish_and_clear();
     result.map_err(|e| {
-        CommandFailure::failed(format!("{} pile of {particles} blew up while settling: {e}", pile.name()))
+        CommandFailure::failed(format!("{} pile of {particles} stopped while settling: {e}", pile.name()))
     })?;
     console::err(&format!(
         "{} {particles}: built and settled {settle_time} s ({} steps) in {:.1} s on {threads} threads{}",
