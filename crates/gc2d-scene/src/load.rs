@@ -261,11 +261,40 @@ fn describe(code: &RonError, path: String) -> SceneError {
         | RonError::ExpectedOption
         | RonError::ExpectedUnit
         | RonError::ExpectedStructLike
-        | RonError::ExpectedNamedStructLike(_)
-        | RonError::ExpectedIdentifier => {
+        | RonError::ExpectedNamedStructLike(_) => {
             SceneError::new(ErrorKind::Type, path, lowercase_first(&code.to_string())).with_label("wrong type")
         }
+        // Where a variant belongs and `(…)` is written without one: a wall entry written as a particle may be.
+        RonError::ExpectedIdentifier => {
+            let help = match wall_variants() {
+                variants if is_wall_entry(&path) && !variants.is_empty() => format!(
+                    "a wall entry names its kind before its parentheses: {} (docs/scene-format.md)",
+                    variants.iter().map(|v| format!("`{v}(…)`")).collect::<Vec<_>>().join(", ")
+                ),
+                _ => "a variant is written with its name before its parentheses, `Name(…)`; docs/scene-format.md \
+                      lists each field's variants"
+                    .to_owned(),
+            };
+            SceneError::new(ErrorKind::Type, path, lowercase_first(&code.to_string()))
+                .with_label("wrong type")
+                .with_help(help)
+        }
         other => SceneError::new(ErrorKind::Syntax, path, lowercase_first(&other.to_string())),
+    }
+}
+
+/// Whether `path` is an entry of the scene's `walls` list (`walls[2]`).
+fn is_wall_entry(path: &str) -> bool {
+    path.strip_prefix("walls[")
+        .and_then(|rest| rest.strip_suffix(']'))
+        .is_some_and(|i| i.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// The variant names of a wall entry, as serde knows them (read from its refusal of a name that is none).
+fn wall_variants() -> &'static [&'static str] {
+    match ron::from_str::<crate::schema::WallItem>("NotAWallKind") {
+        Err(ron::error::SpannedError { code: RonError::NoSuchEnumVariant { expected, .. }, .. }) => expected,
+        _ => &[],
     }
 }
 

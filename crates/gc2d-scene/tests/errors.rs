@@ -633,3 +633,15 @@ fn overlapping_pairs_list_the_first_20_errors_and_count_the_rest() {
     assert_eq!(error.omitted_errors(), 5, "{}", error.render_plain());
     assert!(error.render_plain().contains("… and 5 more errors not shown"), "{}", error.render_plain());
 }
+
+#[test]
+fn a_wall_written_without_its_kind_lists_the_kinds_a_wall_entry_is_written_as() {
+    // QA docs 6: `(shape: …)` is how a particle may be written, not a wall; the error gave no help.
+    let text = "Scene(walls: [(shape: Square(side_m: 0.1))])";
+    let error = located_error(text, ErrorKind::Type, "walls[0]", (1, 15));
+    let plain = error.render_plain();
+    assert!(plain.contains("a wall entry names its kind before its parentheses: `Wall(…)`"), "{plain}");
+    // Elsewhere the help is the general one.
+    let plain = error_of("Scene(run: (gravity: (9.81)))").render_plain();
+    assert!(!plain.contains("a wall entry"), "{plain}");
+}
