@@ -51,3 +51,28 @@ fn a_particle_a_source_inserted_is_named_by_the_source() {
     let stderr = failure(SOURCE_SCENE);
     assert!(stderr.contains("body 1 is `sources[0] #0`"), "{stderr}");
 }
+
+/// Thirty-three hexagons dropped into a box with a time step far above their bound (allowed explicitly): the energy
+/// balance stops the run within a few hundred steps.
+const BLOW_UP_SCENE: &str = "Scene(
+    run: (end_time_s: 0.3, seed: 1, time_step_s: 1e-4, allow_unsafe_time_step: true),
+    materials: [(name: \"sand\", gamma: 0.75, mu: 0.6)],
+    walls: [Box(x_range_m: (-0.05, 0.05), y_range_m: (0.0, 0.1), thickness_m: 0.005)],
+    blocks: [(
+        x_range_m: (-0.04, 0.04), y_range_m: (0.01, 0.03), grid_spacing_m: (0.008, 0.008),
+        shape: (semi_axes_m: (0.003, 0.003), corners: 6, orientation: Equal),
+    )],
+)
+";
+
+#[test]
+fn an_energy_blow_up_gives_the_time_once_the_unit_per_thickness_and_the_most_energetic_particle() {
+    // QA docs 17: the time was given twice, the energy in J for a per-unit-thickness scene, and no body was named.
+    let stderr = failure(BLOW_UP_SCENE);
+    assert!(stderr.contains("The run stopped at t = "), "{stderr}");
+    assert_eq!(stderr.matches("t = ").count(), 1, "{stderr}");
+    assert!(stderr.contains("the simulation blew up: the energy rose by "), "{stderr}");
+    assert!(stderr.contains(" J/m more than the work done on the system explains"), "{stderr}");
+    assert!(stderr.contains("the particle with the most kinetic energy at the stop is body "), "{stderr}");
+    assert!(stderr.contains(" is `blocks[0] #"), "{stderr}");
+}
