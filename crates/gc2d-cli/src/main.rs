@@ -1006,34 +1006,39 @@ fn analyze(
             run.display()
         )));
     }
-    // A run killed without warning has periodic checkpoints and no final.ckpt, which the analyses read.
-    let killed = !run.join("final.ckpt").exists() && run.join("checkpoints").is_dir();
-    let damaged = run.join("final.ckpt").is_file()
-        && run.join("checkpoints").is_dir()
-        && World::load_checkpoint_file(run.join("final.ckpt")).is_err();
-    let hint = if damaged {
-        format!(
-            " (the run's periodic checkpoints are intact: `gc2d-rs run SCENE --resume {}` goes on from the newest \
-             of them to the run's end time and writes final.ckpt again)",
-            run.display()
-        )
-    } else if killed {
-        format!(
-            " (the run has no final.ckpt, only periodic checkpoints: it was stopped without warning; continue it with \
-             `gc2d-rs run SCENE --resume {}` to write one)",
-            run.display()
-        )
-    } else {
-        String::new()
-    };
     let analysis = gc2d_cli::analysis::analyze(run, kind, &settings)
-        .map_err(|e| CommandFailure::input(format!("cannot analyse {}: {e}{hint}", run.display())))?;
+        .map_err(|e| CommandFailure::input(format!("cannot analyse {}: {e}{}", run.display(), checkpoint_hint(run))))?;
     console::out(&analysis.json).map_err(|e| CommandFailure::stdout(&e))?;
     for warning in &analysis.warnings {
         console::err(&format!("warning: {warning}"));
     }
     console::err(&format!("Tables and figures in {}.", run.join("analysis").display()));
     Ok(0)
+}
+
+/// What a failed analysis of `run` adds where its final state is missing or damaged and periodic checkpoints are
+/// there (the analyses read `final.ckpt`): how `--resume` writes it. Empty otherwise; looked at only on failure, so
+/// that a good analysis does not load `final.ckpt` twice.
+fn checkpoint_hint(run: &Path) -> String {
+    let final_checkpoint = run.join("final.ckpt");
+    if !run.join("checkpoints").is_dir() {
+        String::new()
+    } else if !final_checkpoint.exists() {
+        // A run killed without warning has periodic checkpoints and no final.ckpt.
+        format!(
+            " (the run has no final.ckpt, only periodic checkpoints: it was stopped without warning; continue it with \
+             `gc2d-rs run SCENE --resume {}` to write one)",
+            run.display()
+        )
+    } else if final_checkpoint.is_file() && World::load_checkpoint_file(&final_checkpoint).is_err() {
+        format!(
+            " (the run's periodic checkpoints are intact: `gc2d-rs run SCENE --resume {}` goes on from the newest \
+             of them to the run's end time and writes final.ckpt again)",
+            run.display()
+        )
+    } else {
+        String::new()
+    }
 }
 
 /// Refuses an `analyze` option the analysis of `kind` does not read (it was ignored without a word); `given` lists
