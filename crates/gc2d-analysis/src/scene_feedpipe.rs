@@ -21,7 +21,7 @@ use crate::figures::{Labels, Mark, SERIES_COLOURS, Series, bar_chart, line_chart
 use crate::mill_speeds::{Histogram, quantile};
 use crate::output::OutputDir;
 use crate::particle_state::ParticleState;
-use crate::particle_state::csv::{DUMPS_DIR, dump_files, missing_dumps, read_csv, unreadable_dumps};
+use crate::particle_state::csv::{DUMPS_DIR, dump_files, dump_warnings, read_csv};
 use crate::table::{Table, number};
 use gc2d_engine::World;
 use gc2d_geometry::DVec2;
@@ -434,8 +434,7 @@ pub fn feedpipe_report(
             indices.push(index);
         }
     }
-    warnings.extend(unreadable_dumps(&run_dir.join(DUMPS_DIR))?);
-    warnings.extend(missing_dumps(&indices));
+    warnings.extend(dump_warnings(&run_dir.join(DUMPS_DIR), &indices)?);
     let fluid = world.fluid();
     let fluid_at = |x: DVec2, t: f64| fluid.and_then(|f| f.field.velocity(x, t).ok()).unwrap_or(DVec2::NAN);
     // The section halfway between the first inlet's midpoint and the outlet, for the fluid profile.

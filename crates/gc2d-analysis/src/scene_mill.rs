@@ -20,7 +20,7 @@ use crate::mill_speeds::{
     Autocorrelation, Histogram, SpeedDistribution, WarmUpCut, autocorrelation, quantile, warm_up_cut,
 };
 use crate::output::OutputDir;
-use crate::particle_state::csv::{DUMPS_DIR, dump_files, missing_dumps, read_csv, unreadable_dumps};
+use crate::particle_state::csv::{DUMPS_DIR, dump_files, dump_warnings, read_csv};
 use crate::particle_state::{ParticleShape, ParticleState};
 use crate::table::{Table, number};
 use gc2d_engine::{Bodies, BodyKind, ShapeKind, WallMotion, World};
@@ -390,16 +390,17 @@ impl BallDump {
     }
 }
 
-/// The run's dumps up to `end` (dumps a longer earlier run left behind are not read), with a warning where dumps are
-/// missing from their numbering between the first and the last of them ([`missing_dumps`]).
+/// The run's dumps up to `end` (dumps a longer earlier run left behind are not read), with the warnings about dumps
+/// in formats the analysis cannot read and dumps missing from their numbering ([`dump_warnings`]).
 fn read_dumps(
     run_dir: &Path,
     end: f64,
     slack: f64,
     balls: &BallIds,
-) -> Result<(Vec<BallDump>, Option<String>), AnalysisError> {
+) -> Result<(Vec<BallDump>, Vec<String>), AnalysisError> {
+    let dir = run_dir.join(DUMPS_DIR);
     let (mut dumps, mut indices) = (Vec::new(), Vec::new());
-    for (index, path) in dump_files(&run_dir.join(DUMPS_DIR))? {
+    for (index, path) in dump_files(&dir)? {
         if let Some(dump) = BallDump::of(&read_csv(&path)?, balls)
             && dump.time <= end + slack
         {
@@ -407,7 +408,7 @@ fn read_dumps(
             indices.push(index);
         }
     }
-    Ok((dumps, missing_dumps(&indices)))
+    Ok((dumps, dump_warnings(&dir, &indices)?))
 }
 
 /// The rotor's revolutions from `from` to `to` s: the angle its motion law (angular velocity, spin-up ramp, time
@@ -458,8 +459,7 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let series = Table::read(&run_dir.join("timeseries.csv"))?;
     let series_file = "timeseries.csv";
     let time = series.column("time_s", series_file)?;
-    let (dumps, missing) = read_dumps(run_dir, end, slack, &options.balls)?;
-    let mut warnings: Vec<String> = unreadable_dumps(&run_dir.join(DUMPS_DIR))?.into_iter().chain(missing).collect();
+    let (dumps, mut warnings) = read_dumps(run_dir, end, slack, &options.balls)?;
 
     // The median-speed series: the balls' per dump, else the time series' column.
     let (median_series, source): (Vec<(f64, f64)>, _) = if dumps.len() >= 8 {

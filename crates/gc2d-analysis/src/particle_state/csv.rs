@@ -194,6 +194,13 @@ pub fn unreadable_dumps(dir: &Path) -> Result<Option<String>, AnalysisError> {
     )))
 }
 
+/// The warnings an analysis that read the dumps of `dir` with `indices` (ascending) gives about them: dumps only in
+/// formats it cannot read ([`unreadable_dumps`]), then dump files missing from the numbering ([`missing_dumps`]). The
+/// one place the mill and feed-pipe analyses take them from, so that both say the same.
+pub fn dump_warnings(dir: &Path, indices: &[u64]) -> Result<Vec<String>, AnalysisError> {
+    Ok(unreadable_dumps(dir)?.into_iter().chain(missing_dumps(indices)).collect())
+}
+
 /// A CSV field: as it is, or quoted (with quotes doubled) when it holds a comma, a quote or a line break. The one
 /// quoting rule of the run's CSV outputs (dumps, events, exports).
 pub fn quoted(text: &str) -> std::borrow::Cow<'_, str> {
@@ -286,5 +293,19 @@ mod tests {
         let many = missing_dumps(&[0, 20]).unwrap();
         assert!(many.starts_with("19 dump files are missing"), "{many}");
         assert!(many.contains("particles_000005.csv, …; the dump-based statistics use the 2 others"), "{many}");
+    }
+
+    /// The mill and feed-pipe analyses take their dump warnings from one place: unreadable formats first, then gaps.
+    #[test]
+    fn dump_warnings_give_the_unreadable_formats_then_the_gaps() {
+        let dir = std::env::temp_dir().join(format!("gc2d-dump-warnings-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("particles_000001.parquet"), "").unwrap();
+        let warnings = dump_warnings(&dir, &[0, 2]).unwrap();
+        assert_eq!(warnings.len(), 2, "{warnings:?}");
+        assert!(warnings[0].contains("(1 in parquet, without a CSV copy)"), "{}", warnings[0]);
+        assert_eq!(warnings[1], missing_dumps(&[0, 2]).unwrap());
+        assert_eq!(dump_warnings(&dir.join("none"), &[3, 4]).unwrap(), Vec::<String>::new());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
