@@ -16,24 +16,28 @@ pub fn quantile(sorted: &[f64], q: f64) -> f64 {
 /// A histogram of non-negative values over [0, largest] with ⌈√N⌉ equal bins, area-normalised (thesis §16.3).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Histogram {
-    /// Bin edges (one more than the densities; none without values).
+    /// Bin edges (one more than the densities; none without values, or when every value is 0).
     pub bin_edges: Vec<f64>,
-    /// Probability densities per bin (the histogram's area is 1; none without values).
+    /// Probability densities per bin (the histogram's area is 1; none without values, or when every value is 0).
     pub densities: Vec<f64>,
-    /// Centre of the fullest bin (the lowest of equally full ones); NaN (null in JSON) without values.
+    /// Centre of the fullest bin (the lowest of equally full ones); 0 when every value is 0; NaN (null in JSON)
+    /// without values.
     pub mode: f64,
 }
 
 impl Histogram {
     /// The histogram of `sorted` (ascending, non-negative) values. Without values it has no bins and no mode: a bin
-    /// over [0, the smallest positive number] gave sentinel numbers (2.2e-308) in the reports.
+    /// over [0, the smallest positive number] gave sentinel numbers (2.2e-308) in the reports. When every value is 0
+    /// (balls at rest, contacts without approach) it has no bins either, since all of the sample at one point has no
+    /// density (a bin [0, 0] would need an infinite one), and its mode is 0, the value every sample takes.
     pub fn of(sorted: &[f64]) -> Self {
         let n = sorted.len();
-        if n == 0 {
-            return Self { bin_edges: Vec::new(), densities: Vec::new(), mode: f64::NAN };
+        let top = sorted.last().copied().unwrap_or(0.0);
+        if n == 0 || top <= 0.0 {
+            let mode = if n == 0 { f64::NAN } else { 0.0 };
+            return Self { bin_edges: Vec::new(), densities: Vec::new(), mode };
         }
         let bins = (n as f64).sqrt().ceil().max(1.0) as usize;
-        let top = sorted.last().copied().unwrap_or(0.0).max(f64::MIN_POSITIVE);
         let width = top / bins as f64;
         let mut counts = vec![0usize; bins];
         for &v in sorted {
@@ -221,6 +225,19 @@ mod tests {
         assert_eq!(
             json,
             r#"{"samples":0,"mode_m_s":null,"median_m_s":null,"p90_m_s":null,"mean_m_s":null,"histogram":{"bin_edges":[],"densities":[],"mode":null}}"#
+        );
+    }
+
+    /// An all-zero sample (balls at rest) gave bin edges [0, 2.2e-308] and a mode of 1.1e-308: now no bins, mode 0.
+    #[test]
+    fn an_all_zero_sample_has_no_bins_and_mode_zero() {
+        let d = SpeedDistribution::of(vec![0.0; 4]);
+        assert!(d.histogram.bin_edges.is_empty() && d.histogram.densities.is_empty());
+        assert_eq!((d.samples, d.mode_m_s, d.median_m_s, d.p90_m_s, d.mean_m_s), (4, 0.0, 0.0, 0.0, 0.0));
+        let json = serde_json::to_string(&d).unwrap();
+        assert_eq!(
+            json,
+            r#"{"samples":4,"mode_m_s":0.0,"median_m_s":0.0,"p90_m_s":0.0,"mean_m_s":0.0,"histogram":{"bin_edges":[],"densities":[],"mode":0.0}}"#
         );
     }
 

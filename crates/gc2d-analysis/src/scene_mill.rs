@@ -90,15 +90,17 @@ pub struct CollisionClass {
     pub per_second: f64,
     /// Per second and per particle of the class's first kind (balls; ore grains for `ore–…`; balls for `all`).
     pub per_ball_per_second: f64,
-    /// Centre of the fullest histogram bin, m/s.
+    /// Centre of the fullest histogram bin, m/s (0 when every impact speed is 0; NaN, null, without collisions).
     pub mode_m_s: f64,
-    /// Quartiles of the impact normal speed, m/s.
+    /// Quartiles of the impact normal speed, m/s (NaN, null, without collisions).
     pub quartiles_m_s: [f64; 3],
-    /// Shares of impacts faster than [`SPEED_THRESHOLDS`].
+    /// Shares of impacts faster than [`SPEED_THRESHOLDS`]; NaN (null in JSON, an empty CSV field) for a class without
+    /// collisions: a share of no impacts is not 0.
     pub fractions_above: [f64; 3],
     /// Σ ½·m·v_n² per second, W.
     pub normal_energy_per_second_w: f64,
-    /// Histogram of the impact normal speed: bin edges, m/s (one more than the densities).
+    /// Histogram of the impact normal speed: bin edges, m/s (one more than the densities; none without collisions or
+    /// when every impact speed is 0).
     pub bin_edges_m_s: Vec<f64>,
     /// Probability densities per bin, s/m (the histogram's area is 1).
     pub densities: Vec<f64>,
@@ -225,7 +227,8 @@ pub struct MillReport {
     #[serde(skip)]
     pub median_series: Vec<(f64, f64)>,
     /// What the user should know before trusting the numbers: dumps the analysis cannot read or that are missing, a
-    /// chamber without the outer ring and the maps (also printed by `gc2d-rs analyze`).
+    /// chamber without the outer ring and the maps, samples whose every speed is 0 (also printed by `gc2d-rs analyze`
+    /// and at the end of `gc2d-rs run`).
     pub warnings: Vec<String>,
     /// The files written into the analysis directory.
     pub files: Vec<String>,
@@ -254,17 +257,19 @@ impl MillReport {
         let relative = p.relative_torque_dissipation;
         let relative =
             if relative.is_finite() { format!("{:+.2} %", 100.0 * relative) } else { "undefined".to_string() };
+        let impacts = match self.all_classes.collisions {
+            0 => "no collisions in the window".to_string(),
+            n => format!(
+                "impacts faster than 0.5 / 1 / 3 m/s: {:.1} / {:.1} / {:.2} % of {n} collisions",
+                100.0 * f[0],
+                100.0 * f[1],
+                100.0 * f[2]
+            ),
+        };
         format!(
             "Mill over {from:.3}–{to:.3} s ({how}): {median}; <P_torque> {:.4} W, <P_work> {:.4} W, <D> {:.4} W \
-             ((P − D)/P {relative});\n{hits}; impacts faster than 0.5 / 1 / 3 m/s: {:.1} / {:.1} / {:.2} % of {} \
-             collisions.",
-            p.mean_power_torque_w,
-            p.mean_power_work_w,
-            p.dissipation_w,
-            100.0 * f[0],
-            100.0 * f[1],
-            100.0 * f[2],
-            self.all_classes.collisions,
+             ((P − D)/P {relative});\n{hits}; {impacts}.",
+            p.mean_power_torque_w, p.mean_power_work_w, p.dissipation_w,
         )
     }
 }
@@ -304,11 +309,64 @@ fn class_report(class: &str, mut speeds: Vec<f64>, normal_energy: f64, span: f64
         per_ball_per_second: n as f64 / span / particles.max(1) as f64,
         mode_m_s: histogram.mode,
         quartiles_m_s: [quantile(&speeds, 0.25), quantile(&speeds, 0.5), quantile(&speeds, 0.75)],
-        fractions_above: SPEED_THRESHOLDS.map(|t| speeds.iter().filter(|&&v| v > t).count() as f64 / n.max(1) as f64),
+        fractions_above: SPEED_THRESHOLDS.map(|t| share_above(&speeds, t)),
         normal_energy_per_second_w: normal_energy / span,
         bin_edges_m_s: histogram.bin_edges,
         densities: histogram.densities,
     }
+}
+
+/// The share of `speeds` faster than `threshold`; NaN without speeds (a share of nothing is not 0).
+fn share_above(speeds: &[f64], threshold: f64) -> f64 {
+    if speeds.is_empty() {
+        return f64::NAN;
+    }
+    speeds.iter().filter(|&&v| v > threshold).count() as f64 / speeds.len() as f64
+}
+
+/// Why a sample whose every value is 0 has no histogram bins.
+const NO_BINS: &str = "no histogram bins (a sample at one value has no density)";
+
+/// Warnings for the collision classes whose every impact normal speed is 0 (contacts without approach): no histogram
+/// bins, a mode and quartiles of 0. One for `all` where its speeds are all 0 (then every class's are).
+fn zero_impact_warnings(classes: &[CollisionClass], all: &CollisionClass) -> Vec<String> {
+    let zero = |c: &&CollisionClass| c.collisions > 0 && c.bin_edges_m_s.is_empty();
+    let named: Vec<&CollisionClass> = if zero(&all) { vec![all] } else { classes.iter().filter(zero).collect() };
+    named
+        .iter()
+        .map(|c| {
+            format!(
+                "all {} impact normal speeds of class {} are 0: {NO_BINS}; mode and quartiles 0",
+                c.collisions, c.class
+            )
+        })
+        .collect()
+}
+
+/// Warnings for the ball-speed samples whose every value is 0 (balls at rest): no histogram bins, a mode, median,
+/// P90 and mean of 0. One for `all` where its speeds are all 0 (then the outer ring's are too).
+fn zero_ball_speed_warnings(speeds: &BallSpeeds) -> Vec<String> {
+    let parts = [
+        ("all", Some(&speeds.all)),
+        ("upper_outer", speeds.upper_outer.as_ref()),
+        ("lower_outer", speeds.lower_outer.as_ref()),
+    ];
+    let zero: Vec<(&str, &SpeedDistribution)> = parts
+        .into_iter()
+        .filter_map(|(name, d)| Some((name, d?)))
+        .filter(|(_, d)| d.samples > 0 && d.histogram.bin_edges.is_empty())
+        .collect();
+    let named = if zero.first().is_some_and(|(name, _)| *name == "all") { &zero[..1] } else { &zero[..] };
+    named
+        .iter()
+        .map(|(name, d)| {
+            format!(
+                "all {} ball speeds ({name}) in the window are 0 (the balls are at rest): {NO_BINS}; mode, median, \
+                 P90 and mean 0",
+                d.samples
+            )
+        })
+        .collect()
 }
 
 /// The stress-energy spectrum of ore-collision `energies` (J) over a window of `span` s.
@@ -645,6 +703,8 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
         radial_profile(&c, &radii)
     });
     let sectors = chamber.map_or_else(Vec::new, |c| sector_map(&c, &samples, &points, span));
+    warnings.extend(zero_impact_warnings(&classes, &all_classes));
+    warnings.extend(ball_speeds.iter().flat_map(zero_ball_speed_warnings));
 
     Ok(MillReport {
         window_s: [start, end],

@@ -380,7 +380,9 @@ fn dumps_missing_from_the_numbering_are_named() {
 }
 
 /// QA P2-10 j: a window without collisions wrote a 330-character mode and NaN quartiles into `mill_collisions.csv`
-/// and 2.2e-308 bin edges into `mill.json`; an empty stress-energy spectrum had bins from 1 J to 10 J.
+/// and 2.2e-308 bin edges into `mill.json`; an empty stress-energy spectrum had bins from 1 J to 10 J. The shares above
+/// 0.5, 1 and 3 m/s of no collisions were 0 ("0 % of no impacts"): null and empty fields too, and the summary says
+/// that there were no collisions.
 #[test]
 fn empty_classes_give_null_and_empty_fields_not_sentinels() {
     let (dir, _) = run_dir("no-collisions", 0.0);
@@ -388,11 +390,15 @@ fn empty_classes_give_null_and_empty_fields_not_sentinels() {
     std::fs::write(dir.join("events.csv"), header + "\n").unwrap();
     let report = analyze_mill(&dir, &MillOptions::default()).unwrap();
     assert!(report.classes.is_empty() && report.all_classes.collisions == 0);
+    assert!(report.all_classes.fractions_above.iter().all(|f| f.is_nan()), "{:?}", report.all_classes);
     let collisions = analysis_file(&dir, "mill_collisions.csv");
-    assert_eq!(collisions.lines().nth(1), Some("all,0,0,0,,,,,0,0,0,0"), "{collisions}");
+    assert_eq!(collisions.lines().nth(1), Some("all,0,0,0,,,,,,,,0"), "{collisions}");
     let json: serde_json::Value = serde_json::from_str(&analysis_file(&dir, "mill.json")).unwrap();
     let all = &json["all_classes"];
     assert!(all["mode_m_s"].is_null() && all["quartiles_m_s"].as_array().unwrap().iter().all(|q| q.is_null()));
+    assert_eq!(all["fractions_above"], serde_json::json!([null, null, null]));
+    let summary = report.summary();
+    assert!(summary.ends_with("; no collisions in the window.") && !summary.contains("NaN"), "{summary}");
     assert_eq!(
         (all["bin_edges_m_s"].as_array().map(Vec::len), all["densities"].as_array().map(Vec::len)),
         (Some(0), Some(0))
@@ -401,6 +407,49 @@ fn empty_classes_give_null_and_empty_fields_not_sentinels() {
     assert_eq!((stress["events"].as_u64(), stress["bin_edges_j"].as_array().map(Vec::len)), (Some(0), Some(0)));
     assert!(stress["median_j"].is_null());
     assert!(!analysis_file(&dir, "mill.json").contains("e-308"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An all-zero sample (balls at rest, contacts without approach) had bin edges [0, 2.2e-308] and a mode of 1.1e-308:
+/// it has no bins, a mode of 0, and a warning says why.
+#[test]
+fn samples_whose_every_speed_is_zero_have_no_bins_mode_zero_and_a_warning() {
+    let (dir, _) = run_dir("all-zero", 0.0);
+    for (_, path) in gc2d_analysis::particle_state::csv::dump_files(&dir.join("dumps")).unwrap() {
+        let rows: Vec<_> = gc2d_analysis::particle_state::csv::read_csv(&path)
+            .unwrap()
+            .into_iter()
+            .map(|row| gc2d_analysis::ParticleState { vx_m_s: 0.0, vy_m_s: 0.0, ..row })
+            .collect();
+        let mut bytes = Vec::new();
+        write_csv(&rows, &mut bytes).unwrap();
+        std::fs::write(&path, bytes).unwrap();
+    }
+    let events = std::fs::read_to_string(dir.join("events.csv")).unwrap();
+    let mut rest = events.lines().next().unwrap().to_owned() + "\n";
+    event(&mut rest, 0.4, 1, 4, 0.0, DVec2::new(0.004, 0.0)); // ball–blade
+    event(&mut rest, 0.5, 3, 4, 0.0, DVec2::new(0.0, 0.048)); // ball–ball
+    std::fs::write(dir.join("events.csv"), rest).unwrap();
+    let report = analyze_mill(&dir, &MillOptions { warm_up_s: Some(0.0), ..MillOptions::default() }).unwrap();
+    let speeds = report.ball_speeds.as_ref().unwrap();
+    assert_eq!((speeds.all.samples, speeds.all.mode_m_s, speeds.all.median_m_s), (202, 0.0, 0.0));
+    assert!(speeds.all.histogram.bin_edges.is_empty() && speeds.all.histogram.densities.is_empty());
+    assert_eq!((report.all_classes.collisions, report.all_classes.mode_m_s), (2, 0.0));
+    assert!(report.all_classes.bin_edges_m_s.is_empty());
+    assert_eq!(report.all_classes.fractions_above, [0.0; 3]);
+    assert_eq!(
+        report.warnings,
+        [
+            "all 2 impact normal speeds of class all are 0: no histogram bins (a sample at one value has no density); \
+             mode and quartiles 0",
+            "all 202 ball speeds (all) in the window are 0 (the balls are at rest): no histogram bins (a sample at one \
+             value has no density); mode, median, P90 and mean 0",
+        ]
+    );
+    let json = analysis_file(&dir, "mill.json");
+    assert!(!json.contains("e-308"), "{json}");
+    assert_eq!(analysis_file(&dir, "mill_ball_speeds.csv"), "part,from_m_s,to_m_s,density_s_m\n\n");
+    assert_eq!(analysis_file(&dir, "mill_speed_histograms.csv"), "class,from_m_s,to_m_s,density_s_m\n\n");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
