@@ -97,6 +97,9 @@ fn from_ron_error(error: &SpannedError, source: &Arc<SourceText>) -> SceneError 
         let next = start + text[start..].len() - text[start..].trim_start().len();
         source.value_span_at(next).unwrap_or_else(|| widen_to_token(text, next..next))
     };
+    if let Some(error) = unclosed_at_end(&error.code, source, span.end.max(end)) {
+        return error;
+    }
     let path = source.path_at(span.start).unwrap_or("").to_owned();
     if let Some((scene_error, span)) = misread_number(&error.code, text, span.clone(), &path) {
         return scene_error.at_span(source, Some(span));
@@ -112,6 +115,65 @@ fn from_ron_error(error: &SpannedError, source: &Arc<SourceText>) -> SceneError 
         scene_error = scene_error.with_message(message);
     }
     scene_error.at_span(source, Some(span))
+}
+
+/// A text that ends with brackets still open, which ron reports at the end as a missing comma (or the end of RON), told
+/// as the brackets left open, located at the innermost one (with the name written before it): `Scene(run: (seed: 1)`
+/// → "the file ends before `Scene(` opened at 1:1 is closed". `None` for other errors, and where the error (ending at
+/// `end`) is not at the end of the text.
+fn unclosed_at_end(code: &RonError, source: &Arc<SourceText>, end: usize) -> Option<SceneError> {
+    let at_end_codes = matches!(
+        code,
+        RonError::ExpectedComma
+            | RonError::Eof
+            | RonError::ExpectedStructLikeEnd
+            | RonError::ExpectedArrayEnd
+            | RonError::ExpectedMapEnd
+    );
+    let (text, open) = (source.text(), source.unclosed_at_end());
+    let &innermost = open.last()?;
+    if !at_end_codes || !text[end.min(text.len())..].trim().is_empty() {
+        return None;
+    }
+    let named = |offset: usize| {
+        let written = opening_written(text, offset);
+        let (line, column) = source.line_column(written.start);
+        format!("`{}` opened at {line}:{column}", &text[written])
+    };
+    let listed: Vec<String> = open.iter().rev().map(|&offset| named(offset)).collect();
+    let closing: String = open.iter().rev().map(|&offset| closing_bracket(text.as_bytes()[offset])).collect();
+    let (message, help) = match listed.as_slice() {
+        [one] => (format!("the file ends before {one} is closed"), format!("close it with `{closing}`")),
+        [inner @ .., outer] => (
+            format!("the file ends before {} and {outer} are closed", inner.join(", ")),
+            format!("close them with `{closing}`, innermost first, where their values end"),
+        ),
+        [] => return None,
+    };
+    let span = opening_written(text, innermost);
+    let path = source.path_at(span.start).unwrap_or("").to_owned();
+    let error = SceneError::new(ErrorKind::Syntax, path, message).with_label("not closed").with_help(help);
+    Some(error.at_span(source, Some(span)))
+}
+
+/// The opening bracket at `offset` as written, with the name right before it if it has one (`Scene(`, `Wall(`, `[`).
+fn opening_written(text: &str, offset: usize) -> Range<usize> {
+    let before = &text[..offset];
+    let name_start = before
+        .char_indices()
+        .rev()
+        .find(|&(_, c)| !(c.is_alphanumeric() || c == '_'))
+        .map_or(0, |(i, c)| i + c.len_utf8());
+    name_start..offset + 1
+}
+
+/// The bracket that closes `open`.
+fn closing_bracket(open: u8) -> char {
+    match open {
+        b'[' => ']',
+        b'{' => '}',
+        _ => ')',
+    }
 }
 
 /// The errors ron gives for a number it read in pieces, told as what was written (with the number's span): a negative

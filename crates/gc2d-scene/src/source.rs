@@ -56,6 +56,12 @@ impl SourceText {
         self.index.value_starting_at(offset)
     }
 
+    /// The offsets of the brackets the text leaves open at its end, outermost first (see
+    /// [`SpanIndex::unclosed_at_end`]).
+    pub fn unclosed_at_end(&self) -> &[usize] {
+        self.index.unclosed_at_end()
+    }
+
     /// The byte offset of a 1-based line and column (columns count characters, as ron's do), clamped to the text.
     pub fn offset_of(&self, line: usize, column: usize) -> usize {
         let mut offset = 0;

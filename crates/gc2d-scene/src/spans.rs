@@ -27,20 +27,30 @@ struct Node {
 pub struct SpanIndex {
     nodes: Vec<Node>,
     by_path: HashMap<String, usize>,
+    unclosed_at_end: Vec<usize>,
 }
 
 impl SpanIndex {
     /// Scans `text`. Never fails; malformed text yields the nodes found before the first token that does not fit.
     pub fn scan(text: &str) -> Self {
-        let mut scanner = Scanner { text, bytes: text.as_bytes(), pos: 0, nodes: Vec::new(), depth: 0 };
+        let mut scanner =
+            Scanner { text, bytes: text.as_bytes(), pos: 0, nodes: Vec::new(), depth: 0, open_brackets: Vec::new() };
         scanner.skip_trivia();
-        scanner.value(String::new(), None);
+        let complete = scanner.value(String::new(), None);
+        // Brackets still open where the scan stopped count as unclosed only if it stopped at the end of the text.
+        let unclosed_at_end = if complete || scanner.pos < text.len() { Vec::new() } else { scanner.open_brackets };
         let mut by_path = HashMap::new();
         for (i, node) in scanner.nodes.iter().enumerate() {
             // Later (inner, transparent) nodes win: `gravity: Constant(9.81)` points `gravity` at `9.81`.
             by_path.insert(node.path.clone(), i);
         }
-        Self { nodes: scanner.nodes, by_path }
+        Self { nodes: scanner.nodes, by_path, unclosed_at_end }
+    }
+
+    /// The byte offsets of the brackets (`(`, `[`, `{`) that the text leaves open when it ends, outermost first; empty
+    /// when the text ends with every bracket closed, or the scan stopped before its end at something else.
+    pub fn unclosed_at_end(&self) -> &[usize] {
+        &self.unclosed_at_end
     }
 
     /// The span to underline for `path`: its value if written; otherwise (a defaulted field) the key of the nearest
@@ -102,6 +112,8 @@ struct Scanner<'a> {
     pos: usize,
     nodes: Vec<Node>,
     depth: usize,
+    /// Offsets of the brackets opened and not yet closed, outermost first.
+    open_brackets: Vec<usize>,
 }
 
 impl Scanner<'_> {
@@ -237,7 +249,7 @@ impl Scanner<'_> {
 
     /// `( … )`: named fields if it starts with `identifier :`, else tuple elements.
     fn parenthesised(&mut self, path: &str, named: bool) -> bool {
-        self.pos += 1;
+        self.open();
         self.skip_trivia();
         if self.starts_with_field() {
             return self.fields(path, b')');
@@ -248,7 +260,7 @@ impl Scanner<'_> {
             self.skip_trivia();
             match self.peek() {
                 Some(b')') => {
-                    self.pos += 1;
+                    self.close();
                     break;
                 }
                 None => return false,
@@ -296,7 +308,7 @@ impl Scanner<'_> {
             self.skip_trivia();
             match self.peek() {
                 Some(b) if b == close => {
-                    self.pos += 1;
+                    self.close();
                     return true;
                 }
                 Some(b) if is_ident_start(b) => {}
@@ -319,13 +331,13 @@ impl Scanner<'_> {
     }
 
     fn list(&mut self, path: &str) -> bool {
-        self.pos += 1;
+        self.open();
         let mut i = 0;
         loop {
             self.skip_trivia();
             match self.peek() {
                 Some(b']') => {
-                    self.pos += 1;
+                    self.close();
                     return true;
                 }
                 None => return false,
@@ -339,12 +351,12 @@ impl Scanner<'_> {
     }
 
     fn map(&mut self, path: &str) -> bool {
-        self.pos += 1;
+        self.open();
         loop {
             self.skip_trivia();
             match self.peek() {
                 Some(b'}') => {
-                    self.pos += 1;
+                    self.close();
                     return true;
                 }
                 None => return false,
@@ -368,6 +380,18 @@ impl Scanner<'_> {
                 return false;
             }
         }
+    }
+
+    /// Steps over an opening bracket at the current position and notes it as open.
+    fn open(&mut self) {
+        self.open_brackets.push(self.pos);
+        self.pos += 1;
+    }
+
+    /// Steps over the closing bracket at the current position; the innermost open one is closed.
+    fn close(&mut self) {
+        self.open_brackets.pop();
+        self.pos += 1;
     }
 
     /// After an element: a comma, or the closing bracket (left for the caller to consume).

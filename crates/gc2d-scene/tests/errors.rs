@@ -25,7 +25,7 @@ fn check(name: &str, text: &str, kind: ErrorKind, path: &str, line_column: (usiz
 
 #[test]
 fn syntax_errors_name_the_position() {
-    check("syntax", "Scene(\n    run: (seed: 1,\n)", ErrorKind::Syntax, "run", (3, 1));
+    check("syntax", "Scene(\n    run: (seed: 1 2),\n)", ErrorKind::Syntax, "run", (2, 19));
 }
 
 #[test]
@@ -644,4 +644,36 @@ fn a_wall_written_without_its_kind_lists_the_kinds_a_wall_entry_is_written_as() 
     // Elsewhere the help is the general one.
     let plain = error_of("Scene(run: (gravity: (9.81)))").render_plain();
     assert!(!plain.contains("a wall entry"), "{plain}");
+}
+
+#[test]
+fn a_file_that_ends_with_brackets_open_names_them_where_they_were_opened() {
+    // QA docs 6: `Scene(run: (seed: 1)` gave ron's bare "expected comma" at the end of the file.
+    let error = error_of("Scene(run: (seed: 1)\n");
+    assert_eq!(error.kind(), ErrorKind::Syntax);
+    assert_eq!(error.to_string(), "bad.ron:1:1: the file ends before `Scene(` opened at 1:1 is closed");
+    // ron reports this one at the last `)`, which closes `run`.
+    let error = error_of("Scene(\n    run: (seed: 1,\n)");
+    assert_eq!(error.kind(), ErrorKind::Syntax);
+    assert_eq!(error.to_string(), "bad.ron:1:1: the file ends before `Scene(` opened at 1:1 is closed");
+    assert_eq!(error.help_text(), Some("close it with `)`"));
+
+    let error = error_of("Scene(\n  walls: [Wall(shape: Square(side_m: 0.1)),\n    Wall(shape: Square(side_m: 0.2)\n");
+    assert_eq!(error.path(), "walls[1]", "{}", error.render_plain());
+    assert_eq!(
+        error.to_string(),
+        "bad.ron:3:5: `walls[1]`: the file ends before `Wall(` opened at 3:5, `[` opened at 2:10 and `Scene(` opened \
+         at 1:1 are closed"
+    );
+    assert_eq!(error.help_text(), Some("close them with `)])`, innermost first, where their values end"));
+}
+
+#[test]
+fn a_bracket_left_open_inside_the_file_is_not_told_as_the_end_of_the_file() {
+    // The scan stops at `;` before the end: ron's own message stands.
+    let error = error_of("Scene(run: (seed: 1; name: \"x\"\n");
+    assert!(!error.message().contains("the file ends"), "{}", error.render_plain());
+    // Brackets inside strings and comments do not count.
+    let error = error_of("// (\nScene(name: \"a(b[\", /* { */ run: (seed: 1)\n");
+    assert_eq!(error.to_string(), "bad.ron:2:1: the file ends before `Scene(` opened at 2:1 is closed");
 }
