@@ -735,6 +735,25 @@ fn steps(edges: &[f64], densities: &[f64]) -> Vec<(f64, f64)> {
     densities.iter().enumerate().flat_map(|(k, &d)| [(edges[k], d), (edges[k + 1], d)]).collect()
 }
 
+/// The radial profile's figure: the share of ball samples per ring and, for comparison, the ring's share of the area
+/// (what a ball spread evenly over the chamber would give), each a staircase over the rings.
+fn radial_profile_chart(path: &Path, profile: &RadialProfile) -> Result<(), AnalysisError> {
+    let edges: Vec<f64> =
+        profile.rings.first().map(|r| r.from_m).into_iter().chain(profile.rings.iter().map(|r| r.to_m)).collect();
+    let share: Vec<f64> = profile.rings.iter().map(|r| r.share).collect();
+    let area: Vec<f64> = profile.rings.iter().map(|r| r.area_share).collect();
+    let (share, area) = (steps(&edges, &share), steps(&edges, &area));
+    let labels = Labels { title: "Where the balls are: share per ring", x: "r (m)", y: "share" };
+    line_chart(
+        path,
+        labels,
+        &[
+            Series { label: "share of ball samples", points: &share, color: SERIES_COLOURS[0], mark: Mark::Line },
+            Series { label: "share of the area", points: &area, color: SERIES_COLOURS[1], mark: Mark::Line },
+        ],
+    )
+}
+
 /// Analyses the mill run in `run_dir` ([`mill_report`]) and writes its tables, figures and `mill.json` into its
 /// `analysis/` directory.
 pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport, AnalysisError> {
@@ -860,9 +879,7 @@ pub fn analyze_mill(run_dir: &Path, options: &MillOptions) -> Result<MillReport,
     if let Some(p) = &report.radial_profile {
         let rows: Vec<Vec<f64>> = p.rings.iter().map(|r| vec![r.from_m, r.to_m, r.share, r.area_share]).collect();
         out.write_csv("mill_radial_profile.csv", &["from_m", "to_m", "share", "area_share"], &rows)?;
-        let bars: Vec<(f64, f64, f64)> = p.rings.iter().map(|r| (r.from_m, r.to_m, r.share)).collect();
-        let labels = Labels { title: "Where the balls are: share per ring", x: "r (m)", y: "share of ball samples" };
-        bar_chart(&out.file("mill_radial_profile.svg"), labels, &bars)?;
+        radial_profile_chart(&out.file("mill_radial_profile.svg"), p)?;
     }
     if let Some(c) = report.chamber.filter(|_| !report.sectors.is_empty()) {
         let rows: Vec<Vec<f64>> = report

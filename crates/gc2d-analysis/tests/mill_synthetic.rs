@@ -243,6 +243,10 @@ fn a_hand_made_mill_run_gives_the_known_statistics() {
     ] {
         assert!(dir.join("analysis").join(file).exists(), "{file} is missing");
     }
+    // The radial profile's figure draws the ring's share of the area beside the balls' (it drew only the balls').
+    let figure = analysis_file(&dir, "mill_radial_profile.svg");
+    let texts: Vec<&str> = figure.lines().map(str::trim).collect();
+    assert!(texts.contains(&"share of ball samples") && texts.contains(&"share of the area"), "{figure}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
