@@ -54,7 +54,8 @@ pub fn write_scene_copy(path: &Path, scene: &Scene) -> io::Result<()> {
     scene.anchor_file_names(&scene.folder())?;
     let text = scene.to_ron_string().map_err(io::Error::other)?;
     let header = format!(
-        "// The scene this run started from, as gc2d-rs {} read it (with --seed applied); a field left out has its default (docs/scene-format.md).\n",
+        "// The scene this run started from, as gc2d-rs {} read it (with --seed applied); a field left out has its default (docs/scene-format.md).\n\
+         // Where the run ended (--until, or resumed to a later end) is summary.json's time_s, not run.end_time_s.\n",
         env!("CARGO_PKG_VERSION")
     );
     std::fs::write(path, header + &text + "\n")
