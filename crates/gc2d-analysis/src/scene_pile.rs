@@ -3,7 +3,7 @@
 
 use crate::density::{Grid, LocalDensity, bulk_packing_fraction, density_grid};
 use crate::error::AnalysisError;
-use crate::figures::{self, Labels, Mark, Series};
+use crate::figures::{self, ColourQuantity, Labels, Mark, SERIES_COLOURS, Series};
 use crate::geometry::Rect;
 use crate::output::OutputDir;
 use crate::pressure::{Facing, ProfileOptions, WallForce, WallSelection, pressure_profile, wall_forces};
@@ -12,8 +12,9 @@ use crate::run::{AnalyzeOptions, CONTACTS_PER_WINDOW, PARTICLES_PER_TEST_AREA};
 use crate::snapshot::Snapshot;
 use crate::stress::{LocalStress, StressOptions, stress_grid};
 use gc2d_geometry::DVec2;
-use plotters::style::{BLACK, BLUE, RED};
+use plotters::style::{BLACK, BLUE, RED, RGBColor};
 use serde::Serialize;
+use std::path::Path;
 
 /// Samples of the moving average drawn beside the raw pressure profile.
 pub const MOVING_AVERAGE_SAMPLES: usize = 5;
@@ -107,25 +108,15 @@ pub fn analyze_pile(
     let surface: Vec<(f64, f64)> = repose.surface.iter().map(|p| (p.x, p.y)).collect();
     out.write_csv("surface.csv", &["x", "y_top"], &surface.iter().map(|&(x, y)| vec![x, y]).collect::<Vec<_>>())?;
     let mut flank_rows = Vec::new();
-    let mut fit_lines = Vec::new();
-    for (side, name, fit) in [(0.0, "left", &repose.left), (1.0, "right", &repose.right)] {
+    for (side, fit) in [(0.0, &repose.left), (1.0, &repose.right)] {
         if let Some(fit) = fit {
             flank_rows.extend(fit.points.iter().map(|p| vec![side, p.x, p.y, fit.intercept + fit.slope * p.x]));
-            fit_lines.push((format!("{name} flank fit, {:.1}°", fit.angle_degrees), fit_line_points(fit)));
         }
     }
     out.write_csv("flank_points.csv", &["flank_right", "x", "y_centroid", "y_fit"], &flank_rows)?;
     let flank_points: Vec<(f64, f64)> = flank_rows.iter().map(|r| (r[1], r[2])).collect();
-    let mut series = vec![
-        Series { label: "surface envelope", points: &surface, color: BLACK, mark: Mark::Line },
-        Series { label: "highest centroid per bin (fitted)", points: &flank_points, color: BLUE, mark: Mark::Dots },
-    ];
-    series.extend(fit_lines.iter().map(|(label, line)| Series { label, points: line, color: RED, mark: Mark::Line }));
-    figures::line_chart(
-        &out.file("surface.svg"),
-        Labels { title: "pile surface and flank fits", x: "x / m", y: "y / m" },
-        &series,
-    )?;
+    let surface_figure = SurfaceFigure { surface: &surface, flank_points: &flank_points };
+    surface_figure.draw(&out.file("surface.svg"), repose.left.as_ref(), repose.right.as_ref())?;
 
     let floor_forces = wall_forces(pile, WallSelection::facing(Facing::Up));
     let floor = floor_pressure(&floor_forces, options, mean_diameter, pile, shape, rho_g_h, out)?;
@@ -182,6 +173,62 @@ pub fn auto_cell(snapshot: &Snapshot, packing: f64) -> f64 {
     let mean_area = snapshot.total_particle_area() / count;
     let side = (PARTICLES_PER_TEST_AREA * mean_area / packing.max(0.1)).sqrt();
     if side > 0.0 && side.is_finite() { side } else { 1.0 }
+}
+
+/// Colours of the left and the right flank fit in `surface.svg`: distinct from each other, from the envelope (black)
+/// and from the fitted points ([`SERIES_COLOURS`]`[0]`).
+pub const FLANK_FIT_COLOURS: [RGBColor; 2] = [SERIES_COLOURS[1], SERIES_COLOURS[4]];
+
+/// The data of `surface.svg`: the surface envelope and the points the flanks were fitted to, m.
+#[derive(Debug, Clone, Copy)]
+pub struct SurfaceFigure<'a> {
+    /// Highest point per x bin of the pile (drawn as a black line).
+    pub surface: &'a [(f64, f64)],
+    /// Highest centroid per bin of both flanks (drawn as dots).
+    pub flank_points: &'a [(f64, f64)],
+}
+
+impl SurfaceFigure<'_> {
+    /// Draws the figure to `path` with the fitted lines of both flanks in [`FLANK_FIT_COLOURS`], with equal scales on
+    /// both axes so that the flanks appear at their fitted angles.
+    pub fn draw(&self, path: &Path, left: Option<&FlankFit>, right: Option<&FlankFit>) -> Result<(), AnalysisError> {
+        let fits: Vec<FitLine> = [("left", left), ("right", right)]
+            .into_iter()
+            .zip(FLANK_FIT_COLOURS)
+            .filter_map(|((name, fit), colour)| {
+                let label = format!("{name} flank fit, {:.1}°", fit?.angle_degrees);
+                Some(FitLine { label, points: fit_line_points(fit?), colour })
+            })
+            .collect();
+        let mut series = vec![
+            Series { label: "surface envelope", points: self.surface, color: BLACK, mark: Mark::Line },
+            Series {
+                label: "highest centroid per bin (fitted)",
+                points: self.flank_points,
+                color: SERIES_COLOURS[0],
+                mark: Mark::Dots,
+            },
+        ];
+        series.extend(fits.iter().map(|f| Series {
+            label: &f.label,
+            points: &f.points,
+            color: f.colour,
+            mark: Mark::Line,
+        }));
+        let labels =
+            Labels { title: "pile surface and flank fits (x and y to the same scale)", x: "x / m", y: "y / m" };
+        figures::line_chart_equal_aspect(path, labels, &series)
+    }
+}
+
+/// The fitted line of one flank as drawn in `surface.svg`.
+struct FitLine {
+    /// Legend text: the flank and its angle.
+    label: String,
+    /// Ends of the line over the fitted points' x range, m.
+    points: Vec<(f64, f64)>,
+    /// One of [`FLANK_FIT_COLOURS`].
+    colour: RGBColor,
 }
 
 fn fit_line_points(fit: &FlankFit) -> Vec<(f64, f64)> {
@@ -270,8 +317,8 @@ pub fn write_density(cells: &[LocalDensity], out: &mut OutputDir) -> Result<(), 
         .collect();
     out.write_csv("density_grid.csv", &["x", "y", "width", "height", "rho_simple", "rho_rel", "particles"], &rows)?;
     let filled: Vec<(Rect, f64)> = cells.iter().filter(|c| c.particles > 0).map(|c| (c.rect, c.corrected)).collect();
-    let range = value_range(filled.iter().map(|c| c.1));
-    figures::cell_map(&out.file("density_map.svg"), "packing density ρ_rel (2.45)", &filled, range, &[])
+    let quantity = ColourQuantity { label: "ρ_rel", unit: "" };
+    figures::cell_map(&out.file("density_map.svg"), "packing density ρ_rel (2.45)", quantity, &filled, &[])
 }
 
 /// Writes `stress_grid.csv` and `stress_map.svg` (colour σ_zz, red segments along the major principal axis).
@@ -310,12 +357,51 @@ pub fn write_stress(cells: &[LocalStress], out: &mut OutputDir) -> Result<(), An
             (c.rect.center() - half, c.rect.center() + half)
         })
         .collect();
-    let range = value_range(filled.iter().map(|c| c.1));
-    figures::cell_map(&out.file("stress_map.svg"), "σ_zz (2.52) and major axis Ψ", &filled, range, &segments)
+    let quantity = ColourQuantity { label: "σ_zz / (N/m)", unit: "N/m" };
+    figures::cell_map(&out.file("stress_map.svg"), "σ_zz (2.52) and major axis Ψ", quantity, &filled, &segments)
 }
 
-fn value_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) =
-        values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
-    if lo <= hi { (lo, hi) } else { (0.0, 1.0) }
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flank fit of `degrees` (positive: rising to the right) through (x0, 0), with points from x0 to x1.
+    fn flank(degrees: f64, x0: f64, x1: f64) -> FlankFit {
+        let slope = degrees.to_radians().tan();
+        let points = (0..8).map(|k| x0 + (x1 - x0) * k as f64 / 7.0).map(|x| DVec2::new(x, slope * (x - x0))).collect();
+        FlankFit { angle_degrees: degrees.abs(), slope, intercept: -slope * x0, rms_residual: 0.0, points }
+    }
+
+    /// The points of the first polyline stroked in `colour`: the series (its legend line comes after it).
+    fn first_polyline(svg: &str, colour: RGBColor) -> Vec<(f64, f64)> {
+        let stroke = format!("stroke=\"#{:02X}{:02X}{:02X}\"", colour.0, colour.1, colour.2);
+        let line = svg.split("<polyline").find(|p| p.contains(&stroke)).expect("no polyline in the colour");
+        let points = line.split("points=\"").nth(1).unwrap().split('"').next().unwrap();
+        points
+            .split_whitespace()
+            .map(|xy| xy.split_once(',').map(|(x, y)| (x.parse().unwrap(), y.parse().unwrap())).unwrap())
+            .collect()
+    }
+
+    #[test]
+    fn the_surface_figure_draws_both_flank_fits_at_their_angles_in_distinct_colours() {
+        // The QA case: a flat pile 0.15 m wide and 0.022 m high, flanks of 10.1° and 13.6°.
+        let (left, right) = (flank(10.1, -0.075, -0.005), flank(-13.6, 0.005, 0.075));
+        let surface: Vec<(f64, f64)> = [(-0.075, 0.0), (0.0, 0.022), (0.075, 0.0)].to_vec();
+        let flank_points: Vec<(f64, f64)> = left.points.iter().chain(&right.points).map(|p| (p.x, p.y)).collect();
+        let path = std::env::temp_dir().join(format!("gc2d-surface-test-{}.svg", std::process::id()));
+        let figure = SurfaceFigure { surface: &surface, flank_points: &flank_points };
+        figure.draw(&path, Some(&left), Some(&right)).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        assert_ne!(FLANK_FIT_COLOURS[0], FLANK_FIT_COLOURS[1]);
+        assert!(!FLANK_FIT_COLOURS.contains(&SERIES_COLOURS[0]) && !FLANK_FIT_COLOURS.contains(&BLACK));
+        for (colour, degrees) in FLANK_FIT_COLOURS.into_iter().zip([10.1, 13.6]) {
+            let line = first_polyline(&svg, colour);
+            let (a, b) = (line[0], line[line.len() - 1]);
+            let drawn = ((b.1 - a.1) / (b.0 - a.0)).atan().to_degrees().abs();
+            assert!((drawn - degrees).abs() < 0.3, "the {degrees}° fit is drawn at {drawn:.2}°");
+        }
+        assert!(svg.contains("left flank fit, 10.1°") && svg.contains("right flank fit, 13.6°"));
+    }
 }
