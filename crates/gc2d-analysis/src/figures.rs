@@ -441,6 +441,7 @@ fn draw_colour_strip(
         .disable_mesh()
         .disable_x_axis()
         .x_labels(0)
+        .set_all_tick_mark_size(5)
         .label_style(("sans-serif", COLOUR_BAR_FONT))
         .axis_desc_style(("sans-serif", COLOUR_BAR_FONT))
         .y_desc(quantity.label)
