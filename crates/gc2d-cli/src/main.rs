@@ -351,7 +351,7 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
             }
             let point = load_resume_point(from).map_err(CommandFailure::input)?;
             gc2d_cli::resume::another_checkpoint(&scene, &args.scene, &point).map_err(CommandFailure::input)?;
-            let ResumePoint { path, world } = point;
+            let ResumePoint { path, world, .. } = point;
             if end_time < world.time() - 0.5 * world.time_step() {
                 let end = match args.until {
                     Some(_) => format!("--until {end_time} s"),
@@ -908,7 +908,7 @@ fn snapshot(
         )));
     }
     // A run directory's newest state: final.ckpt, or the newest periodic checkpoint of a run killed without one.
-    let ResumePoint { path: checkpoint, world } =
+    let ResumePoint { path: checkpoint, world, later_than_final } =
         gc2d_cli::resume::load_newest_state(run, "draw").map_err(CommandFailure::input)?;
     let output = output.unwrap_or_else(|| {
         if run.is_dir() {
@@ -925,12 +925,7 @@ fn snapshot(
     let scene = if run.is_dir() { Scene::from_path(run.join(SCENE_COPY)).ok() } else { None };
     let view = scene.as_ref().and_then(|s| s.view);
     // (A damaged final.ckpt, passed over with a warning, has no time to compare with.)
-    let final_checkpoint = run.join("final.ckpt");
-    if run.is_dir()
-        && checkpoint != final_checkpoint
-        && final_checkpoint.is_file()
-        && World::load_checkpoint_file(&final_checkpoint).is_ok()
-    {
+    if later_than_final {
         console::err(&format!(
             "note: drawing {}, the run's newest state, later than its final.ckpt",
             checkpoint.display()

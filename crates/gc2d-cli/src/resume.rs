@@ -18,6 +18,9 @@ pub struct ResumePoint {
     pub path: PathBuf,
     /// Its state.
     pub world: World,
+    /// Whether it is a periodic checkpoint further on than the run directory's `final.ckpt`, which is readable (a
+    /// later resumed part of the run was killed): worth a note where the state is shown.
+    pub later_than_final: bool,
 }
 
 /// Loads the state to resume from.
@@ -53,7 +56,7 @@ pub fn load_newest_state(from: &Path, purpose: &str) -> Result<ResumePoint, Stri
     };
     let newest = match (final_point, numbered) {
         (Some(point), Some((step, _))) if point.world.steps() >= step => Some(point),
-        (_, Some((_, path))) => Some(load(&path)?),
+        (final_point, Some((_, path))) => Some(ResumePoint { later_than_final: final_point.is_some(), ..load(&path)? }),
         (point, None) => point,
     };
     newest.ok_or_else(|| {
@@ -265,7 +268,7 @@ pub fn another_checkpoint(scene: &Scene, scene_path: &Path, point: &ResumePoint)
 
 fn load(path: &Path, purpose: &str) -> Result<ResumePoint, String> {
     World::load_checkpoint_file(path)
-        .map(|world| ResumePoint { path: path.to_path_buf(), world })
+        .map(|world| ResumePoint { path: path.to_path_buf(), world, later_than_final: false })
         .map_err(|e| format!("cannot {purpose} {}: {e}", path.display()))
 }
 
