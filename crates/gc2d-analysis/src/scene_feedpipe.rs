@@ -56,9 +56,10 @@ pub struct OutletThroughput {
     pub removed_in_window: usize,
     /// Particles it removed over the whole run, the window's warm-up included.
     pub removed_total: usize,
-    /// Particles per second in the window: `removed_in_window` over the window's length.
+    /// Particles per second in the window: `removed_in_window` over the window's length. NaN (null in JSON) where a
+    /// default window's opening removals are the only ones: one event marks a time, not a rate.
     pub particles_per_second: f64,
-    /// Mass per second in the window, kg/s (kg/(m·s) per unit thickness).
+    /// Mass per second in the window, kg/s (kg/(m·s) per unit thickness); NaN (null) where the rate is.
     pub mass_per_second: f64,
 }
 
@@ -398,6 +399,13 @@ pub fn feedpipe_report(
     // at and after it span N − 1 intervals, and N/T overestimated the rate of a short window.
     let counted = |t: f64| in_window(t) && (options.warm_up_s.is_some() || t > start);
     let duration = end - start;
+    // A default window opened by the only removals has no interval to measure a rate over: null, with a warning.
+    let opened_only =
+        options.warm_up_s.is_none() && first_removal.is_finite() && !passages.iter().any(|p| counted(p.left_s));
+    let rate = |sum: f64| if opened_only { f64::NAN } else { sum / duration };
+    if opened_only {
+        warnings.push(opening_removals_only(passages.len(), start));
+    }
 
     let mut outlets = Vec::new();
     let mut rates = Vec::new();
@@ -409,9 +417,9 @@ pub fn feedpipe_report(
             outlet: name.clone(),
             removed_in_window: windowed.len(),
             removed_total: mine.len(),
-            particles_per_second: windowed.len() as f64 / duration,
+            particles_per_second: rate(windowed.len() as f64),
             // A fold from +0 (a float sum starts from −0, which an empty window kept and feedpipe.json showed).
-            mass_per_second: windowed.iter().fold(0.0, |sum, p| sum + p.mass) / duration,
+            mass_per_second: rate(windowed.iter().fold(0.0, |sum, p| sum + p.mass)),
         });
         let column = series.column(&format!("outlet_{name}_removed"), "timeseries.csv")?;
         let removed: Vec<f64> = series.rows.iter().map(|r| number(&r[column])).collect();
@@ -460,6 +468,22 @@ pub fn feedpipe_report(
         warnings,
     };
     Ok((report, rates))
+}
+
+/// The warning for a default window whose opening removals (`removed` of them, all at `start` s) are the run's only
+/// ones: they mark the window's start and are not counted, so no rate is measured.
+fn opening_removals_only(removed: usize, start: f64) -> String {
+    let opens = "the window (a default window starts at the first removal)";
+    let who = match removed {
+        1 => format!("only one particle has left through an outlet, at {start} s: its removal opens {opens} and is"),
+        n => format!(
+            "all {n} particles that have left through an outlet left at {start} s: their removals open {opens} and are"
+        ),
+    };
+    format!(
+        "{who} not counted, so the throughput is not measured (particles_per_second and mass_per_second are null): \
+         run longer, or give --warm-up T (every removal in a window given so counts)"
+    )
 }
 
 /// An outlet's removal rate over time.
@@ -632,6 +656,17 @@ mod tests {
         let (bins, _, outside) = profile(&halves, 2, &dumps, &fluid, &|_| 0.0);
         let binned: Vec<(usize, f64)> = bins.iter().map(|b| (b.samples, b.particle_velocity_m_s)).collect();
         assert_eq!((binned, outside), (vec![(1, 1.0), (1, 3.0)], 0));
+    }
+
+    /// QA #20: removals that all open the default window are named, one or several.
+    #[test]
+    fn the_warning_for_opening_removals_only_names_them() {
+        let one = opening_removals_only(1, 0.5);
+        assert!(one.starts_with("only one particle has left through an outlet, at 0.5 s: its removal opens"), "{one}");
+        assert!(one.contains("and is not counted, so the throughput is not measured"), "{one}");
+        let three = opening_removals_only(3, 0.5);
+        assert!(three.starts_with("all 3 particles that have left through an outlet left at 0.5 s"), "{three}");
+        assert!(three.contains("their removals open the window") && three.contains("and are not counted"), "{three}");
     }
 
     #[test]

@@ -154,6 +154,43 @@ fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
     }
 }
 
+/// QA #20: a run from which only one particle has left gave `particles_per_second: 0` without a word: its removal
+/// opens the default window and is not counted. The rate is null, with a warning; `--warm-up` counts it.
+#[test]
+fn a_single_removal_that_opens_the_window_gives_no_rate_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    // The first ball leaves at 0.666 s, the second would at 0.866 s.
+    let out = run(dir.path(), &scene().replace("end_time_s: 2.0", "end_time_s: 0.75"));
+    let assert = Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .args(["analyze", out.to_str().unwrap(), "--kind", "feedpipe"])
+        .assert()
+        .success();
+    let report: serde_json::Value = serde_json::from_slice(&assert.get_output().stdout).unwrap();
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+    let outlet = &report["outlets"][0];
+    assert_eq!((outlet["removed_in_window"].as_u64(), outlet["removed_total"].as_u64()), (Some(0), Some(1)));
+    assert!(outlet["particles_per_second"].is_null() && outlet["mass_per_second"].is_null(), "{report}");
+    let start = report["window_s"][0].as_f64().unwrap();
+    assert!((start - 1.0 / (U - terminal_speed())).abs() < 2e-4, "{start}");
+    let warnings = report["warnings"].as_array().unwrap();
+    assert_eq!(warnings.len(), 1, "{report}");
+    let warning = warnings[0].as_str().unwrap();
+    assert!(
+        warning.starts_with(&format!("only one particle has left through an outlet, at {start} s: its removal opens"))
+            && warning.contains("particles_per_second and mass_per_second are null")
+            && warning.contains("give --warm-up T"),
+        "{warning}"
+    );
+    assert!(stderr.contains(&format!("warning: {warning}")), "{stderr}");
+    // From a window given, the removal counts: one in 0.25 s.
+    let given = analyse_from(&out, 0.5);
+    let outlet = &given["outlets"][0];
+    assert_eq!(outlet["removed_in_window"].as_u64(), Some(1));
+    assert!((outlet["particles_per_second"].as_f64().unwrap() - 4.0).abs() < 1e-6, "{given}");
+    assert_eq!(given["warnings"].as_array().map(Vec::len), Some(0), "{given}");
+}
+
 #[test]
 fn a_run_without_outlets_is_refused_with_the_reason() {
     let dir = tempfile::tempdir().unwrap();
