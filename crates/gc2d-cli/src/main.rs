@@ -636,8 +636,9 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
 const THESIS_WINDOW_S: [f64; 2] = [0.2, 1.0];
 
 /// Prints the mill's statistics in a few lines (gc2d-analysis's [`gc2d_analysis::mill_report`], the numbers
-/// `gc2d-rs analyze --kind mill` writes): over the thesis's window when the run reaches its end, else from the
-/// automatic warm-up cut. A run without the files it needs says so instead.
+/// `gc2d-rs analyze --kind mill` writes) with the analysis's warnings, as `analyze` prints them: over the thesis's
+/// window when the run reaches its end, else from the automatic warm-up cut. A run without the files it needs says so
+/// instead.
 fn print_mill_summary(out: &Path, end: f64, time_step: f64) {
     let warm_up_s = reaches_the_thesis_window(end, time_step).then_some(THESIS_WINDOW_S[0]);
     let analyze = format!("`gc2d-rs analyze {} --kind mill`", out.display());
@@ -646,7 +647,13 @@ fn print_mill_summary(out: &Path, end: f64, time_step: f64) {
         console::err(&format!("warning: {warning}"));
     }
     match mill_report(out, &MillOptions { warm_up_s, balls }) {
-        Ok(report) => console::err(&format!("{}\nTables, maps and figures: {analyze}.", report.summary())),
+        Ok(report) => {
+            console::err(&report.summary());
+            for warning in &report.warnings {
+                console::err(&format!("warning: {warning}"));
+            }
+            console::err(&format!("Tables, maps and figures: {analyze}."));
+        }
         Err(e) => console::err(&format!("No mill summary: {e}.")),
     }
 }

@@ -116,6 +116,46 @@ fn a_mill_run_is_analysed_into_collision_classes_and_a_power_balance() {
     assert!(String::from_utf8_lossy(&missing.stderr).contains("--events"));
 }
 
+/// The mill summary at the end of `run` printed the numbers without the analysis's warnings, which `analyze` prints:
+/// here that the dumps, only Parquet, are left out of the ball speeds.
+#[test]
+fn the_mill_summary_of_a_run_prints_the_analysis_warnings() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("mill4.ron");
+    std::fs::write(
+        &scene,
+        r#"Scene(
+    mass_model: SphereEquivalent,
+    run: (time_step_s: 5e-7, end_time_s: 0.004, frames_per_second: 1000),
+    materials: [(name: "steel", density_kg_m3: 7850, youngs_modulus_pa: 196.2e9, poisson_ratio: 0.3)],
+    interactions: [(materials: ("steel", "steel"), law: Hertz(damping: Restitution(0.8)))],
+    mill: (
+        chamber_radius_m: 0.073,
+        rotor: (rpm: 1700, hub_radius_m: 0.008, tip_radius_m: 0.058, blade_width_m: 0.008, arms_rad: [0.0]),
+        balls: (count: 4, radius_m: 0.0025, speed_m_s: 1.0),
+    ),
+)"#,
+    )
+    .unwrap();
+    let run = Command::cargo_bin("gc2d-rs")
+        .unwrap()
+        .arg("run")
+        .arg(&scene)
+        .args(["--quiet", "--events", "--dump-format", "parquet", "--out"])
+        .arg(dir.path().join("run"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    let warning = "warning: ";
+    let unreadable = "holds dumps in formats the analysis cannot read (5 in parquet, without a CSV copy)";
+    let at = stderr.find(unreadable).unwrap_or_else(|| panic!("no warning about the dumps: {stderr}"));
+    let line_start = stderr[..at].rfind('\n').map_or(0, |k| k + 1);
+    assert!(stderr[line_start..].starts_with(warning), "{stderr}");
+    let (summary, pointer) = (stderr.find("Mill over ").unwrap(), stderr.find("Tables, maps and figures").unwrap());
+    assert!(summary < line_start && line_start < pointer, "the warning between the summary and the pointer: {stderr}");
+}
+
 /// Ore grains drawn as disks (`disk: true`, which the scene format allows) were counted as balls: the analysis told
 /// the two apart by shape, and lost the ore's classes and stress-energy spectrum without a word. The balls are now the
 /// bodies the run's scene builds from `mill.balls`.
