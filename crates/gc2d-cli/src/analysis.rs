@@ -220,9 +220,11 @@ fn pile_not_formed(report: &Report) -> Option<String> {
     let pile = report.pile.as_ref()?;
     (2 * pile.particles < report.particles).then(|| {
         format!(
-            "only {} of the {} particles are in the pile (its largest group in contact); the rest are in flight or \
+            "only {} of the {} particles {} in the pile (its largest group in contact); the rest are in flight or \
              apart, so the pile's numbers describe a heap that has not formed: analyse a settled state",
-            pile.particles, report.particles
+            pile.particles,
+            report.particles,
+            if pile.particles == 1 { "is" } else { "are" }
         )
     })
 }

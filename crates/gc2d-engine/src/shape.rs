@@ -72,8 +72,8 @@ pub enum BodyShapeError {
         /// The rejected value.
         value: f64,
     },
-    /// Capsules and inner circles are wall shapes.
-    #[error("a {0} can only be a wall, not a particle")]
+    /// Capsules and inner circles are wall shapes (the shape named with its article: "an inner circle").
+    #[error("{0} can only be a wall, not a particle")]
     WallOnly(&'static str),
 }
 
@@ -98,7 +98,7 @@ impl BodyShape {
             BodyShape::Disk { radius } => positive("a disk's radius", radius),
             BodyShape::Capsule { half_length, radius } => {
                 if particle {
-                    return Err(BodyShapeError::WallOnly("capsule"));
+                    return Err(BodyShapeError::WallOnly("a capsule"));
                 }
                 positive("a capsule's radius", radius)?;
                 if half_length >= 0.0 && half_length.is_finite() {
@@ -109,7 +109,7 @@ impl BodyShape {
             }
             BodyShape::InnerCircle { radius } => {
                 if particle {
-                    return Err(BodyShapeError::WallOnly("inner circle"));
+                    return Err(BodyShapeError::WallOnly("an inner circle"));
                 }
                 positive("an inner circle's radius", radius)
             }

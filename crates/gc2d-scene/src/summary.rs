@@ -270,7 +270,7 @@ impl fmt::Display for SceneSummary {
         for line in &self.interactions {
             writeln!(f, "    {line}")?;
         }
-        writeln!(f, "  walls: {} bodies ({} moving)", self.wall_bodies, self.moving_walls)?;
+        writeln!(f, "  walls: {} ({} moving)", counted(self.wall_bodies as u64, "body", "bodies"), self.moving_walls)?;
         let (unit, model) = match self.mass_model {
             MassModel::PerUnitThickness => ("kg/m", "per unit thickness"),
             MassModel::SphereEquivalent => ("kg", "sphere-equivalent"),
@@ -284,8 +284,10 @@ impl fmt::Display for SceneSummary {
         )?;
         writeln!(
             f,
-            "  sources: {}, inlets: {} (up to {} insertions)",
-            self.sources, self.inlets, self.planned_insertions
+            "  sources: {}, inlets: {} (up to {})",
+            self.sources,
+            self.inlets,
+            counted(self.planned_insertions, "insertion", "insertions")
         )?;
         if let Some(fluid) = &self.fluid {
             writeln!(f, "  fluid: {}", fluid.description)?;
@@ -329,20 +331,26 @@ impl fmt::Display for SceneSummary {
         writeln!(f, "  end time: {} s ({} steps)", number(self.end_time_s), self.steps())?;
         writeln!(
             f,
-            "  memory (rough estimate): {} for up to {} particles ({} B per box pair, {BOX_PAIRS_PER_PARTICLE} pairs \
+            "  memory (rough estimate): {} for up to {} ({} B per box pair, {BOX_PAIRS_PER_PARTICLE} pairs \
              per particle as in a dense packing)",
             human_bytes(self.memory_estimate_bytes()),
-            self.most_particles(),
+            counted(self.most_particles(), "particle", "particles"),
             bytes_per_box_pair()
         )?;
         write!(
             f,
             "  run time (rough estimate for one core): {} ({} particle-steps at {} M/s, docs/performance.md)",
             human_duration(self.run_time_estimate_s()),
-            six_digits(self.particle_steps()),
+            // A rough estimate in whole particle-steps (half the sum of the start and most particles can be n.5).
+            six_digits(self.particle_steps().round()),
             PARTICLE_STEPS_PER_SECOND / 1e6
         )
     }
+}
+
+/// `count` with its noun, singular for one: "1 body", "3 bodies".
+fn counted(count: u64, one: &str, many: &str) -> String {
+    format!("{count} {}", if count == 1 { one } else { many })
 }
 
 /// A derived number (E* from E and ν, an estimate of particle-steps) to six significant digits: 1.07802e11, not the

@@ -177,6 +177,9 @@ fn wall_shapes_are_refused_for_particles() {
     let text = "Scene(\n    particles: [(shape: Capsule(length_m: 0.01, radius_m: 0.002))],\n)";
     let error = check("capsule_particle", text, ErrorKind::Value, "particles[0].shape", (2, 25));
     assert!(error.message().contains("can only be a wall"), "{}", error.message());
+    // "a inner circle" was the message's article.
+    let error = error_of("Scene(particles: [(shape: InnerCircle(radius_m: 0.05))])");
+    assert!(error.message().starts_with("an inner circle can only be a wall, not a particle"), "{}", error.message());
 }
 
 #[test]

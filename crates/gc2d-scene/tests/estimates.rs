@@ -52,3 +52,22 @@ fn the_run_time_estimate_is_the_particle_steps_at_the_documented_rate() {
     assert!(text.contains("for up to 1600 particles"), "{text}");
     assert!(text.contains("  run time (rough estimate for one core): "), "{text}");
 }
+
+#[test]
+fn the_summary_counts_one_of_a_kind_in_the_singular_and_whole_particle_steps() {
+    // QA docs: "1 bodies", "up to 1 insertions", "up to 1 particles" and an estimate of "5207.5 particle-steps".
+    let text = "Scene(
+        run: (end_time_s: 3e-3, time_step_s: 1e-5),
+        walls: [Wall(shape: Rectangle(width_m: 0.2, height_m: 0.01), position_m: (0, -0.1))],
+        sources: [(position_m: (0, 0), width_m: 0.01, window_s: (0, 1e-3), interval_s: 3e-3,
+                   shape: (semi_axes_m: (0.001, 0.001), corners: 7))],
+    )";
+    let summary =
+        Scene::from_str(text, "one.ron").unwrap_or_else(|e| panic!("{}", e.render_plain())).summary().unwrap();
+    assert_eq!((summary.wall_bodies, summary.particles, summary.planned_insertions), (1, 0, 1));
+    assert_eq!(summary.particle_steps(), 150.0, "300 steps × (0 + 1) / 2");
+    let shown = summary.to_string();
+    for phrase in ["walls: 1 body (0 moving)", "(up to 1 insertion)", "for up to 1 particle (", "(150 particle-steps"] {
+        assert!(shown.contains(phrase), "{phrase} in {shown}");
+    }
+}

@@ -202,7 +202,12 @@ fn collect_results(sweep: &Sweep, points: &[PointScene]) -> Result<u8, CommandFa
         if figures.is_empty() {
             String::new()
         } else {
-            format!("; {} figures in {}", figures.len(), sweep.out.join("plots").display())
+            format!(
+                "; {} {} in {}",
+                figures.len(),
+                if figures.len() == 1 { "figure" } else { "figures" },
+                sweep.out.join("plots").display()
+            )
         }
     ));
     Ok(0)
