@@ -105,13 +105,20 @@ impl StateDumps {
     /// Rewrites `particles.pvd` with every dump's `.vtu` up to `last` that exists, at its nominal time k·T.
     fn write_collection(&self, last: u64) -> Result<(), String> {
         let names: Vec<(f64, PathBuf)> = (0..=last)
-            .map(|k| (k as f64 * self.interval, PathBuf::from(dump_file_name(k)).with_extension("vtu")))
+            .map(|k| (nominal_time(k, self.interval), PathBuf::from(dump_file_name(k)).with_extension("vtu")))
             .filter(|(_, name)| self.dir.join(name).is_file())
             .collect();
         let entries: Vec<(f64, &Path)> = names.iter().map(|(t, name)| (*t, name.as_path())).collect();
         let path = self.dir.join(COLLECTION);
         std::fs::write(&path, vtk::collection(&entries)).map_err(|e| format!("cannot write {}: {e}", path.display()))
     }
+}
+
+/// The nominal time k·T of dump `k`, rounded to 12 significant digits: the product's last bit (3 × 0.1 =
+/// 0.30000000000000004) would show in the collection as `3.0000000000000004e-1`.
+fn nominal_time(k: u64, interval: f64) -> f64 {
+    let product = k as f64 * interval;
+    format!("{product:.11e}").parse().unwrap_or(product)
 }
 
 impl FrameSink for StateDumps {
@@ -125,5 +132,20 @@ impl FrameSink for StateDumps {
         let needs_rows = self.formats.iter().any(|&f| f != ExportFormat::Csv);
         let rows = if needs_rows { particle_rows(world, &self.materials, None) } else { Vec::new() };
         self.formats.iter().try_for_each(|&format| self.write(world, &rows, index, format))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::nominal_time;
+
+    #[test]
+    fn nominal_times_are_written_without_the_products_last_bit() {
+        assert_eq!(3.0 * 0.1, 0.30000000000000004);
+        assert_eq!(nominal_time(3, 0.1), 0.3);
+        assert_eq!(format!("{:e}", nominal_time(3, 0.1)), "3e-1");
+        assert_eq!(nominal_time(0, 0.1), 0.0);
+        assert_eq!(nominal_time(7, 1.0 / 3.0), 2.33333333333);
+        assert_eq!(nominal_time(1_000_000, 2.5e-4), 250.0);
     }
 }
