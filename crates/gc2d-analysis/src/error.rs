@@ -45,3 +45,23 @@ pub enum AnalysisError {
     #[error("not enough data: {0}")]
     NotEnoughData(String),
 }
+
+/// A simulated time for a message, to 9 significant digits: a run's end is a sum of steps and reads 0.3 s, not
+/// 0.3000000000065668 s.
+pub(crate) fn time_text(seconds: f64) -> String {
+    let rounded: f64 = format!("{seconds:.8e}").parse().unwrap_or(seconds);
+    format!("{rounded}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::time_text;
+
+    #[test]
+    fn times_in_messages_lose_the_sums_last_bits() {
+        assert_eq!(time_text(0.3000000000065668), "0.3");
+        assert_eq!(time_text(0.5), "0.5");
+        assert_eq!(time_text(1.23456789e-4), "0.000123456789");
+        assert_eq!(time_text(f64::NAN), "NaN");
+    }
+}

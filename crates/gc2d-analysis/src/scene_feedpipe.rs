@@ -16,7 +16,7 @@
 //! velocity along the pipe at the bin's centre (on the section halfway between the first inlet and the outlet) and at
 //! the particles' centres, and the mean slip (particle minus fluid at its centre) along the pipe.
 
-use crate::error::AnalysisError;
+use crate::error::{AnalysisError, time_text};
 use crate::figures::{Labels, Mark, SERIES_COLOURS, Series, bar_chart, line_chart};
 use crate::mill_speeds::{Histogram, quantile};
 use crate::output::OutputDir;
@@ -383,12 +383,15 @@ pub fn feedpipe_report(
     }
     if options.warm_up_s.is_some() && !(start.is_finite() && start >= 0.0 && start < end) {
         return Err(AnalysisError::InvalidParameter(format!(
-            "the warm-up {start} s must lie between 0 and the run's end, {end} s"
+            "the warm-up {start} s must lie between 0 and the run's end, {} s",
+            time_text(end)
         )));
     }
     if start >= end {
         return Err(AnalysisError::NotEnoughData(format!(
-            "the window starts at {start} s, after the run's end {end} s"
+            "the window starts at {} s, after the run's end {} s",
+            time_text(start),
+            time_text(end)
         )));
     }
     // A removal or dump within half a step of an end of the window counts as at it: their times are sums of steps, a

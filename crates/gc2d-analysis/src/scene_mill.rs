@@ -13,7 +13,7 @@
 //! over the window's rows, the mean power the walls put in and the mean dissipation from the ledger, and their
 //! relative differences.
 
-use crate::error::AnalysisError;
+use crate::error::{AnalysisError, time_text};
 use crate::figures::{Labels, Mark, PolarCell, SERIES_COLOURS, Series, bar_chart, line_chart, polar_cell_map};
 use crate::mill_space::{ChamberFrame, RadialProfile, SectorCell, radial_profile, sector_map};
 use crate::mill_speeds::{
@@ -532,7 +532,8 @@ pub fn mill_report(run_dir: &Path, options: &MillOptions) -> Result<MillReport, 
     let asked = options.warm_up_s.unwrap_or(automatic.map_or(0.0, |cut| cut.cut_s));
     if !(asked.is_finite() && asked >= 0.0 && asked < end) {
         return Err(AnalysisError::InvalidParameter(format!(
-            "the warm-up {asked} s must lie between 0 and the run's end, {end} s"
+            "the warm-up {asked} s must lie between 0 and the run's end, {} s",
+            time_text(end)
         )));
     }
     // The rows, dumps and events of the window: those at or after its start, where a time within half a step of the

@@ -863,8 +863,9 @@ fn refuse_cadences_below_the_step(args: &RunArgs, scene: &Scene, dt: f64) -> Res
     ];
     match cadences.into_iter().find_map(|(name, interval)| interval.filter(|&t| t < dt).map(|t| (name, t))) {
         Some((name, interval)) => Err(CommandFailure::input(format!(
-            "{name} {interval} s is shorter than the time step, {dt:.3e} s: it would write a file at every step; give \
-             at least the time step (the unit is seconds of simulated time)"
+            "{name} {} s is shorter than the time step, {dt:.3e} s: it would write a file at every step; give at \
+             least the time step (the unit is seconds of simulated time)",
+            gc2d_scene::significant_digits(interval, 15)
         ))),
         None => Ok(()),
     }

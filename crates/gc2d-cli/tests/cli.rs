@@ -983,7 +983,7 @@ fn a_cadence_that_is_not_a_positive_time_is_refused() {
             .arg(out.path())
             .assert()
             .code(2)
-            .stderr(contains(format!("{flag} 0.000000001 s is shorter than the time step")));
+            .stderr(contains(format!("{flag} 1e-9 s is shorter than the time step")));
     }
 }
 
@@ -1062,7 +1062,7 @@ fn analysing_a_pile_that_has_not_formed_warns() {
         .arg(out.path())
         .assert()
         .success()
-        .stderr(contains("warning: only 1 of the 5 particles are in the pile").and(contains("did not complete").not()));
+        .stderr(contains("warning: only 1 of the 5 particles is in the pile").and(contains("did not complete").not()));
     let summary = out.path().join("summary.json");
     let text = std::fs::read_to_string(&summary).unwrap().replace("\"completed\"", "\"interrupted\"");
     std::fs::write(&summary, text).unwrap();

@@ -91,7 +91,7 @@ fn balls_at_terminal_slip_cross_the_riser_at_u_minus_w_t() {
     at_a_step_time_a_hair_below_the_warm_up(&out);
     // A warm-up before the start widened the window and lowered the rate; 1e11 bins aborted on 2.4 TB.
     for (option, value, message) in [
-        ("--warm-up=-1", "", "the warm-up -1 s must lie between 0 and the run's end"),
+        ("--warm-up=-1", "", "the warm-up -1 s must lie between 0 and the run's end, 2 s"),
         ("--bins", "100000000000", "100000000000 bins: the profiles take 1 to 10000 bins"),
     ] {
         let mut args = vec!["analyze", out.to_str().unwrap(), "--kind", "feedpipe", option];
