@@ -92,3 +92,18 @@ fn another_scene_altogether_is_told_by_its_bodies() {
     let differences = mill.compare_with_checkpoint(&world).unwrap().differences;
     assert!(differences.iter().any(|d| d.starts_with("walls: ")), "{differences:?}");
 }
+
+#[test]
+fn an_edit_that_changes_the_automatic_time_step_is_named_before_the_time_step() {
+    // QA docs: an edited Young's modulus was told as "run.time_step_s: Δt is … with the scene", its consequence.
+    let pile = bundled("pile.ron");
+    let differences = differences_after_edit(&pile, 5, "youngs_modulus_n_m: 1e7", "youngs_modulus_n_m: 2e7");
+    assert!(differences.len() >= 2, "{differences:?}");
+    assert!(differences[0].starts_with("materials or interactions: "), "{differences:?}");
+    let last = differences.last().unwrap();
+    assert!(
+        last.starts_with("run.time_step_s: Δt is ")
+            && last.ends_with("(automatic: it follows from the materials and shapes)"),
+        "{differences:?}"
+    );
+}

@@ -39,7 +39,23 @@ impl Scene {
         let mut differences = config_differences(built.world.config(), world.config(), &built.summary.materials);
         differences.extend(body_differences(&built.world, world, &built.origins));
         differences.extend(feed_differences(&built.world, world));
+        if self.run.time_step_s.is_none() {
+            automatic_time_step_last(&mut differences);
+        }
         Ok(CheckpointComparison { differences, body_origins: built.origins })
+    }
+}
+
+/// The field a difference in Δt is named by.
+const TIME_STEP_FIELD: &str = "run.time_step_s";
+
+/// An automatic Δt follows from the materials and shapes: where it differs beside another difference, that one is the
+/// edit and Δt its consequence, so Δt goes last (callers show the first: an edited Young's modulus was told as "Δt
+/// differs"), and says that it is automatic.
+fn automatic_time_step_last(differences: &mut Vec<String>) {
+    if let Some(index) = differences.iter().position(|d| d.starts_with(TIME_STEP_FIELD)) {
+        let time_step = differences.remove(index);
+        differences.push(format!("{time_step} (automatic: it follows from the materials and shapes)"));
     }
 }
 
@@ -47,7 +63,7 @@ fn config_differences(scene: &WorldConfig, checkpoint: &WorldConfig, materials: 
     let mut differences = Vec::new();
     if scene.time_step != checkpoint.time_step {
         differences.push(format!(
-            "run.time_step_s: Δt is {:e} s with the scene, {:e} s in the checkpoint",
+            "{TIME_STEP_FIELD}: Δt is {:e} s with the scene, {:e} s in the checkpoint",
             scene.time_step, checkpoint.time_step
         ));
     }
