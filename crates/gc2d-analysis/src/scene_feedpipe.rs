@@ -477,6 +477,7 @@ pub fn feedpipe_report(
 /// ones: they mark the window's start and are not counted, so no rate is measured.
 fn opening_removals_only(removed: usize, start: f64) -> String {
     let opens = "the window (a default window starts at the first removal)";
+    let start = time_text(start);
     let who = match removed {
         1 => format!("only one particle has left through an outlet, at {start} s: its removal opens {opens} and is"),
         n => format!(
