@@ -3,6 +3,8 @@
 //! side walls carry no force (QA docs 3, 12) and a grid so fine it is capped (QA docs 13). Each warning is on stderr
 //! and in the report.
 
+mod common;
+
 use assert_cmd::Command;
 use std::path::{Path, PathBuf};
 
@@ -40,19 +42,8 @@ fn analyze(run: &Path, args: &[&str]) -> (serde_json::Value, String) {
 /// QA P2-10 d: `analyze --kind mill` of a run dumped only as Parquet gave `"ball_speeds": null` without a word.
 #[test]
 fn a_mill_run_dumped_only_as_parquet_is_told_to_dump_csv() {
-    let scene = r#"Scene(
-    mass_model: SphereEquivalent,
-    run: (time_step_s: 5e-7, end_time_s: 0.004, frames_per_second: 1000),
-    materials: [(name: "steel", density_kg_m3: 7850, youngs_modulus_pa: 196.2e9, poisson_ratio: 0.3)],
-    interactions: [(materials: ("steel", "steel"), law: Hertz(damping: Restitution(0.8)))],
-    mill: (
-        chamber_radius_m: 0.073,
-        rotor: (rpm: 1700, hub_radius_m: 0.008, tip_radius_m: 0.058, blade_width_m: 0.008, arms_rad: [0.0]),
-        balls: (count: 4, radius_m: 0.0025, speed_m_s: 1.0),
-    ),
-)"#;
     let dir = tempfile::tempdir().unwrap();
-    let out = run(dir.path(), scene, &["--events", "--dump-format", "parquet"]);
+    let out = run(dir.path(), common::FOUR_BALL_MILL, &["--events", "--dump-format", "parquet"]);
     let (report, stderr) = analyze(&out, &["--kind", "mill"]);
     assert!(report["ball_speeds"].is_null());
     let warning = report["warnings"][0].as_str().unwrap_or_default();

@@ -1,6 +1,8 @@
 //! `gc2d-rs analyze RUN --kind mill` on a short run of the bundled mill: collision classes with consistent statistics,
 //! and the rotor's two powers equal.
 
+mod common;
+
 use assert_cmd::Command;
 use std::path::Path;
 
@@ -122,21 +124,7 @@ fn a_mill_run_is_analysed_into_collision_classes_and_a_power_balance() {
 fn the_mill_summary_of_a_run_prints_the_analysis_warnings() {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("mill4.ron");
-    std::fs::write(
-        &scene,
-        r#"Scene(
-    mass_model: SphereEquivalent,
-    run: (time_step_s: 5e-7, end_time_s: 0.004, frames_per_second: 1000),
-    materials: [(name: "steel", density_kg_m3: 7850, youngs_modulus_pa: 196.2e9, poisson_ratio: 0.3)],
-    interactions: [(materials: ("steel", "steel"), law: Hertz(damping: Restitution(0.8)))],
-    mill: (
-        chamber_radius_m: 0.073,
-        rotor: (rpm: 1700, hub_radius_m: 0.008, tip_radius_m: 0.058, blade_width_m: 0.008, arms_rad: [0.0]),
-        balls: (count: 4, radius_m: 0.0025, speed_m_s: 1.0),
-    ),
-)"#,
-    )
-    .unwrap();
+    std::fs::write(&scene, common::FOUR_BALL_MILL).unwrap();
     let run = Command::cargo_bin("gc2d-rs")
         .unwrap()
         .arg("run")
