@@ -7,6 +7,7 @@
 //! `mill.balls #4`, `sources[0] #17`). Episodes still open when the run stops are in the final
 //! checkpoint, not in the file; a resumed run writes them when they end.
 
+use crate::csv_rows::write_whole_row;
 use crate::object_names::ObjectNames;
 use crate::resumed_csv::continue_csv;
 use crate::runner::FrameSink;
@@ -81,29 +82,31 @@ impl EventsWriter {
         let name = |m: gc2d_engine::MaterialId| quoted(self.materials.get(m.index()).map_or("?", String::as_str));
         let e = &event.episode;
         let angular = event.wall_angular_impulse.map_or(String::new(), |l| format!("{l:e}"));
-        writeln!(
-            self.file,
-            "{},{},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e},{:e},{},{}",
-            e.begin_time,
-            event.time,
-            event.a.0,
-            event.b.0,
-            kind(event.a),
-            kind(event.b),
-            name(event.materials[0]),
-            name(event.materials[1]),
-            e.impact_normal_speed,
-            e.impact_tangential_speed,
-            e.max_overlap,
-            e.dissipated,
-            e.impulse_on_a.x,
-            e.impulse_on_a.y,
-            angular,
-            event.time - e.begin_time,
-            e.begin_point.x,
-            e.begin_point.y,
-            quoted(&self.objects.name(world, event.a)),
-            quoted(&self.objects.name(world, event.b)),
+        write_whole_row(
+            &mut self.file,
+            format_args!(
+                "{},{},{},{},{},{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e},{:e},{},{}",
+                e.begin_time,
+                event.time,
+                event.a.0,
+                event.b.0,
+                kind(event.a),
+                kind(event.b),
+                name(event.materials[0]),
+                name(event.materials[1]),
+                e.impact_normal_speed,
+                e.impact_tangential_speed,
+                e.max_overlap,
+                e.dissipated,
+                e.impulse_on_a.x,
+                e.impulse_on_a.y,
+                angular,
+                event.time - e.begin_time,
+                e.begin_point.x,
+                e.begin_point.y,
+                quoted(&self.objects.name(world, event.a)),
+                quoted(&self.objects.name(world, event.b)),
+            ),
         )
     }
 }

@@ -5,6 +5,7 @@ pub mod analysis;
 pub mod bench;
 pub mod chatter;
 pub mod console;
+pub mod csv_rows;
 pub mod dumps;
 pub mod earlier_run;
 pub mod events;

@@ -5,6 +5,7 @@
 //! Rows are written after the step that removed the particle, so the file is the same for any thread count; a resumed
 //! run drops the rows the earlier run wrote after its checkpoint and writes them again.
 
+use crate::csv_rows::write_whole_row;
 use crate::resumed_csv::continue_csv;
 use crate::runner::FrameSink;
 use gc2d_engine::{Transit, World};
@@ -48,17 +49,22 @@ impl TransitsWriter {
         // A removed particle's slot keeps its mass (slots are never reused).
         let mass = world.bodies().mass[transit.body.index()];
         match transit.entry {
-            Some(entry) => writeln!(
-                self.file,
-                "{},{},{},{},{},{:e},{mass:e}",
-                transit.body.0,
-                world.inlets()[entry.inlet].inlet().name,
-                entry.time,
-                outlet,
-                transit.time,
-                transit.time - entry.time
+            Some(entry) => write_whole_row(
+                &mut self.file,
+                format_args!(
+                    "{},{},{},{},{},{:e},{mass:e}",
+                    transit.body.0,
+                    world.inlets()[entry.inlet].inlet().name,
+                    entry.time,
+                    outlet,
+                    transit.time,
+                    transit.time - entry.time
+                ),
             ),
-            None => writeln!(self.file, "{},,,{},{},,{mass:e}", transit.body.0, outlet, transit.time),
+            None => write_whole_row(
+                &mut self.file,
+                format_args!("{},,,{},{},,{mass:e}", transit.body.0, outlet, transit.time),
+            ),
         }
     }
 }
