@@ -25,7 +25,8 @@ mod tests {
         let path = dir.path().join("rows.csv");
         let mut file = BufWriter::with_capacity(64, std::fs::File::create(&path).unwrap());
         for k in 0..20 {
-            write_whole_row(&mut file, format_args!("{k:04},{:e},{}", -6.02e-3 * k as f64, "row")).unwrap();
+            let (force, object) = (-6.02e-3 * k as f64, format!("walls[{k}]"));
+            write_whole_row(&mut file, format_args!("{k:04},{force:e},{object}")).unwrap();
             let on_disk = std::fs::read_to_string(&path).unwrap();
             assert!(on_disk.is_empty() || on_disk.ends_with('\n'), "after row {k}: {on_disk:?}");
         }
@@ -41,7 +42,8 @@ mod tests {
         let mut file = BufWriter::with_capacity(64, std::fs::File::create(&path).unwrap());
         let mut cut = false;
         for k in 0..20 {
-            writeln!(file, "{k:04},{:e},{}", -6.02e-3 * k as f64, "row").unwrap();
+            let (force, object) = (-6.02e-3 * k as f64, format!("walls[{k}]"));
+            writeln!(file, "{k:04},{force:e},{object}").unwrap();
             let on_disk = std::fs::read_to_string(&path).unwrap();
             cut |= !on_disk.is_empty() && !on_disk.ends_with('\n');
         }
