@@ -58,8 +58,11 @@ pub fn radial_profile(chamber: &ChamberFrame, radii: &[f64]) -> RadialProfile {
     let rings = (0..count)
         .rev()
         .map(|k| {
+            // Each edge from the same product, so that a ring's outer edge is its outer neighbour's inner edge to the
+            // bit: `to − d` differed from it in the last bits, and a radius between the two was counted twice or not
+            // at all.
             let to = big_r - k as f64 * d;
-            let from = (to - d).max(0.0);
+            let from = (big_r - (k + 1) as f64 * d).max(0.0);
             let inside = |r: f64| r > from && r <= to || (from == 0.0 && r == 0.0) || (k == 0 && r > big_r);
             Ring {
                 from_m: from,
@@ -162,6 +165,19 @@ mod tests {
         // r > R − 2d = 4 mm: four of seven; that ring is 1 − 0.4² = 84 % of the area.
         assert!((p.outer_ring_share - 4.0 / 7.0).abs() < 1e-15);
         assert!((p.outer_ring_area_share - 0.84).abs() < 1e-12);
+    }
+
+    /// QA outputs: 10 of 14 rings of a mill's profile had an outer edge a few bits off its neighbour's inner edge.
+    #[test]
+    fn neighbouring_rings_share_their_edge_to_the_bit_and_count_a_radius_on_it_once() {
+        let chamber = ChamberFrame { centre_m: [0.0, 0.0], radius_m: 0.073, ball_diameter_m: 0.0051 };
+        let edges: Vec<f64> = (1..15).map(|k| 0.073 - k as f64 * 0.0051).filter(|&e| e > 0.0).collect();
+        let p = radial_profile(&chamber, &edges);
+        for pair in p.rings.windows(2) {
+            assert_eq!(pair[0].to_m.to_bits(), pair[1].from_m.to_bits(), "{:?}", pair);
+        }
+        let counted: f64 = p.rings.iter().map(|r| r.share).sum();
+        assert!((counted - 1.0).abs() < 1e-12, "every radius on an edge counted once: {counted}");
     }
 
     #[test]
