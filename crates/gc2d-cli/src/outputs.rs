@@ -61,6 +61,13 @@ pub fn write_scene_copy(path: &Path, scene: &Scene) -> io::Result<()> {
     std::fs::write(path, header + &text + "\n")
 }
 
+/// `path` made absolute (against the working directory, without resolving links) for the files that record where a
+/// run's inputs came from (`summary.json`'s `scene`, `segments.csv`'s `resumed_from`): as typed they were relative to
+/// the shell the run was started from and pointed nowhere from the run directory. As typed where that fails.
+pub fn absolute_path_text(path: &Path) -> String {
+    std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf()).display().to_string()
+}
+
 /// Column names of `timeseries.csv`, in order. Energies in J per unit thickness (per metre of depth), or in J with
 /// sphere-equivalent masses; `force_alternation` is the engine's chatter diagnostic on the row's step
 /// (`World::force_alternation`); the `rotor_` columns are the drive of the walls turning about pivots on the row's
@@ -377,7 +384,7 @@ impl Summary {
         let s = world.stats();
         Self {
             program_version: env!("CARGO_PKG_VERSION"),
-            scene: scene.display().to_string(),
+            scene: absolute_path_text(scene),
             outcome,
             time_s: world.time(),
             steps: world.steps(),

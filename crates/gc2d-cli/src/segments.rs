@@ -78,7 +78,7 @@ impl SegmentLog {
             threads,
             from_time_s: world.time(),
             from_steps: world.steps(),
-            resumed_from: resumed_from.map(|p| p.display().to_string()).unwrap_or_default(),
+            resumed_from: resumed_from.map(crate::outputs::absolute_path_text).unwrap_or_default(),
             interval,
             largest,
         };

@@ -1144,3 +1144,29 @@ fn check_and_run_warn_of_an_inlet_too_slow_for_its_rate() {
     let out = dir.path().join("out");
     gc2d().arg("run").arg(&path).arg("--quiet").arg("--out").arg(out).assert().success().stderr(warning());
 }
+
+/// QA outputs #8: `summary.json`'s `scene` and `segments.csv`'s `resumed_from` were the paths as typed, relative to the
+/// shell the run was started from, so that they pointed nowhere from the run directory.
+#[test]
+fn the_scene_and_the_checkpoint_a_run_came_from_are_recorded_as_absolute_paths() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(scene("tiny_pile.ron"), dir.path().join("tiny.ron")).unwrap();
+    let run = |extra: &[&str]| {
+        gc2d()
+            .current_dir(dir.path())
+            .args(["run", "tiny.ron", "--quiet", "--out", "out"])
+            .args(extra)
+            .assert()
+            .success();
+    };
+    run(&["--until", "0.01"]);
+    run(&["--until", "0.02", "--resume", "out"]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
+    let recorded = Path::new(summary["scene"].as_str().unwrap());
+    assert!(recorded.is_absolute() && recorded.ends_with("tiny.ron"), "{recorded:?}");
+    assert!(std::fs::read_to_string(recorded).is_ok(), "{recorded:?} is the scene file");
+    let segments = std::fs::read_to_string(dir.path().join("out/segments.csv")).unwrap();
+    let resumed_from = Path::new(segments.lines().nth(2).unwrap().rsplit(',').next().unwrap());
+    assert!(resumed_from.is_absolute() && resumed_from.ends_with("out/final.ckpt"), "{segments}");
+}

@@ -115,17 +115,19 @@ fn a_snapshot_that_fills_the_disk_leaves_no_truncated_picture() {
 
 /// A disk that fills in the middle of a run, stood for by a file-size limit of 2 KiB (`ulimit -f 2`, with SIGXFSZ
 /// ignored so that writes past it fail with EFBIG instead of killing the process): the time series stops growing,
-/// the final checkpoint cannot be written, and the scene path is long enough (1,400 characters of `./`) that
-/// summary.json is larger than the limit as well. The run must say which files are missing instead of calling the
+/// the final checkpoint cannot be written, and the scene path is long enough (eight folders of 201 characters) that
+/// summary.json, which records it as an absolute path, is larger than the limit as well. The run must say which files are missing instead of calling the
 /// outputs complete, and leave no truncated summary.json.
 #[cfg(unix)]
 #[test]
 fn a_disk_that_fills_mid_run_leaves_no_broken_summary_and_names_what_is_missing() {
     let dir = tempfile::tempdir().unwrap();
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/tiny_pile.ron");
-    std::fs::copy(&scene, dir.path().join("tiny_pile.ron")).unwrap();
-    let long_path = format!("{}tiny_pile.ron", "./".repeat(700));
-    let Some(output) = limited(dir.path(), 2, &["run", &long_path, "--quiet", "--out", "out"]) else {
+    let folders = (0..8).fold(std::path::PathBuf::new(), |path, k| path.join(format!("{k}{}", "d".repeat(200))));
+    std::fs::create_dir_all(dir.path().join(&folders)).unwrap();
+    let long_path = folders.join("tiny_pile.ron");
+    std::fs::copy(&scene, dir.path().join(&long_path)).unwrap();
+    let Some(output) = limited(dir.path(), 2, &["run", long_path.to_str().unwrap(), "--quiet", "--out", "out"]) else {
         eprintln!("skipped: no bash to set a file-size limit with");
         return;
     };
