@@ -382,6 +382,12 @@ fn run(args: RunArgs) -> Result<u8, CommandFailure> {
         (None, Some(run_dir)) => run_dir.clone(),
         (None, None) => default_out_dir(&args.scene),
     };
+    // A directory another process still runs in is refused before anything is compared with it: the checkpoints it
+    // writes meanwhile would read as later states to go back from (the lock itself is taken below, once the directory
+    // exists).
+    if gc2d_cli::run_lock::is_locked(&out) {
+        gc2d_cli::run_lock::lock_run_directory(&out).map_err(CommandFailure::input)?;
+    }
     // The states of the run in `out` further on than the checkpoint, which a resume going back removes.
     let later_checkpoints = match &resumed_from {
         Some(from) => gc2d_cli::resume::later_checkpoints(&out, from, world.steps()),
