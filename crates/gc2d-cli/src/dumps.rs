@@ -117,8 +117,7 @@ impl StateDumps {
 /// The nominal time k·T of dump `k`, rounded to 12 significant digits: the product's last bit (3 × 0.1 =
 /// 0.30000000000000004) would show in the collection as `3.0000000000000004e-1`.
 fn nominal_time(k: u64, interval: f64) -> f64 {
-    let product = k as f64 * interval;
-    format!("{product:.11e}").parse().unwrap_or(product)
+    gc2d_scene::rounded_to_significant_digits(k as f64 * interval, 12)
 }
 
 impl FrameSink for StateDumps {

@@ -101,7 +101,13 @@ pub(crate) fn number(x: f64) -> String {
 /// time summed step by step reads 0.3, not 0.29999999999908655, and a derived modulus 1.07802e11, not
 /// 1.0780219780219778e11. For messages; files keep every digit.
 pub fn significant_digits(x: f64, digits: usize) -> String {
-    number(format!("{x:.*e}", digits.max(1) - 1).parse().unwrap_or(x))
+    number(rounded_to_significant_digits(x, digits))
+}
+
+/// `x` rounded to `digits` significant digits (at least 1), as a number: the value [`significant_digits`] writes, for
+/// files that give a nominal value (a dump's time k·T) without the last bits of its computation.
+pub fn rounded_to_significant_digits(x: f64, digits: usize) -> f64 {
+    format!("{x:.*e}", digits.max(1) - 1).parse().unwrap_or(x)
 }
 
 #[cfg(test)]

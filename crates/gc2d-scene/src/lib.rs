@@ -33,7 +33,7 @@ pub use build::blocks::MAX_INITIAL_PARTICLES;
 pub use build::fluid::{DRAG_STEPS_PER_RELAXATION_TIME, DragScale, FluidSummary};
 pub use build::safety::{AUTOMATIC_TIME_STEP_FRACTION, FALLBACK_TIME_STEP, SOURCE_SAMPLES};
 pub use build::walls::MAX_DRUM_SEGMENTS;
-pub use checks::significant_digits;
+pub use checks::{rounded_to_significant_digits, significant_digits};
 pub use error::{ErrorKind, Location, SceneError};
 pub use schema::*;
 pub use source::SourceText;
