@@ -100,6 +100,11 @@ impl ContactLaw {
     /// A non-overlapping `geometry` ends an active contact (it opens), reporting its left-over stored energy, and resets the state.
     /// Degenerate input (NaN, zero characteristic length, non-positive `dt`) yields finite output: no force for
     /// unusable geometry, and no rate-dependent terms for a non-positive `dt`.
+    ///
+    /// Always inlined: the engine's pair evaluation is compiled twice (with and without heating), and left to itself
+    /// the compiler then called this law out of line, 6.5 % more instructions a particle-step of a dense pile
+    /// (docs/performance.md, "Heating's work: what the others pay").
+    #[inline(always)]
     pub fn evaluate(
         &self,
         geometry: &ContactGeometry,

@@ -43,7 +43,7 @@ pub const CHECKPOINT_MAGIC: [u8; 8] = *b"GC2DCKPT";
 
 /// Version of the checkpoint layout. Bump it whenever a serialized type of the World changes; the test
 /// `checkpoint_layout_is_pinned` fails until it is bumped.
-pub const CHECKPOINT_FORMAT_VERSION: u32 = 17;
+pub const CHECKPOINT_FORMAT_VERSION: u32 = 18;
 
 /// The program version written into, and required of, every checkpoint.
 pub const PROGRAM_VERSION: &str = env!("CARGO_PKG_VERSION");

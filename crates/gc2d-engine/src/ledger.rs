@@ -37,6 +37,10 @@ pub struct EnergyLedger {
     pub work_fluid: f64,
     /// Work done by changes of g at fixed positions since the start (variable gravity).
     pub work_gravity_change: f64,
+    /// Work done by heating (the particles' size change, s(t)) since the start: on the contacts the expansion presses
+    /// deeper, and on the spin of the particles, whose angular momentum I·ω it keeps while I grows with s²
+    /// (docs/model.md, "Spin under heating" and "Heating's work on the contacts").
+    pub work_heating: f64,
     /// Energy of inserted particles (sources) at their insertion, since the start.
     pub work_insertions: f64,
     /// Energy of removed particles at their removal, since the start.
@@ -75,10 +79,15 @@ impl EnergyLedger {
         self.dissipated_normal_damping + self.dissipated_tangential_damping + self.dissipated_sliding
     }
 
-    /// Net energy brought in from outside since the start (walls, drag springs, the fluid, g changes, insertions −
-    /// removals).
+    /// Net energy brought in from outside since the start (walls, drag springs, the fluid, g changes, heating,
+    /// insertions − removals).
     pub fn work_in(&self) -> f64 {
-        self.work_walls + self.work_drag + self.work_fluid + self.work_gravity_change + self.work_insertions
+        self.work_walls
+            + self.work_drag
+            + self.work_fluid
+            + self.work_gravity_change
+            + self.work_heating
+            + self.work_insertions
             - self.energy_removed
     }
 

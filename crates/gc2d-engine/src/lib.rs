@@ -17,6 +17,7 @@ pub mod checkpoint;
 pub mod clearance;
 pub mod events;
 mod force_ranges;
+mod heating;
 mod home_threads;
 pub mod inlets;
 pub mod insertions;

@@ -6,6 +6,7 @@
 
 use crate::bodies::{Bodies, BodyId, BodyKind};
 use crate::clearance::Clearance;
+use crate::heating::{area_contact_virial, penetration_virial};
 use crate::interactions::{ContactModel, InteractionTable};
 use crate::shape::ShapeKind;
 use gc2d_contact::{
@@ -170,7 +171,10 @@ impl LedgerTerms {
 /// an overlap polygon, and keeps the warm start fresh for the step the pair comes into contact. Both kinds of query
 /// read and write the one warm start: a crossing where `a` leaves `b` is what the closest-feature walk itself keeps
 /// for an overlap.
-#[inline]
+///
+/// Always inlined, as [`ContactLaw::evaluate`] is: the pair evaluation is compiled twice (with and without heating),
+/// and the compiler then left this out of line (docs/performance.md, "Heating's work: what the others pay").
+#[inline(always)]
 fn polygon_overlap(
     bodies: &Bodies,
     i: BodyId,
@@ -235,6 +239,9 @@ pub(crate) struct PairEvaluation {
     /// Passes the closest-feature walk needed (0 where none ran): the statistics count the queries that needed more
     /// than one.
     pub passes: u16,
+    /// The pair's expansion virial where the World is heated (its normal force times the approach one unit of ln s
+    /// gives, J; `heating.rs`), else 0.
+    pub expansion_virial: f64,
 }
 
 /// What a pair evaluation reads: the body store as it is after the predictor.
@@ -263,16 +270,17 @@ impl PairContext<'_> {
     /// ledger books from it.
     ///
     /// When one body is a wall, the contact law sees the particle as body i; the stored result is always expressed
-    /// for `a`, so that accumulation does not need to know.
-    pub fn evaluate(&self, a: u32, b: u32, contact: &mut PairContact) -> PairEvaluation {
+    /// for `a`, so that accumulation does not need to know. `HEATED`: whether the World is heated, so that a touching
+    /// pair computes its expansion virial; a constant of the compiled code rather than a flag read per pair, since
+    /// the test alone, with the code it guards, cost a World without heating 1.3 % more instructions a particle-step
+    /// (docs/performance.md, "Heating's work: what the others pay").
+    pub fn evaluate<const HEATED: bool>(&self, a: u32, b: u32, contact: &mut PairContact) -> PairEvaluation {
         let bodies = self.bodies;
         let wall_first = bodies.kind[a as usize] == BodyKind::Wall;
         let (i, j) = if wall_first { (BodyId(b), BodyId(a)) } else { (BodyId(a), BodyId(b)) };
         match self.interactions.model(bodies.material[i.index()], bodies.material[j.index()]) {
-            ContactModel::OverlapArea(law) => self.evaluate_overlap_area(law, i, j, wall_first, contact),
-            ContactModel::Penetration(law) => {
-                PairEvaluation { ledger: self.evaluate_penetration(law, i, j, wall_first, contact), passes: 0 }
-            }
+            ContactModel::OverlapArea(law) => self.evaluate_overlap_area::<HEATED>(law, i, j, wall_first, contact),
+            ContactModel::Penetration(law) => self.evaluate_penetration::<HEATED>(law, i, j, wall_first, contact),
         }
     }
 
@@ -309,18 +317,18 @@ impl PairContext<'_> {
     }
 
     /// A penetration law for the pair (i, j), i the particle when one body is a wall.
-    fn evaluate_penetration(
+    fn evaluate_penetration<const HEATED: bool>(
         &self,
         law: &PenetrationLaw,
         i: BodyId,
         j: BodyId,
         wall_first: bool,
         contact: &mut PairContact,
-    ) -> LedgerTerms {
+    ) -> PairEvaluation {
         let bodies = self.bodies;
         let found = penetration(bodies.shape_view(i), bodies.shape_view(j));
         if found.is_none() && contact.is_quiet() {
-            return LedgerTerms::default();
+            return PairEvaluation::default();
         }
         let (position_i, position_j) = (bodies.pose[i.index()].position, bodies.pose[j.index()].position);
         let geometry = found.map_or(PenetrationGeometry::SEPARATED, |p| PenetrationGeometry {
@@ -332,9 +340,9 @@ impl PairContext<'_> {
         let previous = contact.state.penetration();
         // A pair apart now that was not touching before gets the law's answer for it (no force, nothing stored or
         // booked) without reading the bodies' velocities, as in `evaluate_overlap_area`.
-        let (response, stored_energy, wall_work) = if found.is_none() && !previous.is_touching() {
+        let (response, stored_energy, wall_work, expansion_virial) = if found.is_none() && !previous.is_touching() {
             contact.count_evaluation(true);
-            (PenetrationResponse::default(), 0.0, 0.0)
+            (PenetrationResponse::default(), 0.0, 0.0, 0.0)
         } else {
             contact.count_evaluation(false);
             let (motion_i, motion_j) = (self.motion(i), self.motion(j));
@@ -349,7 +357,10 @@ impl PairContext<'_> {
             let properties = pair_properties(radius_i, &motion_i, surface_radius_j, &motion_j, &geometry);
             let response = law.evaluate(&geometry, &properties, &motion_i, &motion_j, &previous, self.dt);
             let stored_energy = law.stored_energy(&properties, &response.state);
-            (response, stored_energy, wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt))
+            let expansion_virial =
+                if HEATED { self.penetration_expansion(law, j, &geometry, &properties) } else { 0.0 };
+            let wall_work = wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt);
+            (response, stored_energy, wall_work, expansion_virial)
         };
         contact.state = ContactHistory::Penetration(response.state);
         contact.stored_energy = stored_energy;
@@ -358,11 +369,11 @@ impl PairContext<'_> {
         contact.touching = geometry.is_touching();
         contact.point = if contact.touching { position_i + geometry.arm_i } else { DVec2::ZERO };
         contact.record_force(wall_first, response.force_on_i, response.torque_on_i, response.torque_on_j);
-        energy
+        PairEvaluation { ledger: energy, passes: 0, expansion_virial }
     }
 
     /// The overlap-area law for the pair (i, j), i the particle when one body is a wall.
-    fn evaluate_overlap_area(
+    fn evaluate_overlap_area<const HEATED: bool>(
         &self,
         law: &ContactLaw,
         i: BodyId,
@@ -382,7 +393,7 @@ impl PairContext<'_> {
             (area_contact(bodies.shape_view(i), bodies.shape_view(j)), 0)
         };
         if overlap.is_none() && contact.is_quiet() {
-            return PairEvaluation { ledger: LedgerTerms::default(), passes };
+            return PairEvaluation { passes, ..PairEvaluation::default() };
         }
         let (position_i, position_j) = (bodies.pose[i.index()].position, bodies.pose[j.index()].position);
         let geometry = overlap.map_or(gc2d_contact::ContactGeometry::SEPARATED, |g| gc2d_contact::ContactGeometry {
@@ -412,16 +423,44 @@ impl PairContext<'_> {
         // force and nothing to book, without reading the bodies' velocities: most box pairs of a pile are such
         // pairs (docs/performance.md, "Pairs apart skip the law"). Once its record holds that answer in full (a quiet
         // pair), writing it again would change no bit, so it is left alone.
-        let ledger = if overlap.is_none() && previous.constants.is_none() {
+        if overlap.is_none() && previous.constants.is_none() {
             contact.count_evaluation(true);
-            record(contact, &ContactResponse::default(), 0.0)
+            let ledger = record(contact, &ContactResponse::default(), 0.0);
+            PairEvaluation { ledger, passes, expansion_virial: 0.0 }
         } else {
             contact.count_evaluation(false);
             let (motion_i, motion_j) = (self.motion(i), self.motion(j));
             let response = law.evaluate(&geometry, &motion_i, &motion_j, &previous, self.dt);
-            record(contact, &response, wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt))
-        };
-        PairEvaluation { ledger, passes }
+            let expansion_virial = if HEATED { self.area_expansion(response.normal_force, j, &geometry) } else { 0.0 };
+            let ledger = record(contact, &response, wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt));
+            PairEvaluation { ledger, passes, expansion_virial }
+        }
+    }
+
+    /// The expansion virial of an overlap-area contact with normal force `normal_force` ([`area_contact_virial`]),
+    /// for heated Worlds only.
+    #[inline]
+    fn area_expansion(&self, normal_force: f64, j: BodyId, geometry: &gc2d_contact::ContactGeometry) -> f64 {
+        area_contact_virial(normal_force, geometry, self.grows(j))
+    }
+
+    /// The expansion virial of a penetration contact under `law` ([`penetration_virial`]), for heated Worlds only.
+    #[inline]
+    fn penetration_expansion(
+        &self,
+        law: &PenetrationLaw,
+        j: BodyId,
+        geometry: &PenetrationGeometry,
+        properties: &PairProperties,
+    ) -> f64 {
+        let elastic = law.normal.force(geometry.depth, properties.effective_radius);
+        penetration_virial(elastic, geometry, self.grows(j))
+    }
+
+    /// Whether body `id` grows with heating: a particle does, a wall does not.
+    #[inline]
+    fn grows(&self, id: BodyId) -> bool {
+        self.bodies.kind[id.index()] == BodyKind::Particle
     }
 
     /// Area of the smaller particle of the pair at its current scale (walls do not count).
@@ -538,18 +577,19 @@ mod tests {
         let law = InteractionTable::uniform(ContactLaw::elastic(1e7));
         let mut contact = PairContact::default();
         let apart = stacked(0.1);
-        let evaluation = PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        let evaluation =
+            PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate::<false>(0, 1, &mut contact);
         assert!(!contact.touching);
         assert!(evaluation.passes >= 1 && contact.warm_start.is_some());
 
         let overlapping = stacked(-0.01);
         let evaluation =
-            PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+            PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate::<false>(0, 1, &mut contact);
         assert!(contact.touching && evaluation.passes >= 1);
         let first_force = contact.force_on_a;
 
         let evaluation =
-            PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+            PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 }.evaluate::<false>(0, 1, &mut contact);
         assert!(contact.touching);
         assert_eq!(evaluation.passes, 0);
         assert_eq!(contact.force_on_a, first_force, "same overlap, same elastic force");
@@ -557,7 +597,8 @@ mod tests {
         let context = PairContext { bodies: &overlapping, interactions: &law, dt: 1e-6 };
         assert!((context.overlap_fraction(0, 1, &contact) - 0.01).abs() < 1e-12);
 
-        let evaluation = PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate(0, 1, &mut contact);
+        let evaluation =
+            PairContext { bodies: &apart, interactions: &law, dt: 1e-6 }.evaluate::<false>(0, 1, &mut contact);
         assert!(!contact.touching && evaluation.passes >= 1, "a pair that separated asks the query again");
         assert_eq!(contact.force_on_a, DVec2::ZERO);
     }
@@ -570,7 +611,7 @@ mod tests {
         let mut bodies = stacked(0.1);
         let mut contact = PairContact::default();
         let evaluate = |bodies: &Bodies, contact: &mut PairContact| {
-            PairContext { bodies, interactions: &law, dt: 1e-6 }.evaluate(0, 1, contact).passes
+            PairContext { bodies, interactions: &law, dt: 1e-6 }.evaluate::<false>(0, 1, contact).passes
         };
         assert!(evaluate(&bodies, &mut contact) >= 1, "never stepped: the travel is unknown");
         let clearance = contact.clearance.metres();
@@ -606,9 +647,9 @@ mod tests {
                 let mut broadphase = crate::broadphase::SortAndSweep::<()>::new();
                 bodies.update_world_vertices(broadphase.box_writer(bodies.len()));
                 let context = PairContext { bodies: &bodies, interactions: &law, dt: 1e-6 };
-                context.evaluate(0, 1, &mut contact);
+                context.evaluate::<false>(0, 1, &mut contact);
                 let mut fresh = PairContact::default();
-                context.evaluate(0, 1, &mut fresh);
+                context.evaluate::<false>(0, 1, &mut fresh);
                 proptest::prop_assert_eq!(contact.touching, fresh.touching);
                 if !contact.touching {
                     proptest::prop_assert_eq!(contact.force_on_a, DVec2::ZERO);
@@ -639,7 +680,7 @@ mod tests {
             bodies.kind[0] = BodyKind::Wall;
         }
         let evaluate = |bodies: &Bodies, contact: &mut PairContact| {
-            PairContext { bodies, interactions: law, dt: 1e-6 }.evaluate(0, 1, contact)
+            PairContext { bodies, interactions: law, dt: 1e-6 }.evaluate::<false>(0, 1, contact)
         };
         let bits = |contact: &PairContact| format!("{:?}", (contact.force_on_a.to_array().map(f64::to_bits), contact));
         let mut contact = PairContact::default();

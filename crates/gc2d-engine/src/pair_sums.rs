@@ -29,6 +29,8 @@ pub(crate) struct PairSums {
     pub energy: LedgerTerms,
     /// Energy the contacts store after the step, J.
     pub contact_stored: f64,
+    /// The pairs' expansion virials (0 unless the World is heated), J (`heating.rs`).
+    pub expansion_virial: f64,
     /// The chatter watch's Σ|F(n) − 2F(n−1) + F(n−2)|, N ([`crate::ForceAlternation`]).
     pub alternation: f64,
     /// The chatter watch's Σ(|F(n)| + |F(n−1)|), N.
@@ -44,9 +46,15 @@ pub(crate) struct PairSums {
 impl PairSums {
     /// Adds the pair that was just evaluated: its record, what its evaluation returned (the ledger terms, the
     /// closest-feature passes) and its overlap fraction ([`crate::narrowphase::PairContext::overlap_fraction`]; 0
-    /// when it does not touch).
+    /// when it does not touch). `HEATED`: whether the World is heated, so that the pair's expansion virial counts (as
+    /// in [`crate::narrowphase::PairContext::evaluate`], a constant of the compiled code).
     #[inline]
-    pub fn add_pair(&mut self, contact: &PairContact, evaluation: &PairEvaluation, overlap_fraction: f64) {
+    pub fn add_pair<const HEATED: bool>(
+        &mut self,
+        contact: &PairContact,
+        evaluation: &PairEvaluation,
+        overlap_fraction: f64,
+    ) {
         self.multi_pass_queries += usize::from(evaluation.passes > 1);
         if contact.is_quiet() {
             // Nothing stored, no force now or before, an evaluation that booked nothing: every sum below would add
@@ -64,6 +72,9 @@ impl PairSums {
             self.force_scale += contact.force_on_a.length() + previous.length();
         }
         self.energy.add(&evaluation.ledger);
+        if HEATED {
+            self.expansion_virial += evaluation.expansion_virial;
+        }
         if contact.touching {
             self.contacts += 1;
             self.max_overlap_fraction = self.max_overlap_fraction.max(overlap_fraction);
@@ -74,6 +85,7 @@ impl PairSums {
     pub fn add(&mut self, chunk: &PairSums) {
         self.energy.add(&chunk.energy);
         self.contact_stored += chunk.contact_stored;
+        self.expansion_virial += chunk.expansion_virial;
         self.alternation += chunk.alternation;
         self.force_scale += chunk.force_scale;
         self.contacts += chunk.contacts;
@@ -105,14 +117,15 @@ mod tests {
         let terms = PairEvaluation {
             ledger: LedgerTerms { normal_damping: 0.5, sliding: 0.25, ..LedgerTerms::default() },
             passes: 1,
+            expansion_virial: 0.125,
         };
         let mut whole = PairSums::default();
-        pairs.iter().enumerate().for_each(|(k, pair)| whole.add_pair(pair, &terms, fraction(k)));
+        pairs.iter().enumerate().for_each(|(k, pair)| whole.add_pair::<true>(pair, &terms, fraction(k)));
         let mut by_chunks = PairSums::default();
         for (c, chunk) in pairs.chunks(PAIRS_PER_CHUNK).enumerate() {
             let mut sums = PairSums::default();
             for (k, pair) in chunk.iter().enumerate() {
-                sums.add_pair(pair, &terms, fraction(c * PAIRS_PER_CHUNK + k));
+                sums.add_pair::<true>(pair, &terms, fraction(c * PAIRS_PER_CHUNK + k));
             }
             by_chunks.add(&sums);
         }
@@ -120,6 +133,7 @@ mod tests {
         assert_eq!((whole.contacts, whole.max_overlap_fraction), (1000, 1e-4 * 999.0));
         assert_eq!((whole.energy.normal_damping, whole.energy.sliding), (500.0, 250.0));
         assert_eq!(whole.contact_stored, 0.25 * 999.0 * 1000.0 / 2.0);
+        assert_eq!(whole.expansion_virial, 125.0);
         assert_eq!(whole.alternation, 0.0, "a steady force does not alternate");
     }
 
@@ -134,13 +148,17 @@ mod tests {
         let before = [PairSums::default(), {
             let mut sums = PairSums::default();
             let ledger = LedgerTerms { work_walls: -1.0, ..LedgerTerms::default() };
-            sums.add_pair(&touching_pair(3.0, 0.5), &PairEvaluation { ledger, passes: 1 }, 0.1);
+            sums.add_pair::<false>(
+                &touching_pair(3.0, 0.5),
+                &PairEvaluation { ledger, passes: 1, ..PairEvaluation::default() },
+                0.1,
+            );
             sums
         }];
         for start in before {
             let (mut skipped, mut full) = (start, start);
-            skipped.add_pair(&quiet, &two_passes, 0.0);
-            full.add_pair(&loud, &two_passes, 0.0);
+            skipped.add_pair::<false>(&quiet, &two_passes, 0.0);
+            full.add_pair::<false>(&loud, &two_passes, 0.0);
             assert_eq!(format!("{skipped:?}"), format!("{full:?}"));
             assert_eq!(skipped.multi_pass_queries, start.multi_pass_queries + 1);
         }

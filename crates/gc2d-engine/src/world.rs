@@ -19,6 +19,7 @@ use crate::broadphase::{PairEntry, SortAndSweep};
 use crate::clearance::Clearance;
 use crate::events::{ContactEvent, ContactEventLog, Episode, PairStep};
 use crate::force_ranges::{BodyRanges, add_contact_forces, add_pair_forces, mark_touching_pair};
+use crate::heating::{ContactExpansion, keep_angular_momentum};
 use crate::home_threads::for_each_on_home_thread;
 use crate::inlets::{Inlet, InletState};
 use crate::insertions::{Inserter, Insertion, InsertionLog};
@@ -251,6 +252,11 @@ pub struct World {
     #[serde(skip)]
     positions_before_step: Vec<DVec2>,
     ledger: EnergyLedger,
+    /// The heating's work on the contacts, step by step (`heating.rs`).
+    contact_expansion: ContactExpansion,
+    /// ln(s_new/s_old) of the heating this step (0 where s stayed), set by the predictor for the step's booking.
+    #[serde(skip)]
+    scale_log_change: f64,
     rotor_work: RotorWork,
     stats: StepStats,
     stages: Stages,
@@ -311,6 +317,8 @@ impl World {
             insertions: InsertionLog::default(),
             positions_before_step: Vec::new(),
             ledger: EnergyLedger::default(),
+            contact_expansion: ContactExpansion::default(),
+            scale_log_change: 0.0,
             rotor_work: RotorWork::default(),
             stats: StepStats::default(),
             stages,
@@ -952,15 +960,22 @@ impl World {
             && let Some(heating) = self.config.heating
         {
             let scale = heating.scale(t_next);
+            self.scale_log_change = 0.0;
             for i in 0..b.len() {
-                if b.kind[i] == BodyKind::Particle {
-                    if b.pose[i].scale != scale {
-                        // The travel bound is for poses of one scale: a grown body has moved by more than it says.
-                        b.travel[i] = f32::INFINITY;
-                    }
-                    b.pose[i].scale = scale;
-                    b.inverse_inertia[i] = 1.0 / (b.inertia[i] * HeatingSchedule::inertia_factor(scale));
+                if b.kind[i] != BodyKind::Particle {
+                    continue;
                 }
+                let old_scale = b.pose[i].scale;
+                if old_scale != scale {
+                    // The travel bound is for poses of one scale: a grown body has moved by more than it says.
+                    b.travel[i] = f32::INFINITY;
+                    self.scale_log_change = (scale / old_scale).ln();
+                    if b.alive[i] {
+                        self.ledger.work_heating += keep_angular_momentum(b, i, old_scale, scale);
+                    }
+                }
+                b.pose[i].scale = scale;
+                b.inverse_inertia[i] = 1.0 / (b.inertia[i] * HeatingSchedule::inertia_factor(scale));
             }
         }
     }
@@ -1055,9 +1070,15 @@ impl World {
         let ranges = BodyRanges::of_pool(self.bodies.len());
         self.body_ranges = ranges;
         self.range_masks.resize(self.pair_sums.len() * ranges.count, 0);
+        let heated = self.stages.heating;
         let evaluate_chunk = |((chunk, sums), masks): ((&mut [PairEntry<PairContact>], &mut PairSums), &mut [u64])| {
             masks.fill(0);
-            evaluate_chunk(&context, chunk, sums, |position, pair| mark_touching_pair(masks, &ranges, position, pair));
+            let touching = |position, pair: &PairEntry<PairContact>| mark_touching_pair(masks, &ranges, position, pair);
+            if heated {
+                evaluate_chunk::<true>(&context, chunk, sums, touching);
+            } else {
+                evaluate_chunk::<false>(&context, chunk, sums, touching);
+            }
         };
         let chunks = pairs.par_chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.par_iter_mut());
         let chunks = chunks.zip(self.range_masks.par_chunks_mut(ranges.count));
@@ -1076,8 +1097,14 @@ impl World {
         torques.fill(0.0);
         let context = pair_context(&self.bodies, &self.config);
         let pairs = self.broadphase.pairs_mut();
+        let heated = self.stages.heating;
         for (chunk, sums) in pairs.chunks_mut(PAIRS_PER_CHUNK).zip(self.pair_sums.iter_mut()) {
-            evaluate_chunk(&context, chunk, sums, |_, pair| add_pair_forces(pair, 0, &mut forces, &mut torques));
+            let touching = |_, pair: &PairEntry<PairContact>| add_pair_forces(pair, 0, &mut forces, &mut torques);
+            if heated {
+                evaluate_chunk::<true>(&context, chunk, sums, touching);
+            } else {
+                evaluate_chunk::<false>(&context, chunk, sums, touching);
+            }
         }
         self.bodies.force = forces;
         self.bodies.torque = torques;
@@ -1140,6 +1167,9 @@ impl World {
         self.pair_sums.iter().for_each(|chunk| sums.add(chunk));
         self.ledger.book_contacts(&sums.energy);
         self.ledger.contact_stored = sums.contact_stored;
+        if self.stages.heating {
+            self.ledger.work_heating += self.contact_expansion.step_work(self.scale_log_change, sums.expansion_virial);
+        }
         self.stats = StepStats {
             box_pairs: self.broadphase.pairs().len(),
             contacts: sums.contacts,
@@ -1594,7 +1624,7 @@ fn pair_context<'a>(bodies: &'a Bodies, config: &'a WorldConfig) -> PairContext<
 /// compiler, the parallel narrowphase of the 12,800 squares ran about 1 % slower on two threads than with the loop
 /// written in place (medians of 21 quiet rounds, 139.3 against 137.8 ns per particle-step).
 #[inline(always)]
-fn evaluate_chunk(
+fn evaluate_chunk<const HEATED: bool>(
     context: &PairContext,
     chunk: &mut [PairEntry<PairContact>],
     sums: &mut PairSums,
@@ -1602,14 +1632,14 @@ fn evaluate_chunk(
 ) {
     *sums = PairSums::default();
     for (position, pair) in chunk.iter_mut().enumerate() {
-        let evaluation = context.evaluate(pair.a(), pair.b(), &mut pair.payload);
+        let evaluation = context.evaluate::<HEATED>(pair.a(), pair.b(), &mut pair.payload);
         // Only a touching pair has an overlap (and only a touching pair's counts in the sums). `overlap_fraction` tests
         // `touching` too, but it is a call: testing here first spares it for the pairs apart (d179a86; reading the
         // fraction inside `evaluate` instead cost 2-5 % more instructions, docs/performance.md, "Finiteness tests
         // without early exits").
         let overlap_fraction =
             if pair.payload.touching { context.overlap_fraction(pair.a(), pair.b(), &pair.payload) } else { 0.0 };
-        sums.add_pair(&pair.payload, &evaluation, overlap_fraction);
+        sums.add_pair::<HEATED>(&pair.payload, &evaluation, overlap_fraction);
         if pair.payload.touching {
             touching(position, pair);
         }

@@ -171,6 +171,7 @@ fn observed_bits(world: &World) -> Vec<u64> {
         l.work_walls,
         l.work_drag,
         l.work_gravity_change,
+        l.work_heating,
         l.work_insertions,
         l.energy_removed,
         l.initial_total,
@@ -194,6 +195,7 @@ fn a_run_split_at_a_checkpoint_ends_bitwise_identical_to_the_unsplit_run() {
     let piston_x = first_half.bodies().pose[2].position.x;
     assert!(piston_x < 0.105 - 1e-3, "the piston has not moved (x = {piston_x})");
     assert!(first_half.ledger().dissipated() > 0.0 && first_half.ledger().work_drag != 0.0);
+    assert!(first_half.ledger().work_heating != 0.0, "the heating's work is part of the split");
 
     let saved = checkpoint_bytes(&first_half);
     drop(first_half);
@@ -414,7 +416,7 @@ fn checkpoint_layout_is_pinned() {
     assert!(world.contacts().count() > 0, "the pin must cover a pair record");
     let payload = checkpoint_bytes(&world).len() - payload_offset();
     assert_eq!(
-        payload, 18674,
+        payload, 18690,
         "the checkpoint layout changed: bump CHECKPOINT_FORMAT_VERSION (now {CHECKPOINT_FORMAT_VERSION}) and pin the \
          new payload length"
     );

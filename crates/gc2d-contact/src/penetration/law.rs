@@ -172,6 +172,11 @@ impl PenetrationLaw {
     /// Normal force on i (feedpipe.md (3.34), (3.44)): F_n = F(δ) + c·v_approach with c = 2·D·√(m*·k_n(δ)), and
     /// with the tensile clamp F_n = max(F_n, 0). Energy terms of the step: the exact U(δ) − U(δ_old), the dashpot's
     /// F_d·v_approach·Δt (≥ 0), and the tangential and rolling terms of their capped springs.
+    ///
+    /// Always inlined, as [`crate::ContactLaw::evaluate`] is: the engine's pair evaluation is compiled twice (with and
+    /// without heating), and left to itself the compiler then called this law out of line, 6 % more instructions a
+    /// particle-step of a pile of disks (docs/performance.md, "Heating's work: what the others pay").
+    #[inline(always)]
     pub fn evaluate(
         &self,
         geometry: &PenetrationGeometry,
