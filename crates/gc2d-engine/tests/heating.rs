@@ -9,7 +9,7 @@ use common::{E_THESIS, RHO_THESIS, add_box, law, step};
 use gc2d_contact::{NormalSpring, PenetrationLaw};
 use gc2d_engine::schedules::HeatingSchedule;
 use gc2d_engine::time_window::TimeWindow;
-use gc2d_engine::{BodyShape, ContactModel, World, WorldConfig};
+use gc2d_engine::{BodyShape, ContactModel, Integrator, World, WorldConfig};
 use gc2d_geometry::{Aabb, DVec2, Pose, regular_polygon, square};
 
 /// Heating by a = `amplitude` at 2 Hz, slope 4, from t = 0 to `end`.
@@ -31,23 +31,31 @@ fn angular_momentum(world: &World, index: usize) -> f64 {
 
 #[test]
 fn a_spinning_particle_keeps_its_angular_momentum_while_heated() {
-    let mut world = heated_world(law(E_THESIS, 0.0, 0.0), 1e-4, 0.0, heating(0.1, 1.0));
-    let hexagon = regular_polygon(6, 0.01).unwrap();
-    let id = world.add_particle(&hexagon, Pose::new(DVec2::ZERO, 0.0), RHO_THESIS, DVec2::ZERO, 10.0).unwrap();
-    let start = angular_momentum(&world, id.index());
-    let initial_rotational = world.ledger().kinetic_rotational;
-    let mut largest_scale: f64 = 1.0;
-    for _ in 0..10_000 {
-        step(&mut world);
-        let momentum = angular_momentum(&world, id.index());
-        assert!((momentum / start - 1.0).abs() < 1e-12, "I·ω {momentum} against {start} at t = {}", world.time());
-        largest_scale = largest_scale.max(world.bodies().pose[id.index()].scale);
-        let l = world.ledger();
-        let change = l.kinetic_rotational - initial_rotational;
-        assert!((l.work_heating - change).abs() <= 1e-12 * initial_rotational, "{} against {change}", l.work_heating);
-        assert!(l.balance_error().abs() <= 1e-12 * initial_rotational, "balance error {}", l.balance_error());
+    for integrator in [Integrator::default(), Integrator::VelocityVerlet] {
+        let config = WorldConfig {
+            heating: Some(heating(0.1, 1.0)),
+            integrator,
+            ..common::config(1e-4, law(E_THESIS, 0.0, 0.0), 0.0)
+        };
+        let mut world = common::world(config);
+        let hexagon = regular_polygon(6, 0.01).unwrap();
+        let id = world.add_particle(&hexagon, Pose::new(DVec2::ZERO, 0.0), RHO_THESIS, DVec2::ZERO, 10.0).unwrap();
+        let start = angular_momentum(&world, id.index());
+        let initial_rotational = world.ledger().kinetic_rotational;
+        let mut largest_scale: f64 = 1.0;
+        for _ in 0..10_000 {
+            step(&mut world);
+            let momentum = angular_momentum(&world, id.index());
+            assert!((momentum / start - 1.0).abs() < 1e-12, "{integrator:?}: I·ω {momentum} against {start}");
+            largest_scale = largest_scale.max(world.bodies().pose[id.index()].scale);
+            let l = world.ledger();
+            let change = l.kinetic_rotational - initial_rotational;
+            let work = l.work_heating;
+            assert!((work - change).abs() <= 1e-12 * initial_rotational, "{integrator:?}: {work} against {change}");
+            assert!(l.balance_error().abs() <= 1e-12 * initial_rotational, "balance error {}", l.balance_error());
+        }
+        assert!(largest_scale > 1.099, "the particle grew to s = {largest_scale}");
     }
-    assert!(largest_scale > 1.099, "the particle grew to s = {largest_scale}");
 }
 
 /// Three disks in a row, touching and at rest, without gravity, pushed apart by heating: all the kinetic energy they
