@@ -768,8 +768,13 @@ fn start_recording(path: &Path, args: &RunArgs, scene: &Scene, interval: f64) ->
         program_version: env!("CARGO_PKG_VERSION").into(),
         seed: scene.run.seed,
         command_line: std::env::args().collect(),
+        // The attachment is named by the scene's file name: the path as typed is relative to the shell it was typed
+        // in, and the metadata's command line keeps it anyway.
         scene: std::fs::read(&args.scene).ok().map(|data| SceneFile {
-            name: args.scene.display().to_string(),
+            name: args
+                .scene
+                .file_name()
+                .map_or_else(|| args.scene.display().to_string(), |name| name.to_string_lossy().into_owned()),
             media_type: "text/plain".into(),
             data,
         }),

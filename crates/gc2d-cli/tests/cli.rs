@@ -1025,6 +1025,10 @@ fn record_pictures_snapshot_and_analysis_of_a_run() {
     let bytes = std::fs::read(&recording).unwrap();
     let magic = b"\x89MCAP0\r\n";
     assert!(bytes.starts_with(magic) && bytes.ends_with(magic), "the recording is a finished MCAP file");
+    // The scene is attached under its file name, not the path it was given as (QA outputs, 2026-11-29).
+    let summary = mcap::Summary::read(&bytes).unwrap().expect("a finished recording has a summary");
+    let names: Vec<&str> = summary.attachment_indexes.iter().map(|index| index.name.as_str()).collect();
+    assert_eq!(names, ["tiny_pile.ron"]);
     // Pictures at t = 0, 0.04 and 0.08, all of one size: the scene has no view nor domain, so every picture shows the
     // region the first one fitted (each used to fit its own, and the size changed as the pile grew).
     let frames: Vec<PathBuf> = (0..3).map(|k| out.path().join(format!("frames/frame-{k:05}.png"))).collect();
