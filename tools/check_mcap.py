@@ -12,6 +12,9 @@ EXPECT.json says what the run produced (the Rust test writes it from the World i
   truncated           true for the file of a run killed mid-way: no summary or footer is expected, and
                       at least `min_frames` whole frames must be readable
   min_frames          (truncated only) frames the writer had reported flushed before the kill
+  fluid_arrows        (optional) the arrows of the fluid drawn in every frame of a World with a fluid: the file must
+                      then carry the /fluid topic, one message per frame at the frame's log time, each one entity
+                      'fluid' whose line list draws a shaft and two barbs per arrow; absent or null: no /fluid topic
 
 Every record is read in file order with mcap's StreamReader (CRCs validated); protobuf messages are decoded with the
 FileDescriptorSet stored in the file (mcap-protobuf-support), JSON messages with the json module. Exits 1 listing the
@@ -35,6 +38,7 @@ EXPECTED_TOPICS = {
     "/contacts": ("foxglove.SceneUpdate", "protobuf", "protobuf"),
     "/stats": ("gc2d.FrameStats", "jsonschema", "json"),
 }
+FLUID_TOPIC = ("/fluid", ("foxglove.SceneUpdate", "protobuf", "protobuf"))
 STATS_FIELDS = ("time", "particles", "kinetic", "potential", "elastic", "dissipated", "contacts", "mean_coordination")
 DELETE_ALL = 1  # foxglove.SceneEntityDeletion.Type.ALL
 LINE_LIST = 2  # foxglove.LinePrimitive.Type.LINE_LIST
@@ -73,7 +77,7 @@ def decode_frames(records, checks):
     channels = {r.id: r for r in records if isinstance(r, Channel)}
     factory = DecoderFactory()
     decoders = {}
-    by_topic = {topic: [] for topic in EXPECTED_TOPICS}
+    by_topic = {}
     for r in records:
         if not isinstance(r, Message):
             continue
@@ -94,10 +98,18 @@ def decode_frames(records, checks):
     return schemas, channels, by_topic
 
 
-def check_topics(schemas, channels, checks):
+def expected_topics(expect):
+    """The topics a recording carries: the fixed four, and /fluid where the World has a fluid."""
+    topics = dict(EXPECTED_TOPICS)
+    if expect.get("fluid_arrows") is not None:
+        topics[FLUID_TOPIC[0]] = FLUID_TOPIC[1]
+    return topics
+
+
+def check_topics(schemas, channels, expected, checks):
     topics = {c.topic: c for c in channels.values()}
-    checks.expect(set(topics) == set(EXPECTED_TOPICS), f"topics {sorted(topics)} != {sorted(EXPECTED_TOPICS)}")
-    for topic, (schema_name, schema_encoding, message_encoding) in EXPECTED_TOPICS.items():
+    checks.expect(set(topics) == set(expected), f"topics {sorted(topics)} != {sorted(expected)}")
+    for topic, (schema_name, schema_encoding, message_encoding) in expected.items():
         channel = topics.get(topic)
         if channel is None:
             continue
@@ -236,6 +248,22 @@ def check_contacts(frames, contacts, stats, checks):
         checks.expect(len({line.thickness for line in lines}) == len(lines), f"/contacts at {log_time}: two lists of one width")
 
 
+def check_fluid(frames, fluid, arrows, checks):
+    """One /fluid message per frame at its log time: one entity 'fluid', whose line list holds a shaft and two barbs
+    (three segments, six points) per arrow, with a colour per point."""
+    checks.expect([t for t, _ in fluid] == [t for t, _ in frames], f"{len(fluid)} /fluid messages for {len(frames)} frames")
+    for log_time, update in fluid:
+        entities = list(update.entities)
+        if not checks.expect(len(entities) == 1 and entities[0].id == "fluid", f"/fluid at {log_time}: entities"):
+            continue
+        lines = list(entities[0].lines)
+        if not checks.expect(len(lines) == 1 and lines[0].type == LINE_LIST, f"/fluid at {log_time}: not one line list"):
+            continue
+        points = len(lines[0].points)
+        checks.expect(points == 6 * arrows, f"/fluid at {log_time}: {points} points for {arrows} arrows")
+        checks.expect(len(lines[0].colors) == points, f"/fluid at {log_time}: {len(lines[0].colors)} colours")
+
+
 def check_complete_file(path, expect, records, checks):
     with open(path, "rb") as f:
         data = f.read()
@@ -280,12 +308,14 @@ def main(argv):
         checks.expect(error is None, f"reading stopped early: {error!r}")
 
     schemas, channels, by_topic = decode_frames(records, checks)
-    check_topics(schemas, channels, checks)
+    check_topics(schemas, channels, expected_topics(expect), checks)
     check_log_times(records, channels, checks)
     frames = by_topic.get("/particles", [])
     stats = by_topic.get("/stats", [])
     check_particles(frames, stats, expect, checks, truncated)
     check_contacts(frames, by_topic.get("/contacts", []), stats, checks)
+    if expect.get("fluid_arrows") is not None:
+        check_fluid(frames, by_topic.get("/fluid", []), expect["fluid_arrows"], checks)
     checks.expect(any(isinstance(r, Metadata) and r.name == "gc2d-rs" for r in records), "no gc2d-rs metadata")
     if expect.get("attachment") is not None:
         checks.expect(any(isinstance(r, Attachment) for r in records), "no attachment record")

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{add_box, add_heptagon, falling_heptagons};
+use common::{TIME_STEP, add_box, add_heptagon, check_with_reference_reader, checker_python, falling_heptagons};
 use foxglove::Decode;
 use foxglove::schemas::SceneUpdate;
 use gc2d_engine::{Fluid, WallMotion, World};
@@ -109,6 +109,26 @@ fn a_recording_carries_the_fluid_on_its_own_topic_only_when_there_is_one() {
     let mut still = falling_heptagons(3);
     let path = record(&mut still, "still.mcap");
     assert!(messages_of(&path, "/fluid").is_empty());
+}
+
+/// The reference reader (tools/check_mcap.py, the `mcap` Python package) finds the `/fluid` topic with one message
+/// per frame, each drawing every arrow.
+#[test]
+fn the_reference_reader_reads_the_fluid_topic() {
+    let mut world = world_in(Some(FluidField::Uniform(DVec2::new(3.0, 0.0))));
+    let arrows = fluid_arrows(&world, drawn_region(&world).unwrap()).unwrap().len();
+    let path = record(&mut world, "uniform-for-the-reference-reader.mcap");
+    let Some(python) = checker_python() else { return };
+    let expect = serde_json::json!({
+        "frames_per_second": 100.0,
+        "time_step": TIME_STEP,
+        "particle_counts": [1, 1, 1],
+        "walls_messages": 1,
+        "attachment": null,
+        "truncated": false,
+        "fluid_arrows": arrows,
+    });
+    check_with_reference_reader(&python, &path, &expect);
 }
 
 #[test]

@@ -3,17 +3,12 @@
 
 mod common;
 
-use common::{TIME_STEP, add_heptagon_source, falling_heptagons};
+use common::{TIME_STEP, add_heptagon_source, check_with_reference_reader, checker_python, falling_heptagons};
 use gc2d_engine::World;
 use gc2d_record::{Observer, RecordOptions, Recorder, RunInfo, SceneFile};
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-
-/// The repository root (two levels above this crate).
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 /// A fresh scratch directory under target/ for one test.
 fn scratch_dir(name: &str) -> PathBuf {
@@ -21,34 +16,6 @@ fn scratch_dir(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-/// The venv python with the reference reader, or `None` (with a message) when python3 is not installed.
-fn checker_python() -> Option<PathBuf> {
-    if Command::new("python3").arg("--version").output().is_err() {
-        eprintln!("SKIPPED: python3 is not installed, so the recording cannot be checked by the reference reader");
-        return None;
-    }
-    let setup = repo_root().join("tools/setup-python.sh");
-    let output = Command::new("bash").arg(&setup).output().expect("run tools/setup-python.sh");
-    assert!(output.status.success(), "setup-python.sh failed: {}", String::from_utf8_lossy(&output.stderr));
-    let python = String::from_utf8(output.stdout).unwrap().lines().last().unwrap().trim().to_string();
-    Some(PathBuf::from(python))
-}
-
-/// Runs tools/check_mcap.py on `recording` with the expectations `expect`; panics with its report on failure.
-fn check_with_reference_reader(python: &Path, recording: &Path, expect: &serde_json::Value) {
-    let expect_path = recording.with_extension("expect.json");
-    std::fs::write(&expect_path, serde_json::to_string_pretty(expect).unwrap()).unwrap();
-    let output = Command::new(python)
-        .arg(repo_root().join("tools/check_mcap.py"))
-        .arg(recording)
-        .arg(&expect_path)
-        .output()
-        .expect("run tools/check_mcap.py");
-    let report = String::from_utf8_lossy(&output.stdout);
-    eprintln!("{report}{}", String::from_utf8_lossy(&output.stderr));
-    assert!(output.status.success(), "check_mcap.py found problems:\n{report}");
 }
 
 /// The particle count the run loop reports for each recorded frame.

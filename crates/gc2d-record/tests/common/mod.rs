@@ -9,6 +9,8 @@ use gc2d_engine::{
     WallMotion, World, WorldConfig,
 };
 use gc2d_geometry::{AngleMode, DVec2, Pose, Randomization, ShapeRecipe, rectangle, regular_polygon};
+use std::path::{Path, PathBuf};
+use std::process::Command;
 
 /// Circumradius of the test particles, m.
 pub const RADIUS: f64 = 0.01;
@@ -116,4 +118,37 @@ pub fn heptagon_on_the_floor() -> World {
     // Face k = 5 (between corners 5 and 6) has its outward normal at 2π·5.5/7; turning by −π/14 points it down.
     add_heptagon(&mut world, DVec2::new(0.0, inscribed + 1e-4), -std::f64::consts::PI / 14.0);
     world
+}
+
+/// The repository root (two levels above this crate).
+pub fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The venv python with the reference reader, or `None` (with a message) when python3 is not installed.
+pub fn checker_python() -> Option<PathBuf> {
+    if Command::new("python3").arg("--version").output().is_err() {
+        eprintln!("SKIPPED: python3 is not installed, so the recording cannot be checked by the reference reader");
+        return None;
+    }
+    let setup = repo_root().join("tools/setup-python.sh");
+    let output = Command::new("bash").arg(&setup).output().expect("run tools/setup-python.sh");
+    assert!(output.status.success(), "setup-python.sh failed: {}", String::from_utf8_lossy(&output.stderr));
+    let python = String::from_utf8(output.stdout).unwrap().lines().last().unwrap().trim().to_string();
+    Some(PathBuf::from(python))
+}
+
+/// Runs tools/check_mcap.py on `recording` with the expectations `expect`; panics with its report on failure.
+pub fn check_with_reference_reader(python: &Path, recording: &Path, expect: &serde_json::Value) {
+    let expect_path = recording.with_extension("expect.json");
+    std::fs::write(&expect_path, serde_json::to_string_pretty(expect).unwrap()).unwrap();
+    let output = Command::new(python)
+        .arg(repo_root().join("tools/check_mcap.py"))
+        .arg(recording)
+        .arg(&expect_path)
+        .output()
+        .expect("run tools/check_mcap.py");
+    let report = String::from_utf8_lossy(&output.stdout);
+    eprintln!("{report}{}", String::from_utf8_lossy(&output.stderr));
+    assert!(output.status.success(), "check_mcap.py found problems:\n{report}");
 }
