@@ -358,7 +358,7 @@ impl PairContext<'_> {
             let response = law.evaluate(&geometry, &properties, &motion_i, &motion_j, &previous, self.dt);
             let stored_energy = law.stored_energy(&properties, &response.state);
             let expansion_virial =
-                if HEATED { self.penetration_expansion(law, j, &geometry, &properties) } else { 0.0 };
+                if HEATED { self.penetration_expansion(law, j, &geometry, &properties, radius_i) } else { 0.0 };
             let wall_work = wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt);
             (response, stored_energy, wall_work, expansion_virial)
         };
@@ -444,7 +444,10 @@ impl PairContext<'_> {
         area_contact_virial(normal_force, geometry, self.grows(j))
     }
 
-    /// The expansion virial of a penetration contact under `law` ([`penetration_virial`]), for heated Worlds only.
+    /// The expansion virial of a penetration contact under `law` ([`penetration_virial`]), with the growth of its
+    /// stored energy as the effective radius R* grows at a fixed depth (a Hertz spring stiffens with √R*), for heated
+    /// Worlds only. `radius_i` is particle i's contact radius; R* grows with s where both bodies grow, and by
+    /// R*/R_i per unit of ln s where j is a wall, whose radius stays.
     #[inline]
     fn penetration_expansion(
         &self,
@@ -452,9 +455,12 @@ impl PairContext<'_> {
         j: BodyId,
         geometry: &PenetrationGeometry,
         properties: &PairProperties,
+        radius_i: f64,
     ) -> f64 {
-        let elastic = law.normal.force(geometry.depth, properties.effective_radius);
-        penetration_virial(elastic, geometry, self.grows(j))
+        let (depth, radius) = (geometry.depth, properties.effective_radius);
+        let radius_growth = if self.grows(j) { 1.0 } else { radius / radius_i };
+        let stiffening = law.normal.energy_radius_sensitivity(depth, radius) * radius_growth;
+        penetration_virial(law.normal.force(depth, radius), geometry, self.grows(j)) + stiffening
     }
 
     /// Whether body `id` grows with heating: a particle does, a wall does not.

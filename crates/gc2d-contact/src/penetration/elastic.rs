@@ -41,6 +41,17 @@ impl NormalSpring {
         }
     }
 
+    /// R*·∂U/∂R* at depth `depth`, J: how much the stored energy grows with the effective radius at a fixed depth,
+    /// per unit of ln R*: 0 for the linear spring, U/2 for Hertz (U ∝ √R*). Heating grows the radii, and this is
+    /// part of its work on a contact (docs/model.md, "Heating's work on the contacts").
+    #[inline]
+    pub fn energy_radius_sensitivity(&self, depth: f64, radius: f64) -> f64 {
+        match *self {
+            Self::Linear { .. } => 0.0,
+            Self::Hertz { .. } => 0.5 * self.energy(depth, radius),
+        }
+    }
+
     /// Secant stiffness k_n(δ) = F(δ)/δ in N/m: k, or k_Hz·√δ = (4/3)·E*·√(R*·δ) (feedpipe.md (3.42)). This is the
     /// stiffness the thesis puts into the damping coefficient (3.44) and the one the Cundall–Strack stiffness ratio
     /// multiplies.
@@ -118,6 +129,19 @@ mod tests {
             assert!((numeric_k - spring.tangent_stiffness(depth, radius)).abs() < 1e-6 * numeric_k);
             assert_eq!(spring.force(-1e-6, radius), 0.0);
             assert_eq!(spring.energy(-1e-6, radius), 0.0);
+        }
+    }
+
+    #[test]
+    fn the_radius_sensitivity_is_r_times_the_energy_s_radius_derivative() {
+        for spring in [NormalSpring::Linear { stiffness_n_m: 3e6 }, NormalSpring::Hertz { effective_modulus_pa: 1e11 }]
+        {
+            let (radius, depth, h) = (0.0125, 2e-6, 1e-6);
+            let numeric = radius
+                * (spring.energy(depth, radius * (1.0 + h)) - spring.energy(depth, radius * (1.0 - h)))
+                / (2.0 * h * radius);
+            let sensitivity = spring.energy_radius_sensitivity(depth, radius);
+            assert!((numeric - sensitivity).abs() <= 1e-9 * spring.energy(depth, radius), "{spring:?}: {numeric}");
         }
     }
 
