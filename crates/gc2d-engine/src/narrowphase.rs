@@ -431,17 +431,11 @@ impl PairContext<'_> {
             contact.count_evaluation(false);
             let (motion_i, motion_j) = (self.motion(i), self.motion(j));
             let response = law.evaluate(&geometry, &motion_i, &motion_j, &previous, self.dt);
-            let expansion_virial = if HEATED { self.area_expansion(response.normal_force, j, &geometry) } else { 0.0 };
+            let expansion_virial =
+                if HEATED { area_contact_virial(response.normal_force, &geometry, self.grows(j)) } else { 0.0 };
             let ledger = record(contact, &response, wall_work(&motion_j, geometry.arm_j, response.force_on_i, self.dt));
             PairEvaluation { ledger, passes, expansion_virial }
         }
-    }
-
-    /// The expansion virial of an overlap-area contact with normal force `normal_force` ([`area_contact_virial`]),
-    /// for heated Worlds only.
-    #[inline]
-    fn area_expansion(&self, normal_force: f64, j: BodyId, geometry: &gc2d_contact::ContactGeometry) -> f64 {
-        area_contact_virial(normal_force, geometry, self.grows(j))
     }
 
     /// The expansion virial of a penetration contact under `law` ([`penetration_virial`]), with the growth of its
@@ -457,10 +451,10 @@ impl PairContext<'_> {
         properties: &PairProperties,
         radius_i: f64,
     ) -> f64 {
-        let (depth, radius) = (geometry.depth, properties.effective_radius);
-        let radius_growth = if self.grows(j) { 1.0 } else { radius / radius_i };
+        let (depth, radius, j_grows) = (geometry.depth, properties.effective_radius, self.grows(j));
+        let radius_growth = if j_grows { 1.0 } else { radius / radius_i };
         let stiffening = law.normal.energy_radius_sensitivity(depth, radius) * radius_growth;
-        penetration_virial(law.normal.force(depth, radius), geometry, self.grows(j)) + stiffening
+        penetration_virial(law.normal.force(depth, radius), geometry, j_grows) + stiffening
     }
 
     /// Whether body `id` grows with heating: a particle does, a wall does not.
